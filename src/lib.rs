@@ -1,0 +1,8 @@
+//! batstudy: baseball bat–ball collisions as parameter studies.
+//!
+//! Data flow, one direction (see docs/architecture.md):
+//! study file → `study` (parse, validate, expand to points) → `model` (simulate one
+//! collision) → `results` (finished points) → `store` (HDF5) ← `run` (drives it all).
+
+pub mod model;
+pub mod results;

@@ -1,0 +1,5 @@
+//! The physics: one fully specified collision in, one `Outcome` out.
+//! No I/O, no threads, no printing.
+
+pub mod outcome;
+pub mod spec;

@@ -1,0 +1,128 @@
+//! What one collision produces, and what a prepared bat knows about itself.
+//!
+//! Frames: unless a name says `lab`, every velocity is in the frame where the bat's
+//! centre of mass is initially at rest (PHYSICS.md). Positive exit speed = the ball goes
+//! back toward the pitcher.
+
+use serde::{Deserialize, Serialize};
+
+/// Which time histories to record, on one common time axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum HistoryField {
+    /// Contact force between ball and bat (N).
+    Force,
+    /// Ball compression s (m).
+    Compression,
+    /// Ball velocity (m/s, + toward the bat, CM frame).
+    BallVelocity,
+    /// Bat displacement y(z, t) at the requested z (m).
+    Displacement,
+    /// Rigid part of the bat's motion: CM translation (m) and rotation (rad).
+    RigidMotion,
+    /// Displacement of the hoop mass relative to the impact point (m).
+    HoopDisplacement,
+}
+
+/// A request for sampled time histories: samples at t = k·interval, k = 0..n_samples,
+/// with t = 0 at first contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryRequest {
+    pub fields: Vec<HistoryField>,
+    /// Sampling interval in s.
+    pub interval: f64,
+    /// Number of samples (duration / interval, rounded).
+    pub n_samples: usize,
+    /// Positions (m from the knob) at which the bat displacement is sampled; points
+    /// beyond the bat's length get NaN.
+    pub z: Vec<f64>,
+}
+
+/// Sampled time histories. Arrays for fields not requested are empty.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct History {
+    /// Contact force, N, length n_samples.
+    pub force: Vec<f64>,
+    /// Ball compression, m.
+    pub compression: Vec<f64>,
+    /// Ball velocity, m/s.
+    pub ball_velocity: Vec<f64>,
+    /// Bat displacement, m, row-major [n_samples][z.len()].
+    pub displacement: Vec<f64>,
+    /// Rigid CM translation of the bat, m.
+    pub rigid_translation: Vec<f64>,
+    /// Rigid rotation of the bat about its CM, rad.
+    pub rigid_rotation: Vec<f64>,
+    /// Hoop mass displacement relative to the impact point, m.
+    pub hoop_displacement: Vec<f64>,
+}
+
+/// Where the collision's energy went, J (CM frame). `initial` = sum of the rest
+/// (up to the integrator's accuracy).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct EnergyPartition {
+    /// Kinetic energy of ball + bat before contact.
+    pub initial: f64,
+    /// Kinetic energy of the ball after separation.
+    pub ball_final: f64,
+    /// Dissipated in the ball's hysteresis loop.
+    pub ball_loss: f64,
+    /// Left in the bat's rigid motion (translation + rotation).
+    pub bat_rigid: f64,
+    /// Left in bat vibration (kinetic + strain, rigid motion removed).
+    pub bat_vibration: f64,
+    /// Left in the hoop mode.
+    pub hoop: f64,
+}
+
+/// The result of one collision.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Outcome {
+    /// Ball speed after separation, m/s, CM frame, positive back toward the pitcher.
+    pub exit_speed: f64,
+    /// Exit speed in the lab frame (bat CM moving at `swing.cm_speed`), m/s.
+    pub exit_speed_lab: f64,
+    /// Collision efficiency e_A (Nathan; ASTM F2219), dimensionless.
+    pub collision_efficiency: f64,
+    /// Relative approach speed at the impact point, m/s.
+    pub approach_speed: f64,
+    /// Contact duration, s.
+    pub contact_time: f64,
+    /// Peak contact force, N.
+    pub peak_force: f64,
+    /// Maximum ball compression, m.
+    pub max_compression: f64,
+    /// Impulse delivered to the ball, N·s.
+    pub impulse: f64,
+    /// Energy partition, J.
+    pub energy: EnergyPartition,
+    /// The ball came back into contact after first separating (within the simulated time).
+    pub recontact: bool,
+    /// Requested histories.
+    pub history: Option<History>,
+}
+
+/// Derived properties of one bat, for the store's `/bat` group.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BatProperties {
+    /// Profile sample positions, m from the knob.
+    pub z: Vec<f64>,
+    /// Outer radius at `z`, m.
+    pub outer_radius: Vec<f64>,
+    /// Inner radius at `z` (0 where solid), m.
+    pub inner_radius: Vec<f64>,
+    /// Length, m.
+    pub length: f64,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of mass, m from the knob.
+    pub z_cm: f64,
+    /// Moment of inertia about the CM, kg·m².
+    pub moment_of_inertia: f64,
+    /// Moment of inertia about the point 6 in (0.1524 m) from the knob, kg·m².
+    pub moment_of_inertia_knob6: f64,
+    /// Free–free flexible mode frequencies, Hz, lowest first (rigid modes excluded).
+    pub mode_frequency: Vec<f64>,
+    /// Node positions of each flexible mode, m from the knob.
+    pub mode_nodes: Vec<Vec<f64>>,
+}

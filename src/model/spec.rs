@@ -1,0 +1,345 @@
+//! The full specification of one collision: every parameter in SI units.
+//!
+//! These types are what a study's `base` block deserializes into, and what a
+//! dotted path such as `bat.material.density` addresses. Their field names are
+//! the public interface of study files (see README): rename none.
+//!
+//! Optional fields (`Option<_>`) fall back to the preset's value; the resolved
+//! numbers are what the model uses and what the store records.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Which collision model to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ModelKind {
+    /// Euler–Bernoulli beam bat with a lossy-spring ball (the paper's section 3).
+    #[default]
+    Wave,
+    /// Brody's rigid-body recoil model with COR `ball.law.cor` (the paper's section 2).
+    Rigid,
+}
+
+/// Every parameter of one collision.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CollisionSpec {
+    /// Collision model. Default: `wave`.
+    #[serde(default)]
+    pub model: ModelKind,
+    /// The bat: profile, material, shell, ends.
+    #[serde(default)]
+    pub bat: BatSpec,
+    /// The ball: mass, speed and force law.
+    #[serde(default)]
+    pub ball: BallSpec,
+    /// The swing: the bat's initial rigid rotation.
+    #[serde(default)]
+    pub swing: SwingSpec,
+    /// Optional hoop mode (a mass on a spring between ball and impact point); `null` for none.
+    #[serde(default)]
+    pub hoop: Option<HoopSpec>,
+    /// Where the ball hits.
+    pub impact: ImpactSpec,
+    /// Numerical resolution; every field defaults to a converged automatic choice.
+    #[serde(default)]
+    pub numerics: NumericsSpec,
+}
+
+/// Built-in bats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum BatPreset {
+    /// Louisville Slugger R161 wood bat (Nathan 2000), solid, ρ 649 kg/m³, Y 1.814e10 N/m².
+    #[default]
+    R161,
+    /// The paper's aluminum bat: R161 outer profile as a 3 mm shell, ρ 2700 kg/m³, Y 6.9e10 N/m².
+    Aluminum,
+    /// R161 with the barrel hollowed to a 1 cm shell from z = 0.55 m, filled with cork (240 kg/m³).
+    Corked,
+}
+
+/// The bat. Unset fields take the preset's values.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BatSpec {
+    /// Built-in bat to start from. Default: `r161`.
+    #[serde(default)]
+    pub preset: BatPreset,
+    /// Outer-radius profile replacing the preset's (knots or a CSV file).
+    #[serde(default)]
+    pub profile: Option<ProfileSpec>,
+    /// Overall length in m. Longer than the profile: the barrel is extended at its end
+    /// radius (the paper's 110 cm bat). Shorter: an error. Default: the profile's length.
+    #[serde(default)]
+    pub length: Option<f64>,
+    /// Wall material. Default: the preset's.
+    #[serde(default)]
+    pub material: MaterialSpec,
+    /// Hollow part of the bat (a shell). Default: the preset's (none for `r161`).
+    #[serde(default)]
+    pub shell: Option<ShellSpec>,
+    /// Light filling of the hollow part (cork): adds mass, no stiffness.
+    /// Default: the preset's (cork 240 kg/m³ for `corked`, none otherwise); `null` for none.
+    #[serde(default)]
+    pub fill: Option<FillSpec>,
+    /// Handle thickness variant (the paper's Fig. 11b).
+    #[serde(default)]
+    pub handle: HandleSpec,
+    /// Boundary condition at each end.
+    #[serde(default)]
+    pub ends: EndsSpec,
+}
+
+/// A user-supplied outer-radius profile R(z), z in m from the knob, linear between knots.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, rename_all = "snake_case")]
+pub enum ProfileSpec {
+    /// `[[z, R], ...]` in metres, z increasing from 0 (the knob).
+    Knots(Vec<[f64; 2]>),
+    /// A CSV file with columns `z` and `radius` in metres (header required; `#` comments
+    /// allowed), path relative to the study file.
+    Csv(String),
+}
+
+/// Wall material (homogeneous, isotropic).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Density in kg/m³. Default: the preset's (649 wood, 2700 aluminum).
+    #[serde(default)]
+    pub density: Option<f64>,
+    /// Young's modulus in N/m² (Pa). Default: the preset's (1.814e10 wood, 6.9e10 aluminum).
+    #[serde(default)]
+    pub youngs_modulus: Option<f64>,
+}
+
+/// A hollow shell: the wall of thickness `thickness` for z ≥ `from`; solid before.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ShellSpec {
+    /// Wall thickness in m (aluminum preset 0.003, corked 0.01).
+    pub thickness: f64,
+    /// z in m where the hollow part starts (aluminum 0.0, corked 0.55). Default 0.
+    #[serde(default)]
+    pub from: f64,
+}
+
+/// Filling of the hollow part.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FillSpec {
+    /// Fill density in kg/m³ (cork ≈ 240).
+    pub density: f64,
+}
+
+/// Scale the handle's radius: R(z) × (1 + (radius_scale − 1)·w(z)) with w = 1 for
+/// z ≤ `end`, falling linearly to 0 at `end + blend`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HandleSpec {
+    /// Radius multiplier in the handle (> 0). Default 1 (unchanged). The paper's thicker
+    /// and narrower handles: e.g. 1.2 and 0.8.
+    #[serde(default = "one")]
+    pub radius_scale: f64,
+    /// End of the handle in m from the knob. Default 0.40.
+    #[serde(default = "default_handle_end")]
+    pub end: f64,
+    /// Length in m over which the scaling fades out. Default 0.10.
+    #[serde(default = "default_handle_blend")]
+    pub blend: f64,
+}
+
+impl Default for HandleSpec {
+    fn default() -> Self {
+        Self {
+            radius_scale: 1.0,
+            end: default_handle_end(),
+            blend: default_handle_blend(),
+        }
+    }
+}
+
+/// Boundary condition of a bat end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum EndCondition {
+    /// Free end (no moment, no shear): a real bat.
+    #[default]
+    Free,
+    /// Clamped end (zero displacement and slope): Cross's fixed beam end.
+    Fixed,
+}
+
+/// Boundary conditions at both ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EndsSpec {
+    /// Knob (handle) end, z = 0. Default `free`.
+    #[serde(default)]
+    pub knob: EndCondition,
+    /// Barrel end, z = L. Default `free`.
+    #[serde(default)]
+    pub barrel: EndCondition,
+}
+
+/// The ball.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BallSpec {
+    /// Mass in kg. Default 0.145.
+    #[serde(default = "default_ball_mass")]
+    pub mass: f64,
+    /// Speed toward the bat in m/s, in the frame where the bat's CM is initially at rest.
+    /// Default 40.
+    #[serde(default = "default_ball_speed")]
+    pub speed: f64,
+    /// Force–compression law.
+    #[serde(default)]
+    pub law: BallLaw,
+}
+
+impl Default for BallSpec {
+    fn default() -> Self {
+        Self {
+            mass: default_ball_mass(),
+            speed: default_ball_speed(),
+            law: BallLaw::default(),
+        }
+    }
+}
+
+/// Kinds of ball force law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BallLawKind {
+    /// The paper's: loading F = k s; unloading F = k s_max (s/s_max)^p, p = 2/e² − 1.
+    #[default]
+    LinearHysteresis,
+    /// Nathan (2000): loading F = k₁ s^α, unloading k₂ s^β, β = (1 + α)/e² − 1.
+    PowerLaw,
+    /// Linear spring F = k s without loss (the paper's Fig. 7b).
+    Elastic,
+}
+
+/// The ball's force law. One flat record so that any field can be swept whatever the kind;
+/// fields a kind does not use are ignored by it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BallLaw {
+    /// Which law. Default `linear_hysteresis`.
+    #[serde(default)]
+    pub kind: BallLawKind,
+    /// Loading stiffness k in N/m (`linear_hysteresis`, `elastic`). Default 7e5 (the paper).
+    #[serde(default = "default_stiffness")]
+    pub stiffness: f64,
+    /// Coefficient of restitution on a rigid wall, 0 < e ≤ 1 (`linear_hysteresis`,
+    /// `power_law`; also the rigid model's e). Default 0.5 (PHYSICS.md: baseball e₀ ≈ 0.5).
+    #[serde(default = "default_cor")]
+    pub cor: f64,
+    /// Loading coefficient k₁ in N/m^α (`power_law`). Default 6.53e7 (Nathan 2000).
+    #[serde(default = "default_k1")]
+    pub k1: f64,
+    /// Loading exponent α (`power_law`). Default 1.84 (Nathan 2000).
+    #[serde(default = "default_alpha")]
+    pub alpha: f64,
+}
+
+impl Default for BallLaw {
+    fn default() -> Self {
+        Self {
+            kind: BallLawKind::default(),
+            stiffness: default_stiffness(),
+            cor: default_cor(),
+            k1: default_k1(),
+            alpha: default_alpha(),
+        }
+    }
+}
+
+/// The swing.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SwingSpec {
+    /// Initial angular velocity about the CM in rad/s; negative = barrel toward the ball.
+    /// Default 0.
+    #[serde(default)]
+    pub omega: f64,
+    /// Lab-frame speed of the bat's CM toward the ball in m/s, used only to report lab-frame
+    /// exit speeds (the collision itself is solved in the CM frame). Default 0.
+    #[serde(default)]
+    pub cm_speed: f64,
+}
+
+/// A hoop mode: mass `mass` on a spring of frequency `frequency` between ball and bat.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HoopSpec {
+    /// Hoop-mode frequency in Hz (spring k_h = m_h (2π f)²).
+    pub frequency: f64,
+    /// Effective hoop mass in kg (the paper gives none; results depend on it).
+    pub mass: f64,
+}
+
+/// Where the ball hits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ImpactSpec {
+    /// Impact position in m from the knob (0 < z < L).
+    pub z: f64,
+}
+
+/// Time integrator of the wave model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    /// Beam modes advanced exactly between steps; step set by the contact. Default.
+    #[default]
+    Modal,
+    /// Plain explicit velocity Verlet at a stable step (the baseline).
+    Verlet,
+}
+
+/// Numerical resolution. Unset fields are chosen automatically (converged defaults).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct NumericsSpec {
+    /// Number of beam segments. Default: automatic (converged).
+    #[serde(default)]
+    pub segments: Option<usize>,
+    /// Time step in s. Default: automatic. A step above the stability limit is an error.
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// Time integrator. Default `modal`.
+    #[serde(default)]
+    pub integrator: Integrator,
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn default_handle_end() -> f64 {
+    0.40
+}
+fn default_handle_blend() -> f64 {
+    0.10
+}
+fn default_ball_mass() -> f64 {
+    0.145
+}
+fn default_ball_speed() -> f64 {
+    40.0
+}
+fn default_stiffness() -> f64 {
+    7.0e5
+}
+fn default_cor() -> f64 {
+    0.5
+}
+fn default_k1() -> f64 {
+    6.53e7
+}
+fn default_alpha() -> f64 {
+    1.84
+}

@@ -1,0 +1,109 @@
+//! The data that flows from the runner to the store: the shape of a study's result
+//! arrays, and one finished point. Plain data; no I/O.
+
+use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
+
+/// A stable identifier of one point: a hash of its canonical (fully resolved) parameters.
+pub type PointId = u64;
+
+/// Values of one coordinate variable.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CoordValues {
+    Numbers(Vec<f64>),
+    Labels(Vec<String>),
+}
+
+impl CoordValues {
+    pub fn len(&self) -> usize {
+        match self {
+            CoordValues::Numbers(v) => v.len(),
+            CoordValues::Labels(v) => v.len(),
+        }
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// A coordinate variable along one dimension.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coord {
+    /// Variable name, e.g. `impact_z` (dotted path with `.` → `_`).
+    pub name: String,
+    /// The dotted parameter path it came from, e.g. `impact.z`.
+    pub path: String,
+    /// Unit string (UDUNITS style: `m`, `rad/s`, `kg/m^3`, `1` for none, `` for labels).
+    pub units: String,
+    pub long_name: String,
+    pub values: CoordValues,
+}
+
+/// One dimension of the result arrays. A grid axis has one coordinate of the same name
+/// (its dimension scale); a `zip` or `points` block has one coordinate per parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dim {
+    pub name: String,
+    pub size: usize,
+    pub coords: Vec<Coord>,
+}
+
+/// The N-dimensional index space of a study's results, row-major (last dim fastest).
+/// A point's flat index is its position in this row-major order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ResultShape {
+    pub dims: Vec<Dim>,
+}
+
+impl ResultShape {
+    pub fn n_points(&self) -> usize {
+        self.dims.iter().map(|d| d.size).product()
+    }
+    /// Row-major multi-index of a flat index.
+    pub fn unravel(&self, mut flat: usize) -> Vec<usize> {
+        let mut idx = vec![0; self.dims.len()];
+        for (k, d) in self.dims.iter().enumerate().rev() {
+            idx[k] = flat % d.size;
+            flat /= d.size;
+        }
+        idx
+    }
+}
+
+/// One distinct bat of a study (many points share one).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatVariant {
+    /// Short human label, e.g. `r161` or `r161, bat.material.density=700`.
+    pub label: String,
+    /// The bat's resolved parameters as canonical JSON.
+    pub spec_json: String,
+    pub properties: BatProperties,
+}
+
+/// Everything the store needs to know about a study before the first point arrives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyInfo {
+    pub name: String,
+    pub description: String,
+    /// The study file's text, verbatim.
+    pub study_text: String,
+    /// Hex SHA-256 of `study_text`.
+    pub study_sha256: String,
+    /// Path of the study file as given.
+    pub study_path: String,
+    pub shape: ResultShape,
+    /// Histories to store (None: summary only).
+    pub history: Option<HistoryRequest>,
+    pub bats: Vec<BatVariant>,
+}
+
+/// One finished point.
+#[derive(Debug, Clone)]
+pub struct PointRecord {
+    /// Flat index in the study's `ResultShape`.
+    pub index: usize,
+    pub id: PointId,
+    /// Index of the point's bat in `StudyInfo::bats`.
+    pub bat: u32,
+    /// The outcome, or the error text of a failed point.
+    pub result: Result<Outcome, String>,
+}
