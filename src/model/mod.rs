@@ -2,4 +2,6 @@
 //! No I/O, no threads, no printing.
 
 pub mod outcome;
+pub mod rigid;
 pub mod spec;
+pub mod sweet;

@@ -1,0 +1,115 @@
+//! The sweet spot as the paper defines it: the impact position of maximum exit speed,
+//! refined between grid points, with the sweet-zone width (the z-range within 1 m/s of
+//! the maximum).
+
+/// How far below the maximum the sweet zone extends, m/s (the paper's section 2).
+pub const SWEET_ZONE_DROP: f64 = 1.0;
+
+/// Sweet spot of one exit-speed curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweetSpot {
+    /// Impact position of maximum exit speed, m from the knob.
+    pub position: f64,
+    /// The maximum exit speed, m/s.
+    pub exit_speed: f64,
+    /// Length of the contiguous z-range around the maximum where the exit speed is within
+    /// `SWEET_ZONE_DROP` of it, m. Clipped to the sampled range.
+    pub width: f64,
+}
+
+/// Find the sweet spot of samples `exit_speed[i]` at increasing positions `z[i]`.
+/// Non-finite samples (failed points) are skipped. The maximum is refined by the parabola
+/// through the best sample and its two neighbours; the zone edges by linear interpolation.
+/// Returns None with fewer than one finite sample.
+pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
+    let (z, v): (Vec<f64>, Vec<f64>) = z
+        .iter()
+        .zip(exit_speed)
+        .filter(|(a, b)| a.is_finite() && b.is_finite())
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
+    let (mut position, mut peak) = (z[best], v[best]);
+    if best > 0 && best + 1 < v.len() {
+        if let Some((zp, vp)) = parabola_vertex(
+            [z[best - 1], z[best], z[best + 1]],
+            [v[best - 1], v[best], v[best + 1]],
+        ) {
+            // Keep the vertex between the neighbours: outside them the fit means nothing.
+            if zp > z[best - 1] && zp < z[best + 1] && vp >= peak {
+                position = zp;
+                peak = vp;
+            }
+        }
+    }
+    let threshold = peak - SWEET_ZONE_DROP;
+    let crossing = |i: usize, j: usize| {
+        // Linear interpolation between a sample above the threshold (i) and one below (j).
+        z[i] + (threshold - v[i]) * (z[j] - z[i]) / (v[j] - v[i])
+    };
+    let mut lo = best;
+    while lo > 0 && v[lo - 1] >= threshold {
+        lo -= 1;
+    }
+    let left = if lo > 0 { crossing(lo, lo - 1) } else { z[0] };
+    let mut hi = best;
+    while hi + 1 < v.len() && v[hi + 1] >= threshold {
+        hi += 1;
+    }
+    let right = if hi + 1 < v.len() {
+        crossing(hi, hi + 1)
+    } else {
+        z[v.len() - 1]
+    };
+    Some(SweetSpot {
+        position,
+        exit_speed: peak,
+        width: right - left,
+    })
+}
+
+/// Vertex of the parabola through three points; None when they are collinear.
+fn parabola_vertex(x: [f64; 3], y: [f64; 3]) -> Option<(f64, f64)> {
+    let d1 = (y[1] - y[0]) / (x[1] - x[0]);
+    let d2 = (y[2] - y[1]) / (x[2] - x[1]);
+    let curvature = (d2 - d1) / (x[2] - x[0]); // the x² coefficient
+    if curvature >= 0.0 || !curvature.is_finite() {
+        return None;
+    }
+    // y = y1 + d1 (x − x0) + c (x − x0)(x − x1): dy/dx = d1 + c (2x − x0 − x1) = 0.
+    let xv = 0.5 * (x[0] + x[1]) - d1 / (2.0 * curvature);
+    let yv = y[0] + d1 * (xv - x[0]) + curvature * (xv - x[0]) * (xv - x[1]);
+    Some((xv, yv))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parabola_peak_and_width_are_exact() {
+        // v = 30 − 400 (z − 0.713)²: maximum 30 at 0.713; within 1 m/s for
+        // |z − 0.713| ≤ 0.05, so the width is 0.1 m (analytic).
+        let z: Vec<f64> = (0..45).map(|k| 0.40 + 0.01 * k as f64).collect();
+        let v: Vec<f64> = z
+            .iter()
+            .map(|z| 30.0 - 400.0 * (z - 0.713).powi(2))
+            .collect();
+        let s = find_sweet_spot(&z, &v).unwrap();
+        assert!((s.position - 0.713).abs() < 1e-9, "{s:?}");
+        assert!((s.exit_speed - 30.0).abs() < 1e-9);
+        // Linear interpolation of a parabola's crossings errs by O(h²): 1 cm grid.
+        assert!((s.width - 0.1).abs() < 2e-3, "{s:?}");
+    }
+
+    #[test]
+    fn skips_failed_points_and_clips_at_the_edge() {
+        let z = [0.5, 0.6, 0.7, 0.8];
+        let v = [20.0, f64::NAN, 24.0, 24.5];
+        let s = find_sweet_spot(&z, &v).unwrap();
+        assert_eq!(s.position, 0.8);
+        // Left edge interpolated between 0.5 (20) and 0.7 (24): 23.5 at 0.675.
+        assert!((s.width - (0.8 - 0.675)).abs() < 1e-12);
+        assert!(find_sweet_spot(&[0.5], &[f64::NAN]).is_none());
+    }
+}
