@@ -9,7 +9,7 @@ const Z_CM: f64 = 0.593;
 const BALL_MASS: f64 = 0.145;
 
 fn peak_position(omega: f64) -> f64 {
-    let z: Vec<f64> = (0..=2400).map(|k| 0.40 + 0.0001 * k as f64).collect();
+    let z: Vec<f64> = (0..=4400).map(|k| 0.40 + 0.0001 * k as f64).collect();
     let exit = |z: f64| {
         rigid_collision(BALL_MASS, 40.0, BAT_MASS, BAT_INERTIA, z - Z_CM, omega, 0.5).exit_speed
     };
