@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The main job: set up (idempotent), build, run a study (default: the bundled
+# studies/param_space.yaml) and draw its figures. Extra arguments go to `batstudy run`.
+#   bash scripts/run.sh                       # default study -> results/param_space.h5
+#   bash scripts/run.sh studies/hoop.yaml -j 8
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cargo build --release --quiet
+study=studies/param_space.yaml
+if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then study=$1; shift; fi
+# --force: rerunning the main job recomputes it (use --resume to finish an interrupted run).
+./target/release/batstudy run "$study" --force "$@"

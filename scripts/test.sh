@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Every test: set up (idempotent), Rust tests, the study files against the committed
+# JSON schema, the smoke study on 2 threads, and the Python tests that open its output.
+# Exits non-zero if any of them fails.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+
+echo "== Rust tests"
+cargo test --all-targets
+
+echo "== Study files against schemas/study.schema.json"
+.venv/bin/check-jsonschema --schemafile schemas/study.schema.json studies/*.yaml
+
+echo "== Smoke study (--jobs 2)"
+mkdir -p target/smoke
+./target/debug/batstudy run studies/smoke.yaml -o target/smoke/smoke.h5 --jobs 2 --force --quiet
+
+echo "== Python tests"
+BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
+  .venv/bin/python -m pytest -q tests/python
