@@ -256,7 +256,9 @@ fn human_bytes(b: f64) -> String {
 }
 
 fn human_secs(s: f64) -> String {
-    if s < 120.0 {
+    if s < 0.1 {
+        format!("{:.3} ms", s * 1e3)
+    } else if s < 120.0 {
         format!("{s:.1} s")
     } else if s < 7200.0 {
         format!("{:.1} min", s / 60.0)

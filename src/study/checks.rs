@@ -180,11 +180,11 @@ pub fn check_spec(spec: &CollisionSpec) -> Vec<Violation> {
         c.within("hoop.mass", hoop.mass, lo, hi, "kg");
     }
     let z = spec.impact.z;
-    if !(z > 0.0 && z < len) {
+    if !(0.0..=len).contains(&z) {
         c.fail(
             "impact.z",
             z,
-            format!("on the bat: 0 < z < {len} m (the bat's length)"),
+            format!("on the bat: 0 <= z <= {len} m (the bat's length)"),
         );
     }
     if let Some(n) = spec.numerics.segments {

@@ -166,7 +166,11 @@ fn allowed_from_serde(msg: &str) -> Option<String> {
     if msg.starts_with("missing field") {
         return Some("this field is required".into());
     }
-    msg.split_once(", expected ").map(|(_, a)| a.to_string())
+    msg.split_once(", expected ").map(|(_, a)| match a {
+        "f64" | "f32" => "a number".to_string(),
+        "usize" | "u64" | "u32" => "a whole number >= 0".to_string(),
+        _ => a.to_string(),
+    })
 }
 
 fn check_keys(
@@ -477,7 +481,15 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
         let values = axis.values().map_err(|e| {
             cx.err(&at, e.clone())
                 .field(format!("grid.{key}"))
-                .value(format!("{axis:?}"))
+                .value(match axis {
+                    super::types::AxisValues::List(v) => format!("{} values", v.len()),
+                    super::types::AxisValues::Linspace { start, stop, n } => {
+                        format!("{{linspace: [{start}, {stop}, {n}]}}")
+                    }
+                    super::types::AxisValues::Range { start, stop, step } => {
+                        format!("{{range: [{start}, {stop}, {step}]}}")
+                    }
+                })
                 .allowed(
                     "a non-empty list, {linspace: [start, stop, n]}, {range: [start, stop, step]}",
                 )
