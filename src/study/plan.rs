@@ -196,7 +196,14 @@ impl Plan {
                 .collect();
             let _ = super::paths::set_path(v, "bat.profile.knots", Value::Sequence(k));
         }
-        let spec: CollisionSpec = serde_path_to_error::deserialize(v.clone()).map_err(|e| {
+        // Through JSON: serde_yaml_ng's Value reads enums only from YAML tags, while a
+        // study writes `profile: {knots: …}`.
+        let json = serde_json::to_value(&*v).map_err(|e| ResolveError::Shape {
+            path: String::new(),
+            message: e.to_string(),
+            value: None,
+        })?;
+        let spec: CollisionSpec = serde_path_to_error::deserialize(json).map_err(|e| {
             let path = path_string(e.path());
             let value = super::paths::get_path(v, &path).map(value_text);
             ResolveError::Shape {
