@@ -5,8 +5,12 @@ use batstudy::study::{load_str, LoadOptions};
 use std::path::Path;
 
 fn load(text: &str) -> batstudy::study::Study {
-    load_str(text, Path::new("studies/test.yaml"), &LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
+    load_str(
+        text,
+        Path::new("studies/test.yaml"),
+        &LoadOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 // issue 4: range 0.40..0.84 step 0.01 gives 45 values and includes 0.84.
@@ -16,7 +20,9 @@ fn range_axis_has_exact_endpoints() {
     let d = &s.plan.shape().dims[0];
     assert_eq!(d.name, "impact_z");
     assert_eq!(d.size, 45);
-    let CoordValues::Numbers(v) = &d.coords[0].values else { panic!() };
+    let CoordValues::Numbers(v) = &d.coords[0].values else {
+        panic!()
+    };
     assert_eq!(v[0], 0.40);
     assert_eq!(v[44], 0.84);
     assert_eq!(v[10], 0.50);
@@ -37,7 +43,9 @@ fn product_is_row_major_last_fastest() {
     assert_eq!(pt.spec.swing.omega, -30.0);
     assert_eq!(pt.spec.model, batstudy::model::spec::ModelKind::Rigid);
     assert_eq!(format!("{:?}", pt.spec.bat.preset), "Aluminum");
-    assert!(matches!(&p.shape().dims[2].coords[0].values, CoordValues::Labels(l) if l == &["r161", "aluminum"]));
+    assert!(
+        matches!(&p.shape().dims[2].coords[0].values, CoordValues::Labels(l) if l == &["r161", "aluminum"])
+    );
     // Two distinct bats; points share them by preset.
     assert_eq!(p.bats().len(), 2);
     assert_eq!(p.point(0).unwrap().bat, 0);
@@ -67,7 +75,8 @@ fn zip_and_points_dimensions() {
 
 #[test]
 fn named_zip_group() {
-    let s = load("name: t\nbase: {impact: {z: 0.7}}\nzip:\n  - {name: speeds, ball.speed: [30, 40]}\n");
+    let s =
+        load("name: t\nbase: {impact: {z: 0.7}}\nzip:\n  - {name: speeds, ball.speed: [30, 40]}\n");
     assert_eq!(s.plan.shape().dims[0].name, "speeds");
 }
 
@@ -100,7 +109,11 @@ fn point_ids_are_stable_and_ignore_key_order() {
     let a = load("name: a\nbase:\n  ball: {speed: 40, mass: 0.145}\n  impact: {z: 0.7}\n");
     let b = load("name: b\nbase:\n  impact: {z: 7.0e-1}\n  ball: {mass: 0.145, speed: 40.0}\n");
     let c = load("name: c\nbase:\n  impact: {z: 0.71}\n");
-    let (pa, pb, pc) = (a.plan.point(0).unwrap(), b.plan.point(0).unwrap(), c.plan.point(0).unwrap());
+    let (pa, pb, pc) = (
+        a.plan.point(0).unwrap(),
+        b.plan.point(0).unwrap(),
+        c.plan.point(0).unwrap(),
+    );
     assert_eq!(pa.id, pb.id);
     assert_ne!(pa.id, pc.id);
     // Pinned: a change of this value means every stored file's ids changed.
@@ -112,10 +125,19 @@ fn point_ids_are_stable_and_ignore_key_order() {
 #[test]
 fn profile_csv_is_loaded_relative_to_the_study() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("p.csv"), "z,radius\n0,0.015\n0.5,0.02\n0.8,0.03\n").unwrap();
+    std::fs::write(
+        dir.path().join("p.csv"),
+        "z,radius\n0,0.015\n0.5,0.02\n0.8,0.03\n",
+    )
+    .unwrap();
     let study = dir.path().join("s.yaml");
-    std::fs::write(&study, "name: s\nbase:\n  bat: {profile: {csv: p.csv}}\n  impact: {z: 0.7}\n").unwrap();
-    let s = batstudy::study::load(&study, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(
+        &study,
+        "name: s\nbase:\n  bat: {profile: {csv: p.csv}}\n  impact: {z: 0.7}\n",
+    )
+    .unwrap();
+    let s =
+        batstudy::study::load(&study, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     let pt = s.plan.point(0).unwrap();
     match pt.spec.bat.profile {
         Some(batstudy::model::spec::ProfileSpec::Knots(k)) => assert_eq!(k.len(), 3),
