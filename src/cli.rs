@@ -3,6 +3,8 @@
 //! (results written), 2 bad input (message on stderr, nothing written), 3 a failure of
 //! the run itself (I/O), 130 interrupted (Ctrl-C; resume with `--resume`).
 
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
 use crate::results::StudyInfo;
 use crate::run::{self, RunOptions, RunReport, Shard, Simulator, Sink};
 use crate::study::checks::bat_length;

@@ -121,7 +121,8 @@ pub fn prepare_bats<S: Simulator>(
     plan: &Plan,
     pool: &rayon::ThreadPool,
 ) -> PreparedBats<S::Bat> {
-    let results: Vec<(BatProperties, Result<Arc<S::Bat>, String>)> = pool.install(|| {
+    type Prepared<B> = (BatProperties, Result<Arc<B>, String>);
+    let results: Vec<Prepared<S::Bat>> = pool.install(|| {
         plan.bats()
             .par_iter()
             .map(
@@ -177,11 +178,15 @@ pub fn check_finite(o: &Outcome) -> Result<(), String> {
     }
 }
 
+/// Points ok, points failed, the first failures.
+type Tally = (usize, usize, Vec<(usize, String)>);
+
 /// Run the plan's points (those of `opts.shard`, not yet done in the sink), writing each
 /// finished point to the sink. Returns the report and the sink (finished).
 ///
 /// `stop` is polled before each point: once set (Ctrl-C), no new point starts; points
 /// in flight finish and are written.
+#[allow(clippy::too_many_arguments)] // each is a distinct input of the run
 pub fn run_plan<S: Simulator, K: Sink>(
     plan: &Plan,
     sim: &S,
@@ -217,28 +222,25 @@ pub fn run_plan<S: Simulator, K: Sink>(
     let written = std::thread::scope(|scope| {
         let writer = std::thread::Builder::new()
             .name("batstudy-writer".into())
-            .spawn_scoped(
-                scope,
-                move || -> Result<(usize, usize, Vec<(usize, String)>), String> {
-                    let (mut ok, mut failed, mut failures) = (0usize, 0usize, Vec::new());
-                    for rec in rx {
-                        match &rec.result {
-                            Ok(_) => ok += 1,
-                            Err(e) => {
-                                failed += 1;
-                                if failures.len() < 20 {
-                                    failures.push((rec.index, e.clone()));
-                                }
+            .spawn_scoped(scope, move || -> Result<Tally, String> {
+                let (mut ok, mut failed, mut failures) = (0usize, 0usize, Vec::new());
+                for rec in rx {
+                    match &rec.result {
+                        Ok(_) => ok += 1,
+                        Err(e) => {
+                            failed += 1;
+                            if failures.len() < 20 {
+                                failures.push((rec.index, e.clone()));
                             }
                         }
-                        let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
-                        s.write(rec)?;
-                        drop(s);
-                        writer_pb.inc(1);
                     }
-                    Ok((ok, failed, failures))
-                },
-            )
+                    let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
+                    s.write(rec)?;
+                    drop(s);
+                    writer_pb.inc(1);
+                }
+                Ok((ok, failed, failures))
+            })
             .expect("spawn writer thread");
 
         pool.install(|| {

@@ -624,7 +624,7 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
     // Size.
     let mut n: usize = 1;
     for d in &dims {
-        n = n.checked_mul(d.size).unwrap_or(usize::MAX);
+        n = n.saturating_mul(d.size);
     }
     if n > opts.max_points {
         let sizes: Vec<String> = dims

@@ -75,14 +75,17 @@ pub fn check_knots(k: &[[f64; 2]]) -> Result<(), String> {
         ));
     }
     for w in k.windows(2) {
-        if !(w[1][0] > w[0][0]) {
+        if w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater) {
             return Err(format!(
                 "profile z must increase strictly: {} then {}",
                 w[0][0], w[1][0]
             ));
         }
     }
-    if let Some(b) = k.iter().find(|p| !(p[1] > 0.0) || !p[1].is_finite()) {
+    if let Some(b) = k
+        .iter()
+        .find(|p| p[1].is_nan() || p[1] <= 0.0 || !p[1].is_finite())
+    {
         return Err(format!(
             "profile radius must be > 0, got {} at z = {}",
             b[1], b[0]
