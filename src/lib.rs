@@ -4,5 +4,8 @@
 //! study file → `study` (parse, validate, expand to points) → `model` (simulate one
 //! collision) → `results` (finished points) → `store` (HDF5) ← `run` (drives it all).
 
+pub mod cli;
 pub mod model;
 pub mod results;
+pub mod run;
+pub mod study;

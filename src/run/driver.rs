@@ -1,0 +1,313 @@
+//! The parallel driver: rayon workers simulate points, a bounded channel carries the
+//! finished `PointRecord`s to one writer thread that owns the sink.
+//!
+//! Memory is bounded by the points in flight (rayon splits the index range lazily; the
+//! channel is bounded). Each point is independent and the sink stores by flat index, so
+//! results do not depend on the number of threads.
+
+use super::shard::Shard;
+use super::traits::{Simulator, Sink};
+use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
+use crate::results::{BatVariant, PointRecord};
+use crate::study::Plan;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use std::io::IsTerminal;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// How to run.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Worker threads (>= 1).
+    pub jobs: usize,
+    /// Stop dispatching at the first failed point.
+    pub fail_fast: bool,
+    /// Show a progress bar (only drawn when stderr is a terminal).
+    pub progress: bool,
+    /// Run only this shard's points.
+    pub shard: Option<Shard>,
+    /// Capacity of the channel to the writer.
+    pub channel_capacity: usize,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            jobs: 1,
+            fail_fast: false,
+            progress: false,
+            shard: None,
+            channel_capacity: 256,
+        }
+    }
+}
+
+/// What happened.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RunReport {
+    /// Points of the study (or shard).
+    pub total: usize,
+    /// Skipped because the sink had them (resume).
+    pub skipped: usize,
+    pub ok: usize,
+    pub failed: usize,
+    /// Stopped early by the stop flag (Ctrl-C).
+    pub interrupted: bool,
+    /// Stopped early by `fail_fast`.
+    pub aborted: bool,
+    /// The first few failures: (flat index, error text).
+    pub failures: Vec<(usize, String)>,
+}
+
+impl RunReport {
+    /// Points neither done before nor computed now.
+    pub fn remaining(&self) -> usize {
+        self.total - self.skipped - self.ok - self.failed
+    }
+}
+
+/// A failure of the run itself (not of a point).
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error("cannot start {0} worker threads: {1}")]
+    Pool(usize, String),
+    #[error("writing results failed: {0}")]
+    Sink(String),
+}
+
+/// The study's bats, prepared once each and shared.
+pub struct PreparedBats<B> {
+    /// For the store's `/bat` group (same order as `Plan::bats()`).
+    pub variants: Vec<BatVariant>,
+    /// The prepared bats, or why preparing failed (its points then fail with that text).
+    pub handles: Vec<Result<Arc<B>, String>>,
+}
+
+impl<B> PreparedBats<B> {
+    /// The longest bat, m (for the history's z grid); 0 when none was prepared.
+    pub fn max_length(&self) -> f64 {
+        self.variants
+            .iter()
+            .map(|v| v.properties.length)
+            .fold(0.0, f64::max)
+    }
+}
+
+/// A rayon pool of `jobs` threads.
+pub fn build_pool(jobs: usize) -> Result<rayon::ThreadPool, RunError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.max(1))
+        .thread_name(|i| format!("batstudy-worker-{i}"))
+        .build()
+        .map_err(|e| RunError::Pool(jobs, e.to_string()))
+}
+
+fn panic_text(p: Box<dyn std::any::Any + Send>) -> String {
+    if let Some(s) = p.downcast_ref::<&str>() {
+        s.to_string()
+    } else if let Some(s) = p.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic payload".into()
+    }
+}
+
+/// Prepare every distinct bat of the plan once, in parallel; panics and errors are kept
+/// per bat.
+pub fn prepare_bats<S: Simulator>(
+    sim: &S,
+    plan: &Plan,
+    pool: &rayon::ThreadPool,
+) -> PreparedBats<S::Bat> {
+    type Prepared<B> = (BatProperties, Result<Arc<B>, String>);
+    let results: Vec<Prepared<S::Bat>> = pool.install(|| {
+        plan.bats()
+            .par_iter()
+            .map(
+                |b| match catch_unwind(AssertUnwindSafe(|| sim.prepare(&b.bat, &b.numerics))) {
+                    Ok(Ok((props, bat))) => (props, Ok(Arc::new(bat))),
+                    Ok(Err(e)) => (
+                        BatProperties::default(),
+                        Err(format!("bat `{}`: {e}", b.label)),
+                    ),
+                    Err(p) => (
+                        BatProperties::default(),
+                        Err(format!("bat `{}`: panic: {}", b.label, panic_text(p))),
+                    ),
+                },
+            )
+            .collect()
+    });
+    let mut variants = Vec::new();
+    let mut handles = Vec::new();
+    for (b, (props, h)) in plan.bats().iter().zip(results) {
+        variants.push(BatVariant {
+            label: b.label.clone(),
+            spec_json: b.key.clone(),
+            properties: props,
+        });
+        handles.push(h);
+    }
+    PreparedBats { variants, handles }
+}
+
+/// Non-finite summary numbers make a point fail.
+pub fn check_finite(o: &Outcome) -> Result<(), String> {
+    let e = &o.energy;
+    let fields = [
+        ("exit_speed", o.exit_speed),
+        ("exit_speed_lab", o.exit_speed_lab),
+        ("collision_efficiency", o.collision_efficiency),
+        ("approach_speed", o.approach_speed),
+        ("contact_time", o.contact_time),
+        ("peak_force", o.peak_force),
+        ("max_compression", o.max_compression),
+        ("impulse", o.impulse),
+        ("energy.initial", e.initial),
+        ("energy.ball_final", e.ball_final),
+        ("energy.ball_loss", e.ball_loss),
+        ("energy.bat_rigid", e.bat_rigid),
+        ("energy.bat_vibration", e.bat_vibration),
+        ("energy.hoop", e.hoop),
+    ];
+    match fields.iter().find(|(_, v)| !v.is_finite()) {
+        Some((n, v)) => Err(format!("non-finite {n} ({v})")),
+        None => Ok(()),
+    }
+}
+
+/// Points ok, points failed, the first failures.
+type Tally = (usize, usize, Vec<(usize, String)>);
+
+/// Run the plan's points (those of `opts.shard`, not yet done in the sink), writing each
+/// finished point to the sink. Returns the report and the sink (finished).
+///
+/// `stop` is polled before each point: once set (Ctrl-C), no new point starts; points
+/// in flight finish and are written.
+#[allow(clippy::too_many_arguments)] // each is a distinct input of the run
+pub fn run_plan<S: Simulator, K: Sink>(
+    plan: &Plan,
+    sim: &S,
+    bats: &PreparedBats<S::Bat>,
+    history: Option<&HistoryRequest>,
+    sink: K,
+    pool: &rayon::ThreadPool,
+    opts: &RunOptions,
+    stop: &AtomicBool,
+) -> Result<(RunReport, K), RunError> {
+    let n = plan.n_points();
+    let total = opts.shard.map_or(n, |s| s.size(n));
+    let pb = if opts.progress && std::io::stderr().is_terminal() {
+        ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr())
+    } else {
+        ProgressBar::hidden()
+    };
+    pb.set_style(
+        ProgressStyle::with_template(
+            "{elapsed_precise} [{wide_bar}] {pos}/{len} points  {per_sec}  ETA {eta}",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let sink = Mutex::new(sink);
+    let (tx, rx) = crossbeam_channel::bounded::<PointRecord>(opts.channel_capacity.max(1));
+    let abort = AtomicBool::new(false);
+    let skipped = AtomicUsize::new(0);
+
+    let writer_sink = &sink;
+    let writer_pb = pb.clone();
+    let fail_fast = opts.fail_fast;
+    let shard = opts.shard;
+    let written = std::thread::scope(|scope| {
+        let writer = std::thread::Builder::new()
+            .name("batstudy-writer".into())
+            .spawn_scoped(scope, move || -> Result<Tally, String> {
+                let (mut ok, mut failed, mut failures) = (0usize, 0usize, Vec::new());
+                for rec in rx {
+                    match &rec.result {
+                        Ok(_) => ok += 1,
+                        Err(e) => {
+                            failed += 1;
+                            if failures.len() < 20 {
+                                failures.push((rec.index, e.clone()));
+                            }
+                        }
+                    }
+                    let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
+                    s.write(rec)?;
+                    drop(s);
+                    writer_pb.inc(1);
+                }
+                Ok((ok, failed, failures))
+            })
+            .expect("spawn writer thread");
+
+        pool.install(|| {
+            (0..n)
+                .into_par_iter()
+                .filter(|&i| shard.is_none_or(|s| s.owns(i)))
+                .for_each_with(tx, |tx, i| {
+                    if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
+                        return;
+                    }
+                    let rec = match plan.point(i) {
+                        Err(e) => PointRecord {
+                            index: i,
+                            id: e.id,
+                            bat: 0,
+                            result: Err(e.message),
+                        },
+                        Ok(p) => {
+                            let done = sink.lock().unwrap_or_else(|p| p.into_inner()).is_done(p.id);
+                            if done {
+                                skipped.fetch_add(1, Ordering::Relaxed);
+                                pb.inc(1);
+                                return;
+                            }
+                            let result = match &bats.handles[p.bat as usize] {
+                                Err(e) => Err(e.clone()),
+                                Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
+                                    sim.simulate(bat, &p.spec, history)
+                                })) {
+                                    Ok(Ok(o)) => check_finite(&o).map(|_| o),
+                                    Ok(Err(e)) => Err(e),
+                                    Err(payload) => Err(format!("panic: {}", panic_text(payload))),
+                                },
+                            };
+                            PointRecord {
+                                index: i,
+                                id: p.id,
+                                bat: p.bat,
+                                result,
+                            }
+                        }
+                    };
+                    if rec.result.is_err() && fail_fast {
+                        abort.store(true, Ordering::Relaxed);
+                    }
+                    if tx.send(rec).is_err() {
+                        // The writer has stopped (a sink error): stop dispatching.
+                        abort.store(true, Ordering::Relaxed);
+                    }
+                });
+        });
+        writer
+            .join()
+            .map_err(|p| RunError::Sink(format!("writer thread panicked: {}", panic_text(p))))
+    })?;
+    pb.finish_and_clear();
+    let mut sink = sink.into_inner().unwrap_or_else(|p| p.into_inner());
+    let (ok, failed, failures) = written.map_err(RunError::Sink)?;
+    sink.finish().map_err(RunError::Sink)?;
+    let report = RunReport {
+        total,
+        skipped: skipped.into_inner(),
+        ok,
+        failed,
+        interrupted: stop.load(Ordering::Relaxed),
+        aborted: abort.into_inner(),
+        failures,
+    };
+    Ok((report, sink))
+}

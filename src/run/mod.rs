@@ -1,0 +1,12 @@
+//! The driver: rayon over a plan's points, one writer thread owning the sink, failure
+//! isolation, resume (skip done ids), sharding, Ctrl-C.
+
+pub mod driver;
+pub mod shard;
+pub mod traits;
+
+pub use driver::{
+    build_pool, check_finite, prepare_bats, run_plan, PreparedBats, RunError, RunOptions, RunReport,
+};
+pub use shard::Shard;
+pub use traits::{Simulator, Sink};

@@ -1,0 +1,37 @@
+//! The two seams of the driver: the physics (`Simulator`) and the results file (`Sink`).
+//! The real implementations live in `model` and `store`; tests use fakes.
+
+use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
+use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
+use crate::results::{PointId, PointRecord};
+
+/// Simulates collisions. Shared by all worker threads.
+pub trait Simulator: Sync {
+    /// A prepared bat (discretisation, modal basis…), shared read-only by every point
+    /// that uses it.
+    type Bat: Send + Sync;
+    /// Prepare one bat (called once per distinct bat + numerics).
+    fn prepare(
+        &self,
+        bat: &BatSpec,
+        numerics: &NumericsSpec,
+    ) -> Result<(BatProperties, Self::Bat), String>;
+    /// Simulate one collision with a prepared bat.
+    fn simulate(
+        &self,
+        bat: &Self::Bat,
+        spec: &CollisionSpec,
+        history: Option<&HistoryRequest>,
+    ) -> Result<Outcome, String>;
+}
+
+/// Receives finished points; owned by the single writer thread (the driver also asks it,
+/// under a lock, which points are done).
+pub trait Sink: Send {
+    /// Is the point with this id already in the output (resume)?
+    fn is_done(&self, id: PointId) -> bool;
+    /// Store one finished point (at `rec.index`; arrival order is arbitrary).
+    fn write(&mut self, rec: PointRecord) -> Result<(), String>;
+    /// Flush and close. Called once, after the last `write`.
+    fn finish(&mut self) -> Result<(), String>;
+}

@@ -1,0 +1,95 @@
+//! Checking an output path before anything runs: nothing is created or touched.
+
+use std::path::Path;
+
+/// What may happen to an existing output file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Existing {
+    /// Refuse an existing file.
+    #[default]
+    Refuse,
+    /// Continue it (`--resume`).
+    Resume,
+    /// Replace it (`--force`).
+    Overwrite,
+}
+
+/// Can `path` be written? Its nearest existing ancestor folder must be a writable folder
+/// (missing folders are created when the run starts); an existing file needs `--resume`
+/// or `--force`. Returns a message (what is wrong) and what is allowed.
+pub fn check_output(path: &Path, existing: Existing) -> Result<(), (String, String)> {
+    if path.as_os_str().is_empty() {
+        return Err((
+            "empty output path".into(),
+            "a file path such as results/study.h5".into(),
+        ));
+    }
+    if path.is_dir() {
+        return Err((
+            format!("output `{}` is a folder", path.display()),
+            "a file path such as results/study.h5".into(),
+        ));
+    }
+    if path.exists() {
+        match existing {
+            Existing::Refuse => {
+                return Err((
+                    format!("output `{}` exists", path.display()),
+                    "a new file; --resume to continue it, --force to replace it".into(),
+                ))
+            }
+            Existing::Resume | Existing::Overwrite => {
+                let meta = std::fs::metadata(path).map_err(|e| (e.to_string(), String::new()))?;
+                if meta.permissions().readonly() {
+                    return Err((
+                        format!("output `{}` is read-only", path.display()),
+                        "a writable file".into(),
+                    ));
+                }
+            }
+        }
+    }
+    let mut dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    while !dir.exists() {
+        match dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => dir = p,
+            _ => {
+                dir = Path::new(".");
+                break;
+            }
+        }
+    }
+    if !dir.is_dir() {
+        return Err((
+            format!("`{}` is not a folder", dir.display()),
+            "an output path inside a writable folder".into(),
+        ));
+    }
+    if !dir_writable(dir) {
+        return Err((
+            format!("folder `{}` is not writable", dir.display()),
+            "an output path inside a writable folder".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Writable folder: a probe file is created and removed at once (the output itself is
+/// not touched).
+fn dir_writable(dir: &Path) -> bool {
+    let probe = dir.join(format!(".batstudy-probe-{}", std::process::id()));
+    match std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+    {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            true
+        }
+        Err(e) => e.kind() == std::io::ErrorKind::AlreadyExists,
+    }
+}

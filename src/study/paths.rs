@@ -1,0 +1,244 @@
+//! Dotted parameter paths: which exist (taken from the `CollisionSpec` schema), how to set
+//! one on a YAML value tree, and their units for the result coordinates.
+
+use crate::model::spec::CollisionSpec;
+use serde_json::Value as J;
+use serde_yaml_ng::{Mapping, Value};
+use std::collections::BTreeMap;
+use std::sync::OnceLock;
+
+/// Kind of node a path names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathKind {
+    /// A record with named fields (`bat`, `bat.material`, `hoop`, …).
+    Record,
+    /// A value (number, label, list).
+    Leaf,
+}
+
+/// Every dotted path of `CollisionSpec` (records and leaves), from its JSON Schema.
+pub fn known_paths() -> &'static BTreeMap<String, PathKind> {
+    static PATHS: OnceLock<BTreeMap<String, PathKind>> = OnceLock::new();
+    PATHS.get_or_init(|| {
+        let schema = schemars::schema_for!(CollisionSpec);
+        let root = schema.as_value().clone();
+        let defs = root.get("$defs").cloned().unwrap_or(J::Null);
+        let mut out = BTreeMap::new();
+        walk(&root, &defs, "", &mut out, 0);
+        out
+    })
+}
+
+fn props_of<'a>(node: &'a J, defs: &'a J, acc: &mut Vec<(&'a String, &'a J)>, depth: usize) {
+    if depth > 8 {
+        return;
+    }
+    if let Some(r) = node.get("$ref").and_then(J::as_str) {
+        if let Some(t) = r.strip_prefix("#/$defs/").and_then(|n| defs.get(n)) {
+            props_of(t, defs, acc, depth + 1);
+        }
+    }
+    for key in ["anyOf", "oneOf", "allOf"] {
+        if let Some(arr) = node.get(key).and_then(J::as_array) {
+            for b in arr {
+                props_of(b, defs, acc, depth + 1);
+            }
+        }
+    }
+    if let Some(p) = node.get("properties").and_then(J::as_object) {
+        acc.extend(p.iter());
+    }
+}
+
+fn walk(node: &J, defs: &J, prefix: &str, out: &mut BTreeMap<String, PathKind>, depth: usize) {
+    let mut props = Vec::new();
+    props_of(node, defs, &mut props, 0);
+    if !prefix.is_empty() {
+        let kind = if props.is_empty() {
+            PathKind::Leaf
+        } else {
+            PathKind::Record
+        };
+        out.insert(prefix.to_string(), kind);
+    }
+    if depth > 6 {
+        return;
+    }
+    for (name, sub) in props {
+        let p = if prefix.is_empty() {
+            name.clone()
+        } else {
+            format!("{prefix}.{name}")
+        };
+        walk(sub, defs, &p, out, depth + 1);
+    }
+}
+
+/// The fields directly under a record path (`""` for the top).
+pub fn children(path: &str) -> Vec<&'static str> {
+    let depth = if path.is_empty() {
+        0
+    } else {
+        path.split('.').count()
+    };
+    known_paths()
+        .keys()
+        .filter(|k| {
+            let segs = k.split('.').count();
+            segs == depth + 1 && (path.is_empty() || k.starts_with(&format!("{path}.")))
+        })
+        .map(|k| k.rsplit('.').next().unwrap())
+        .collect()
+}
+
+/// Set `path` (dotted) to `v` in `root`, creating intermediate records (a `null` record,
+/// e.g. `hoop: null`, becomes one). Setting a field of `bat.profile` replaces the whole
+/// profile (it is one of `knots` / `csv`).
+pub fn set_path(root: &mut Value, path: &str, v: Value) -> Result<(), String> {
+    let segs: Vec<&str> = path.split('.').collect();
+    let mut cur = root;
+    for (i, seg) in segs.iter().enumerate() {
+        if cur.is_null() {
+            *cur = Value::Mapping(Mapping::new());
+        }
+        let parent = segs[..i].join(".");
+        let Value::Mapping(m) = cur else {
+            return Err(format!("cannot set `{path}`: `{parent}` is not a record"));
+        };
+        if i + 1 == segs.len() {
+            if parent == "bat.profile" {
+                m.clear();
+            }
+            m.insert(Value::from(*seg), v);
+            return Ok(());
+        }
+        let key = Value::from(*seg);
+        if !m.contains_key(&key) {
+            m.insert(key.clone(), Value::Null);
+        }
+        cur = m.get_mut(&key).unwrap();
+    }
+    *cur = v;
+    Ok(())
+}
+
+/// The value at `path` in `root`, if any.
+pub fn get_path<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
+    if path.is_empty() {
+        return Some(root);
+    }
+    path.split('.').try_fold(root, |cur, seg| cur.get(seg))
+}
+
+/// The result coordinate name of a path: `.` → `_`.
+pub fn coord_name(path: &str) -> String {
+    path.replace('.', "_")
+}
+
+/// Units (UDUNITS style; `1` dimensionless, empty for labels) and a long name per path.
+pub fn units(path: &str) -> (&'static str, String) {
+    let (u, l) = match path {
+        "impact.z" => ("m", "impact position from the knob"),
+        "swing.omega" => (
+            "rad/s",
+            "initial angular velocity of the bat (negative: toward the ball)",
+        ),
+        "swing.cm_speed" => ("m/s", "lab-frame speed of the bat's centre of mass"),
+        "bat.material.density" => ("kg/m^3", "bat wall density"),
+        "bat.material.youngs_modulus" => ("Pa", "bat Young's modulus"),
+        "bat.length" => ("m", "bat length"),
+        "bat.shell.thickness" => ("m", "bat shell wall thickness"),
+        "bat.shell.from" => ("m", "start of the hollow part, from the knob"),
+        "bat.fill.density" => ("kg/m^3", "density of the bat's filling"),
+        "bat.handle.radius_scale" => ("1", "handle radius multiplier"),
+        "bat.handle.end" => ("m", "end of the handle from the knob"),
+        "bat.handle.blend" => ("m", "length of the handle blend"),
+        "bat.preset" => ("", "built-in bat"),
+        "bat.ends.knob" => ("", "knob end condition"),
+        "bat.ends.barrel" => ("", "barrel end condition"),
+        "bat.profile.csv" => ("", "bat profile file"),
+        "ball.mass" => ("kg", "ball mass"),
+        "ball.speed" => ("m/s", "ball speed toward the bat (bat CM frame)"),
+        "ball.law.kind" => ("", "ball force law"),
+        "ball.law.stiffness" => ("N/m", "ball loading stiffness"),
+        "ball.law.cor" => ("1", "ball coefficient of restitution"),
+        "ball.law.k1" => ("N m^-alpha", "ball power-law loading coefficient"),
+        "ball.law.alpha" => ("1", "ball power-law loading exponent"),
+        "hoop.frequency" => ("Hz", "hoop-mode frequency"),
+        "hoop.mass" => ("kg", "hoop-mode effective mass"),
+        "numerics.segments" => ("1", "number of beam segments"),
+        "numerics.dt" => ("s", "time step"),
+        "numerics.integrator" => ("", "time integrator"),
+        "model" => ("", "collision model"),
+        _ => ("", ""),
+    };
+    let long = if l.is_empty() {
+        path.to_string()
+    } else {
+        l.to_string()
+    };
+    (u, long)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn public_paths_are_known() {
+        // issue 4: the public spellings of study files
+        for p in [
+            "bat.material.density",
+            "bat.material.youngs_modulus",
+            "bat.preset",
+            "bat.handle.radius_scale",
+            "bat.length",
+            "bat.shell.thickness",
+            "bat.shell.from",
+            "bat.ends.barrel",
+            "bat.ends.knob",
+            "bat.profile.knots",
+            "bat.profile.csv",
+            "swing.omega",
+            "hoop.frequency",
+            "hoop.mass",
+            "ball.speed",
+            "ball.mass",
+            "ball.law.kind",
+            "ball.law.stiffness",
+            "ball.law.cor",
+            "ball.law.k1",
+            "ball.law.alpha",
+            "impact.z",
+            "model",
+            "numerics.segments",
+            "numerics.dt",
+            "numerics.integrator",
+        ] {
+            assert!(
+                known_paths().contains_key(p),
+                "{p} missing: {:?}",
+                known_paths()
+            );
+        }
+        assert_eq!(known_paths()["bat.material"], PathKind::Record);
+        assert_eq!(known_paths()["hoop"], PathKind::Record);
+        assert!(children("bat.material").contains(&"density"));
+    }
+
+    #[test]
+    fn set_path_creates_records() {
+        let mut v: Value =
+            serde_yaml_ng::from_str("hoop: null\nbat: {profile: {knots: []}}").unwrap();
+        set_path(&mut v, "hoop.frequency", Value::from(1000.0)).unwrap();
+        set_path(&mut v, "impact.z", Value::from(0.7)).unwrap();
+        set_path(&mut v, "bat.profile.csv", Value::from("x.csv")).unwrap();
+        assert_eq!(
+            get_path(&v, "hoop.frequency").unwrap().as_f64(),
+            Some(1000.0)
+        );
+        assert_eq!(get_path(&v, "impact.z").unwrap().as_f64(), Some(0.7));
+        assert!(get_path(&v, "bat.profile.knots").is_none());
+        assert!(set_path(&mut v, "impact.z.q", Value::from(1)).is_err());
+    }
+}

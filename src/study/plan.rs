@@ -1,0 +1,317 @@
+//! The expanded study: a lazy N-dimensional index space of points. `Plan::point(flat)`
+//! builds one point on demand (memory does not grow with the number of points).
+
+use super::checks::{check_spec, Violation};
+use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
+use crate::results::{Coord, CoordValues, Dim, PointId, ResultShape};
+use serde_yaml_ng::Value;
+use sha2::{Digest, Sha256};
+use std::collections::HashMap;
+
+/// Where a dimension comes from in the study file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DimOrigin {
+    /// A `grid` axis, by its key.
+    Grid { key: String },
+    /// The `zip` group with this index.
+    Zip { group: usize },
+    /// The `points` list.
+    Points,
+}
+
+/// One dimension: its name and, per parameter path, one value per index.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanDim {
+    pub name: String,
+    pub size: usize,
+    pub params: Vec<(String, Vec<Value>)>,
+    pub origin: DimOrigin,
+}
+
+/// One distinct bat of the study (bat + numerics), shared by many points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatChoice {
+    /// Canonical JSON of `{"bat": …, "numerics": …}`: the cache key of a prepared bat.
+    pub key: String,
+    /// Short label, e.g. `r161` or `r161, bat.material.density=700`.
+    pub label: String,
+    pub bat: BatSpec,
+    pub numerics: NumericsSpec,
+}
+
+/// One point of the study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// Flat (row-major) index in the result shape.
+    pub index: usize,
+    /// Stable id: first 8 bytes (big-endian) of SHA-256 of the canonical JSON of `spec`.
+    pub id: PointId,
+    /// The fully resolved collision.
+    pub spec: CollisionSpec,
+    /// Index of the point's bat in `Plan::bats()`.
+    pub bat: u32,
+}
+
+impl Point {
+    /// Canonical JSON of the point's bat + numerics (equals `Plan::bats()[bat].key`).
+    pub fn bat_key(&self) -> String {
+        bat_key(&self.spec.bat, &self.spec.numerics)
+    }
+}
+
+/// A point that could not be resolved (only possible for combinations the loader did not
+/// check: plans larger than `FULL_CHECK_LIMIT`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointError {
+    pub index: usize,
+    /// Hash of the unresolved parameters.
+    pub id: PointId,
+    pub message: String,
+}
+
+/// Why a combination of parameters does not make a valid collision.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ResolveError {
+    /// The value tree does not deserialize (`path` dotted, may be empty).
+    Shape {
+        path: String,
+        message: String,
+        value: Option<String>,
+    },
+    /// A physical check failed.
+    Check(Violation),
+    /// A profile CSV that was not loaded.
+    Profile { file: String },
+}
+
+impl std::fmt::Display for ResolveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ResolveError::Shape { path, message, .. } if path.is_empty() => write!(f, "{message}"),
+            ResolveError::Shape { path, message, .. } => write!(f, "{path}: {message}"),
+            ResolveError::Check(v) => write!(f, "{} = {}: allowed {}", v.path, v.value, v.allowed),
+            ResolveError::Profile { file } => write!(f, "profile file `{file}` was not loaded"),
+        }
+    }
+}
+
+/// The lazy plan.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    pub(crate) base: Value,
+    pub(crate) dims: Vec<PlanDim>,
+    pub(crate) shape: ResultShape,
+    /// Profile CSV paths as written → knots.
+    pub(crate) profiles: HashMap<String, Vec<[f64; 2]>>,
+    pub(crate) bat_dims: Vec<usize>,
+    pub(crate) bat_of_combo: Vec<u32>,
+    pub(crate) bats: Vec<BatChoice>,
+}
+
+/// Canonical JSON of bat + numerics.
+pub fn bat_key(bat: &BatSpec, numerics: &NumericsSpec) -> String {
+    serde_json::json!({ "bat": bat, "numerics": numerics }).to_string()
+}
+
+/// The id of a resolved collision: SHA-256 of its canonical JSON (struct field order,
+/// shortest round-trip floats), first 8 bytes big-endian. Key order in the YAML and the
+/// way a value was written (`0.7` vs `7e-1`) do not matter.
+pub fn point_id(spec: &CollisionSpec) -> PointId {
+    hash_str(&serde_json::to_string(spec).expect("spec serializes"))
+}
+
+fn hash_str(s: &str) -> PointId {
+    let d = Sha256::digest(s.as_bytes());
+    u64::from_be_bytes(d[..8].try_into().unwrap())
+}
+
+/// Path touches path: equal, or one inside the other.
+pub(crate) fn related(a: &str, b: &str) -> bool {
+    a.is_empty()
+        || b.is_empty()
+        || a == b
+        || a.starts_with(&format!("{b}."))
+        || b.starts_with(&format!("{a}."))
+}
+
+pub(crate) fn is_bat_path(p: &str) -> bool {
+    related(p, "bat") && !p.is_empty() || related(p, "numerics") && !p.is_empty()
+}
+
+/// A value as short text (flow YAML-ish JSON).
+pub fn value_text(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Number(n) => n.to_string(),
+        _ => serde_json::to_string(v).unwrap_or_else(|_| format!("{v:?}")),
+    }
+}
+
+impl Plan {
+    pub fn n_points(&self) -> usize {
+        self.shape.n_points()
+    }
+    pub fn shape(&self) -> &ResultShape {
+        &self.shape
+    }
+    pub fn dims(&self) -> &[PlanDim] {
+        &self.dims
+    }
+    /// The distinct bats, in order of first appearance (row-major over the bat dimensions).
+    pub fn bats(&self) -> &[BatChoice] {
+        &self.bats
+    }
+    /// The base parameters (after `model` was copied in), as a YAML tree.
+    pub fn base(&self) -> &Value {
+        &self.base
+    }
+
+    /// The parameter tree of the point at this multi-index.
+    pub fn value_at(&self, multi: &[usize]) -> Value {
+        let mut v = self.base.clone();
+        for (d, &i) in self.dims.iter().zip(multi) {
+            for (path, vals) in &d.params {
+                // Paths were checked at load time.
+                let _ = super::paths::set_path(&mut v, path, vals[i].clone());
+            }
+        }
+        v
+    }
+
+    /// The resolved collision at this multi-index (deserialized and checked).
+    pub fn resolve(&self, multi: &[usize]) -> Result<CollisionSpec, ResolveError> {
+        let mut v = self.value_at(multi);
+        self.resolve_value(&mut v)
+    }
+
+    pub(crate) fn resolve_value(&self, v: &mut Value) -> Result<CollisionSpec, ResolveError> {
+        if let Some(Value::String(file)) = super::paths::get_path(v, "bat.profile.csv") {
+            let knots = self
+                .profiles
+                .get(file)
+                .ok_or_else(|| ResolveError::Profile { file: file.clone() })?;
+            let k: Vec<Value> = knots
+                .iter()
+                .map(|[z, r]| Value::Sequence(vec![Value::from(*z), Value::from(*r)]))
+                .collect();
+            let _ = super::paths::set_path(v, "bat.profile.knots", Value::Sequence(k));
+        }
+        // Through JSON: serde_yaml_ng's Value reads enums only from YAML tags, while a
+        // study writes `profile: {knots: …}`.
+        let json = serde_json::to_value(&*v).map_err(|e| ResolveError::Shape {
+            path: String::new(),
+            message: e.to_string(),
+            value: None,
+        })?;
+        let spec: CollisionSpec = serde_path_to_error::deserialize(json).map_err(|e| {
+            let path = path_string(e.path());
+            let value = super::paths::get_path(v, &path).map(value_text);
+            ResolveError::Shape {
+                path,
+                message: e.into_inner().to_string(),
+                value,
+            }
+        })?;
+        if let Some(first) = check_spec(&spec).into_iter().next() {
+            return Err(ResolveError::Check(first));
+        }
+        Ok(spec)
+    }
+
+    /// Index of the bat of the point at this multi-index.
+    pub fn bat_index(&self, multi: &[usize]) -> u32 {
+        let mut combo = 0usize;
+        for &d in &self.bat_dims {
+            combo = combo * self.dims[d].size + multi[d];
+        }
+        self.bat_of_combo[combo]
+    }
+
+    /// The point with flat index `flat` (row-major, last dimension fastest).
+    pub fn point(&self, flat: usize) -> Result<Point, PointError> {
+        assert!(flat < self.n_points(), "point index {flat} out of range");
+        let multi = self.shape.unravel(flat);
+        let mut v = self.value_at(&multi);
+        match self.resolve_value(&mut v) {
+            Ok(spec) => Ok(Point {
+                index: flat,
+                id: point_id(&spec),
+                spec,
+                bat: self.bat_index(&multi),
+            }),
+            Err(e) => Err(PointError {
+                index: flat,
+                id: hash_str(&serde_json::to_string(&v).unwrap_or_default()),
+                message: e.to_string(),
+            }),
+        }
+    }
+
+    /// A short description of the point's coordinates, e.g. `impact_z=0.7, swing_omega=-30`.
+    pub fn describe(&self, flat: usize) -> String {
+        let multi = self.shape.unravel(flat);
+        let mut parts = Vec::new();
+        for (d, &i) in self.dims.iter().zip(&multi) {
+            for (path, vals) in &d.params {
+                parts.push(format!("{path}={}", value_text(&vals[i])));
+            }
+        }
+        parts.join(", ")
+    }
+}
+
+/// Dotted text of a serde_path_to_error path (`""` for the root).
+pub(crate) fn path_string(p: &serde_path_to_error::Path) -> String {
+    use serde_path_to_error::Segment;
+    let mut s = String::new();
+    for seg in p.iter() {
+        match seg {
+            Segment::Seq { index } => s.push_str(&format!("[{index}]")),
+            Segment::Map { key } | Segment::Enum { variant: key } => {
+                if !s.is_empty() {
+                    s.push('.');
+                }
+                s.push_str(key);
+            }
+            Segment::Unknown => {}
+        }
+    }
+    s
+}
+
+/// Build the shape's coordinate variables of a dimension.
+pub(crate) fn dim_to_shape(d: &PlanDim) -> Dim {
+    let coords = d
+        .params
+        .iter()
+        .map(|(path, vals)| {
+            let nums: Option<Vec<f64>> = vals.iter().map(|v| v.as_f64()).collect();
+            let values = match nums {
+                Some(n) => CoordValues::Numbers(n),
+                None => CoordValues::Labels(vals.iter().map(value_text).collect()),
+            };
+            let (units, long_name) = super::paths::units(path);
+            let units = if matches!(values, CoordValues::Labels(_)) {
+                ""
+            } else {
+                units
+            };
+            Coord {
+                name: if matches!(d.origin, DimOrigin::Grid { .. }) {
+                    d.name.clone()
+                } else {
+                    super::paths::coord_name(path)
+                },
+                path: path.clone(),
+                units: units.to_string(),
+                long_name,
+                values,
+            }
+        })
+        .collect();
+    Dim {
+        name: d.name.clone(),
+        size: d.size,
+        coords,
+    }
+}

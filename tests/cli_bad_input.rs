@@ -1,0 +1,314 @@
+//! Bad study files: exit status 2, a message naming file, line, field, value and what is
+//! allowed, and nothing written (issue 4, "Bad input").
+
+use std::path::Path;
+use std::process::Command;
+
+fn batstudy(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_batstudy"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run batstudy")
+}
+
+/// (file, substrings the message must contain: file:line, field, value, allowed)
+const CASES: &[(&str, &[&str])] = &[
+    (
+        "malformed_yaml",
+        &["malformed_yaml.yaml:5:5", "malformed YAML"],
+    ),
+    (
+        "unknown_top_key",
+        &[
+            "unknown_top_key.yaml:5:1",
+            "`gird`",
+            "did you mean `grid`",
+            "allowed: name, description",
+        ],
+    ),
+    (
+        "unknown_base_key",
+        &[
+            "unknown_base_key.yaml:5:5",
+            "`bat.materal`",
+            "did you mean `material`",
+            "value: materal",
+            "allowed: fields of `bat`",
+        ],
+    ),
+    (
+        "unknown_grid_path",
+        &[
+            "unknown_grid_path.yaml:6:3",
+            "`swing.omgea`",
+            "did you mean `swing.omega`",
+            "allowed: swing.cm_speed, swing.omega",
+        ],
+    ),
+    (
+        "wrong_type",
+        &[
+            "wrong_type.yaml:5:5",
+            "`ball.speed`",
+            "value: fast",
+            "allowed: a number",
+        ],
+    ),
+    (
+        "missing_field",
+        &[
+            "missing_field.yaml:4:3",
+            "`hoop.mass`",
+            "missing field `mass`",
+            "allowed: this field is required",
+        ],
+    ),
+    (
+        "negative_density",
+        &[
+            "negative_density.yaml:6:7",
+            "`bat.material.density`",
+            "value: -649",
+            "allowed: a finite number > 0",
+        ],
+    ),
+    (
+        "zero_ball_mass",
+        &[
+            "zero_ball_mass.yaml:6:22",
+            "`ball.mass`",
+            "value: 0",
+            "grid axis `ball.mass`, value #2",
+            "allowed: a finite number > 0",
+        ],
+    ),
+    (
+        "shell_too_thick",
+        &[
+            "shell_too_thick.yaml:5:13",
+            "`bat.shell.thickness`",
+            "value: 0.05",
+            "allowed: < the bat's outer radius",
+        ],
+    ),
+    (
+        "impact_off_bat",
+        &[
+            "impact_off_bat.yaml:7:24",
+            "`impact.z`",
+            "value: 0.95",
+            "allowed: on the bat: 0 <= z <= 0.84 m",
+        ],
+    ),
+    (
+        "hoop_frequency_range",
+        &[
+            "hoop_frequency_range.yaml:7:31",
+            "`hoop.frequency`",
+            "value: 2000000",
+            "allowed: 10 to 100000 Hz",
+        ],
+    ),
+    (
+        "hoop_mass_range",
+        &[
+            "hoop_mass_range.yaml:7:23",
+            "`hoop.mass`",
+            "value: 5",
+            "zip group #1",
+            "allowed: 0.000001 to 1 kg",
+        ],
+    ),
+    (
+        "too_many_points",
+        &[
+            "too_many_points.yaml:5:1",
+            "25000000 points",
+            "value: 25000000",
+            "allowed: at most 10000000 points (raise with --max-points)",
+        ],
+    ),
+    (
+        "unwritable_output",
+        &[
+            "unwritable_output.yaml:5:1",
+            "`output`",
+            "not writable",
+            "value: /proc/batstudy-nowhere/out.h5",
+            "allowed: an output path inside a writable folder",
+        ],
+    ),
+    (
+        "zip_length_mismatch",
+        &[
+            "zip_length_mismatch.yaml:7:5",
+            "swing.omega",
+            "differ in length",
+            "value: 2 values",
+            "allowed: 3 values",
+        ],
+    ),
+    (
+        "bad_preset",
+        &[
+            "bad_preset.yaml:6:22",
+            "`bat.preset`",
+            "value: aluminium",
+            "did you mean `aluminum`",
+            "allowed: r161, aluminum, corked",
+        ],
+    ),
+    (
+        "bad_range",
+        &[
+            "bad_range.yaml:6:3",
+            "grid.swing.omega",
+            "value: {range: [0, -60, 10]}",
+            "goes away from stop",
+            "allowed: a non-empty list",
+        ],
+    ),
+    (
+        "bad_history_field",
+        &[
+            "bad_history_field.yaml:6:19",
+            "history.fields[1]",
+            "value: forse",
+            "allowed: one of `force`",
+        ],
+    ),
+    (
+        "missing_profile",
+        &[
+            "missing_profile.yaml:5:15",
+            "bat.profile.csv",
+            "value: no_such_profile.csv",
+            "allowed: a readable CSV",
+        ],
+    ),
+];
+
+#[test]
+fn every_bad_study_is_covered() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_studies");
+    for e in std::fs::read_dir(dir).unwrap() {
+        let name = e
+            .unwrap()
+            .path()
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .to_string();
+        assert!(
+            CASES.iter().any(|(c, _)| *c == name),
+            "no test case for {name}"
+        );
+    }
+}
+
+#[test]
+fn validate_reports_each_bad_study() {
+    for (name, needles) in CASES {
+        let file = format!("tests/bad_studies/{name}.yaml");
+        let out = batstudy(&["validate", &file]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        for n in *needles {
+            assert!(err.contains(n), "{name}: message lacks {n:?}:\n{err}");
+        }
+    }
+}
+
+#[test]
+fn run_rejects_bad_studies_before_writing() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, _) in CASES {
+        let file = format!("tests/bad_studies/{name}.yaml");
+        let out_path = tmp.path().join("sub").join(format!("{name}.h5"));
+        let out = batstudy(&["run", &file, "-o", out_path.to_str().unwrap(), "--quiet"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        if *name == "unwritable_output" {
+            // -o overrides the study's output: that study is otherwise valid.
+            continue;
+        }
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains(&format!("{name}.yaml:")), "{name}: {err}");
+        assert!(
+            !tmp.path().join("sub").exists(),
+            "{name}: something was written"
+        );
+    }
+}
+
+#[test]
+fn run_refuses_unwritable_output_and_existing_file() {
+    let out = batstudy(&["run", "tests/bad_studies/unwritable_output.yaml", "--quiet"]);
+    assert_eq!(out.status.code(), Some(2));
+    let tmp = tempfile::tempdir().unwrap();
+    let existing = tmp.path().join("x.h5");
+    std::fs::write(&existing, b"old").unwrap();
+    let out = batstudy(&[
+        "run",
+        "studies/smoke.yaml",
+        "-o",
+        existing.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("exists") && err.contains("--resume") && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&existing).unwrap(), b"old");
+}
+
+#[test]
+fn max_points_flag_raises_the_limit() {
+    let out = batstudy(&[
+        "validate",
+        "tests/bad_studies/too_many_points.yaml",
+        "--max-points",
+        "30000000",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn bad_flags_exit_2() {
+    let out = batstudy(&["run", "studies/smoke.yaml", "--shard", "5/4"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("1 <= I <= N"));
+    let out = batstudy(&["run", "studies/smoke.yaml", "--jobs", "0"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn example_studies_validate() {
+    let out = batstudy(&["validate", "studies/smoke.yaml", "studies/param_space.yaml"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+// issue 4: the schema is generated from the Rust types, committed, and this fails when stale.
+#[test]
+fn committed_schema_is_current() {
+    let committed = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("schemas/study.schema.json"),
+    )
+    .unwrap();
+    assert_eq!(
+        committed,
+        batstudy::study::schema_json(),
+        "schemas/study.schema.json is stale: run `batstudy schema > schemas/study.schema.json`"
+    );
+}
