@@ -11,6 +11,14 @@ use batstudy::results::{
 use batstudy::store::{self, StoreError, StoreOptions};
 use std::path::{Path, PathBuf};
 
+/// Spawned children inherit open (locked) HDF5 file descriptors of other tests' threads until
+/// they exit: `kill9_at_several_moments` runs alone, the others share.
+static SERIAL: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
+fn shared() -> std::sync::RwLockReadGuard<'static, ()> {
+    SERIAL.read().unwrap_or_else(|e| e.into_inner())
+}
+
 fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n).map(|k| a + (b - a) * k as f64 / (n - 1) as f64).collect()
 }
@@ -198,6 +206,7 @@ fn expected(info: &StudyInfo, index: usize) -> PointRecord {
 
 #[test]
 fn round_trip_summary_history_errors_bats() {
+    let _g = shared();
     for precision in [HistoryPrecision::F64, HistoryPrecision::F32] {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("out.h5");
@@ -227,6 +236,7 @@ fn round_trip_summary_history_errors_bats() {
 
 #[test]
 fn sweet_spot_group_matches_function() {
+    let _g = shared();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("out.h5");
     let info = study(false, HistoryPrecision::F64);
@@ -245,6 +255,7 @@ fn sweet_spot_group_matches_function() {
 
 #[test]
 fn torn_journal_resume_equals_uninterrupted() {
+    let _g = shared();
     let dir = tempfile::tempdir().unwrap();
     let info = study(true, HistoryPrecision::F32);
     let clean = dir.path().join("clean.h5");
@@ -280,6 +291,7 @@ fn torn_journal_resume_equals_uninterrupted() {
 
 #[test]
 fn resume_from_finished_partial_file() {
+    let _g = shared();
     // interrupted, then finished incomplete (e.g. Ctrl-C path or a shard), then resumed
     let dir = tempfile::tempdir().unwrap();
     let info = study(true, HistoryPrecision::F64);
@@ -306,6 +318,7 @@ fn resume_from_finished_partial_file() {
 
 #[test]
 fn refuses_other_study_and_overwrite() {
+    let _g = shared();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("out.h5");
     let info = study(false, HistoryPrecision::F64);
@@ -342,6 +355,7 @@ fn refuses_other_study_and_overwrite() {
 
 #[test]
 fn rejects_bad_records() {
+    let _g = shared();
     let dir = tempfile::tempdir().unwrap();
     let info = study(true, HistoryPrecision::F64);
     let mut s = store::open(&dir.path().join("o.h5"), &info, &opts(false, false)).unwrap();
@@ -375,6 +389,7 @@ fn child_writer() {
 
 #[test]
 fn kill9_at_several_moments() {
+    let _g = SERIAL.write().unwrap_or_else(|e| e.into_inner());
     let dir = tempfile::tempdir().unwrap();
     let info = study(true, HistoryPrecision::F64);
     let clean = dir.path().join("clean.h5");
@@ -407,6 +422,7 @@ fn kill9_at_several_moments() {
 
 #[test]
 fn zip_dim_with_aux_coords() {
+    let _g = shared();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("zip.h5");
     let info = zip_study();
