@@ -5,9 +5,7 @@ use batstudy::model::outcome::{
     BatProperties, EnergyPartition, History, HistoryField, HistoryPrecision, HistoryRequest,
     Outcome,
 };
-use batstudy::results::{
-    BatVariant, Coord, CoordValues, Dim, PointRecord, ResultShape, StudyInfo,
-};
+use batstudy::results::{BatVariant, Coord, CoordValues, Dim, PointRecord, ResultShape, StudyInfo};
 use batstudy::store::{self, StoreError, StoreOptions};
 use std::path::{Path, PathBuf};
 
@@ -20,7 +18,9 @@ fn shared() -> std::sync::RwLockReadGuard<'static, ()> {
 }
 
 fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n).map(|k| a + (b - a) * k as f64 / (n - 1) as f64).collect()
+    (0..n)
+        .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+        .collect()
 }
 
 fn coord(name: &str, path: &str, units: &str, values: CoordValues) -> Coord {
@@ -67,17 +67,31 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
                 Dim {
                     name: "swing_omega".into(),
                     size: 3,
-                    coords: vec![coord("swing_omega", "swing.omega", "rad/s", CoordValues::Numbers(vec![-40.0, -30.0, -20.0]))],
+                    coords: vec![coord(
+                        "swing_omega",
+                        "swing.omega",
+                        "rad/s",
+                        CoordValues::Numbers(vec![-40.0, -30.0, -20.0]),
+                    )],
                 },
                 Dim {
                     name: "impact_z".into(),
                     size: 9,
-                    coords: vec![coord("impact_z", "impact.z", "m", CoordValues::Numbers(grid(0.55, 0.79, 9)))],
+                    coords: vec![coord(
+                        "impact_z",
+                        "impact.z",
+                        "m",
+                        CoordValues::Numbers(grid(0.55, 0.79, 9)),
+                    )],
                 },
             ],
         },
         history: history.then(|| HistoryRequest {
-            fields: vec![HistoryField::Force, HistoryField::BallVelocity, HistoryField::Displacement],
+            fields: vec![
+                HistoryField::Force,
+                HistoryField::BallVelocity,
+                HistoryField::Displacement,
+            ],
             interval: 1e-5,
             n_samples: 20,
             z: vec![0.2, 0.4, 0.6, 0.8, 1.0],
@@ -95,8 +109,18 @@ fn zip_study() -> StudyInfo {
         name: "point".into(),
         size: 2,
         coords: vec![
-            coord("ball_speed", "ball.speed", "m/s", CoordValues::Numbers(vec![30.0, 40.0])),
-            coord("bat_preset", "bat.preset", "", CoordValues::Labels(vec!["r161".into(), "c243".into()])),
+            coord(
+                "ball_speed",
+                "ball.speed",
+                "m/s",
+                CoordValues::Numbers(vec![30.0, 40.0]),
+            ),
+            coord(
+                "bat_preset",
+                "bat.preset",
+                "",
+                CoordValues::Labels(vec!["r161".into(), "c243".into()]),
+            ),
         ],
     };
     s
@@ -104,7 +128,9 @@ fn zip_study() -> StudyInfo {
 
 fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
     if index % 7 == 3 {
-        return Err(format!("synthetic failure at point {index}: solver diverged"));
+        return Err(format!(
+            "synthetic failure at point {index}: solver diverged"
+        ));
     }
     let idx = info.shape.unravel(index);
     let z = grid(0.55, 0.79, 9)[idx[1]];
@@ -113,9 +139,15 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
     let history = info.history.as_ref().map(|h| {
         let t = |k: usize| k as f64 * h.interval;
         History {
-            force: (0..h.n_samples).map(|k| 1e3 * (t(k) * 1e5 + index as f64).sin()).collect(),
-            ball_velocity: (0..h.n_samples).map(|k| v * (1.0 - t(k) * 1e4) / 3.0).collect(),
-            displacement: (0..h.n_samples * h.z.len()).map(|k| 1e-4 * (k as f64 * 0.37 + index as f64).cos()).collect(),
+            force: (0..h.n_samples)
+                .map(|k| 1e3 * (t(k) * 1e5 + index as f64).sin())
+                .collect(),
+            ball_velocity: (0..h.n_samples)
+                .map(|k| v * (1.0 - t(k) * 1e4) / 3.0)
+                .collect(),
+            displacement: (0..h.n_samples * h.z.len())
+                .map(|k| 1e-4 * (k as f64 * 0.37 + index as f64).cos())
+                .collect(),
             // not requested: must be dropped
             hoop_displacement: vec![1.0; 3],
             ..Default::default()
@@ -178,11 +210,20 @@ fn dump(path: &Path) -> String {
     if let Ok(g) = f.group("sweet_spot") {
         for v in ["position", "exit_speed", "width"] {
             let a = g.dataset(v).unwrap().read_raw::<f64>().unwrap();
-            s += &format!("{v}: {:?}\n", a.iter().map(|x| x.to_bits()).collect::<Vec<_>>());
+            s += &format!(
+                "{v}: {:?}\n",
+                a.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+            );
         }
     }
     for v in ["status", "recontact"] {
-        s += &format!("{v}: {:?}\n", f.dataset(&format!("summary/{v}")).unwrap().read_raw::<i8>().unwrap());
+        s += &format!(
+            "{v}: {:?}\n",
+            f.dataset(&format!("summary/{v}"))
+                .unwrap()
+                .read_raw::<i8>()
+                .unwrap()
+        );
     }
     s
 }
@@ -212,7 +253,14 @@ fn round_trip_summary_history_errors_bats() {
         let path = dir.path().join("out.h5");
         let info = study(true, precision);
         let sum = full_run(&info, &path);
-        assert_eq!(sum, store::Summary { n_points: 27, n_done: 27, n_failed: 4 });
+        assert_eq!(
+            sum,
+            store::Summary {
+                n_points: 27,
+                n_done: 27,
+                n_failed: 4
+            }
+        );
         assert!(!store::journal_path(&path).exists());
         let back = store::read_results(&path).unwrap();
         assert_eq!(back.records.len(), 27);
@@ -222,10 +270,18 @@ fn round_trip_summary_history_errors_bats() {
             assert_eq!(r.result, e.result, "point {}", r.index);
         }
         let f = hdf5::File::open(&path).unwrap();
-        let m = f.dataset("bat/mode_frequency").unwrap().read_2d::<f64>().unwrap();
+        let m = f
+            .dataset("bat/mode_frequency")
+            .unwrap()
+            .read_2d::<f64>()
+            .unwrap();
         assert_eq!(m.shape(), &[2, 3]);
         assert!(m[[1, 2]].is_nan() && m[[1, 1]] == 680.0);
-        let msg = f.dataset("errors/message").unwrap().read_raw::<hdf5::types::VarLenUnicode>().unwrap();
+        let msg = f
+            .dataset("errors/message")
+            .unwrap()
+            .read_raw::<hdf5::types::VarLenUnicode>()
+            .unwrap();
         assert_eq!(msg.len(), 4);
         assert!(msg[0].as_str().contains("point 3"));
         let text = store::inspect(&path).unwrap();
@@ -242,7 +298,11 @@ fn sweet_spot_group_matches_function() {
     let info = study(false, HistoryPrecision::F64);
     full_run(&info, &path);
     let f = hdf5::File::open(&path).unwrap();
-    let pos = f.dataset("sweet_spot/position").unwrap().read_raw::<f64>().unwrap();
+    let pos = f
+        .dataset("sweet_spot/position")
+        .unwrap()
+        .read_raw::<f64>()
+        .unwrap();
     let z = grid(0.55, 0.79, 9);
     for (w, &p) in pos.iter().enumerate() {
         let (zz, vv): (Vec<f64>, Vec<f64>) = (0..9)
@@ -271,7 +331,12 @@ fn torn_journal_resume_equals_uninterrupted() {
     let j = store::journal_path(&path);
     let len = std::fs::metadata(&j).unwrap().len();
     // tear the last record
-    std::fs::OpenOptions::new().write(true).open(&j).unwrap().set_len(len - 37).unwrap();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&j)
+        .unwrap()
+        .set_len(len - 37)
+        .unwrap();
 
     let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
     assert_eq!(s.n_done(), 14);
@@ -324,12 +389,16 @@ fn refuses_other_study_and_overwrite() {
     let info = study(false, HistoryPrecision::F64);
     full_run(&info, &path);
     // no resume, no force
-    let e = store::open(&path, &info, &opts(false, false)).err().unwrap();
+    let e = store::open(&path, &info, &opts(false, false))
+        .err()
+        .unwrap();
     assert!(matches!(e, StoreError::Exists { .. }), "{e}");
     assert!(e.to_string().contains("--force"), "{e}");
     // resume with another study: from the finished file
     let other = study(true, HistoryPrecision::F64);
-    let e = store::open(&path, &other, &opts(true, false)).err().unwrap();
+    let e = store::open(&path, &other, &opts(true, false))
+        .err()
+        .unwrap();
     assert!(matches!(e, StoreError::WrongStudy { .. }), "{e}");
     assert!(e.to_string().contains("out.h5"), "{e}");
     // and from a journal
@@ -337,12 +406,18 @@ fn refuses_other_study_and_overwrite() {
     let s = store::open(&p2, &info, &opts(false, false)).unwrap();
     drop(s);
     let e = store::open(&p2, &other, &opts(true, false)).err().unwrap();
-    assert!(e.to_string().contains("b.h5.journal") && e.to_string().contains("sha256"), "{e}");
+    assert!(
+        e.to_string().contains("b.h5.journal") && e.to_string().contains("sha256"),
+        "{e}"
+    );
     // a journal left behind also blocks a fresh run without force
     let e = store::open(&p2, &info, &opts(false, false)).err().unwrap();
     assert!(matches!(e, StoreError::Exists { .. }));
     // force overwrites
-    store::open(&path, &info, &opts(false, true)).unwrap().finish().unwrap();
+    store::open(&path, &info, &opts(false, true))
+        .unwrap()
+        .finish()
+        .unwrap();
     // garbage is reported, not panicked on
     let g = dir.path().join("garbage.h5");
     std::fs::write(&g, b"not hdf5").unwrap();
@@ -363,7 +438,14 @@ fn rejects_bad_records() {
     r.index = 27;
     assert!(s.write(r).is_err());
     let mut r = record(&info, 1);
-    r.result.as_mut().unwrap().history.as_mut().unwrap().force.pop();
+    r.result
+        .as_mut()
+        .unwrap()
+        .history
+        .as_mut()
+        .unwrap()
+        .force
+        .pop();
     assert!(s.write(r).is_err());
     s.write(record(&info, 2)).unwrap();
     s.write(record(&info, 2)).unwrap(); // duplicate ignored
@@ -374,7 +456,9 @@ fn rejects_bad_records() {
 #[test]
 #[ignore]
 fn child_writer() {
-    let Ok(out) = std::env::var("BATSTUDY_STORE_CHILD_OUT") else { return };
+    let Ok(out) = std::env::var("BATSTUDY_STORE_CHILD_OUT") else {
+        return;
+    };
     let info = study(true, HistoryPrecision::F64);
     let mut s = store::open(Path::new(&out), &info, &opts(true, false)).unwrap();
     for k in 0..27 {
@@ -428,17 +512,29 @@ fn zip_dim_with_aux_coords() {
     let info = zip_study();
     full_run(&info, &path);
     let f = hdf5::File::open(&path).unwrap();
-    let c = f.dataset("summary/exit_speed").unwrap().attr("coordinates").unwrap();
+    let c = f
+        .dataset("summary/exit_speed")
+        .unwrap()
+        .attr("coordinates")
+        .unwrap();
     let c: hdf5::types::VarLenUnicode = c.read_scalar().unwrap();
     assert_eq!(c.as_str(), "ball_speed bat_preset");
-    assert_eq!(f.dataset("summary/point").unwrap().read_raw::<i64>().unwrap(), vec![0, 1]);
+    assert_eq!(
+        f.dataset("summary/point")
+            .unwrap()
+            .read_raw::<i64>()
+            .unwrap(),
+        vec![0, 1]
+    );
 }
 
 /// Writes fixtures for tests/python/test_store_layout.py into $BATSTUDY_STORE_FIXTURES.
 #[test]
 #[ignore]
 fn write_python_fixture() {
-    let Ok(dir) = std::env::var("BATSTUDY_STORE_FIXTURES") else { return };
+    let Ok(dir) = std::env::var("BATSTUDY_STORE_FIXTURES") else {
+        return;
+    };
     let dir = PathBuf::from(dir);
     full_run(&study(true, HistoryPrecision::F32), &dir.join("synth.h5"));
     full_run(&zip_study(), &dir.join("zip.h5"));

@@ -34,14 +34,21 @@ pub fn summary_chunk(dims: &[Dim]) -> Vec<usize> {
             continue;
         }
         let rest: usize = c.iter().product();
-        c[k] = dims[k].size.min((l::SUMMARY_CHUNK_ELEMS / rest).max(1)).max(1);
+        c[k] = dims[k]
+            .size
+            .min((l::SUMMARY_CHUNK_ELEMS / rest).max(1))
+            .max(1);
     }
     c
 }
 
 /// Coordinate variables of the study dims in one group; returns the scales (one per dim) and
 /// the names of auxiliary coordinates (for the `coordinates` attribute).
-fn study_dims(g: &Group, dims: &[Dim], path: &Path) -> Result<(Vec<Dataset>, Vec<String>), StoreError> {
+fn study_dims(
+    g: &Group,
+    dims: &[Dim],
+    path: &Path,
+) -> Result<(Vec<Dataset>, Vec<String>), StoreError> {
     let mut scales = Vec::new();
     let mut aux = Vec::new();
     for d in dims {
@@ -87,7 +94,12 @@ fn leak(s: &str) -> &'static str {
     Box::leak(s.to_string().into_boxed_str())
 }
 
-fn coord_values(g: &Group, name: &str, v: &CoordValues, path: &Path) -> Result<Dataset, StoreError> {
+fn coord_values(
+    g: &Group,
+    name: &str,
+    v: &CoordValues,
+    path: &Path,
+) -> Result<Dataset, StoreError> {
     match v {
         CoordValues::Numbers(x) => h5u::write_1d(g, name, x),
         CoordValues::Labels(s) => {
@@ -101,8 +113,7 @@ fn coord_values(g: &Group, name: &str, v: &CoordValues, path: &Path) -> Result<D
 fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     g: &Group,
     def: &VarDef,
-    shape: &[usize],
-    chunk: &[usize],
+    (shape, chunk): (&[usize], &[usize]),
     fill: T,
     scales: &[&Dataset],
     aux: &[String],
@@ -118,7 +129,13 @@ fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     Ok(ds)
 }
 
-fn write_block<T: hdf5::H5Type>(ds: &Dataset, start: &[usize], count: &[usize], data: Vec<T>, path: &Path) -> Result<(), StoreError> {
+fn write_block<T: hdf5::H5Type>(
+    ds: &Dataset,
+    start: &[usize],
+    count: &[usize],
+    data: Vec<T>,
+    path: &Path,
+) -> Result<(), StoreError> {
     let arr = ArrayD::from_shape_vec(IxDyn(count), data).expect("block shape");
     if start.is_empty() {
         return ds.write(&arr).ctx(path, "write a scalar");
@@ -144,7 +161,9 @@ fn for_each_in_block(start: &[usize], count: &[usize], mut f: impl FnMut(&[usize
 }
 
 fn ravel(dims: &[Dim], idx: &[usize]) -> usize {
-    dims.iter().zip(idx).fold(0, |acc, (d, &i)| acc * d.size + i)
+    dims.iter()
+        .zip(idx)
+        .fold(0, |acc, (d, &i)| acc * d.size + i)
 }
 
 /// Write the complete results file `out` from the scanned journal.
@@ -176,34 +195,77 @@ pub fn write_file(
     let chunk = summary_chunk(dims);
 
     // ---- /summary (and /sweet_spot, computed from the same blocks)
-    let g = f.create_group(l::GROUP_SUMMARY).ctx(out, "create group summary")?;
+    let g = f
+        .create_group(l::GROUP_SUMMARY)
+        .ctx(out, "create group summary")?;
     let (scales, aux) = study_dims(&g, dims, out)?;
     let sref: Vec<&Dataset> = scales.iter().collect();
     let mut floats = Vec::new();
     for def in &l::SUMMARY_FLOATS {
-        floats.push(new_var(&g, def, &shape, &chunk, f64::NAN, &sref, &aux, out)?);
+        floats.push(new_var(
+            &g,
+            def,
+            (&shape, &chunk),
+            f64::NAN,
+            &sref,
+            &aux,
+            out,
+        )?);
     }
-    let recontact = new_var(&g, &l::RECONTACT, &shape, &chunk, -1i8, &sref, &aux, out)?;
-    let status = new_var(&g, &l::STATUS, &shape, &chunk, l::STATUS_NOT_COMPUTED, &sref, &aux, out)?;
+    let recontact = new_var(&g, &l::RECONTACT, (&shape, &chunk), -1i8, &sref, &aux, out)?;
+    let status = new_var(
+        &g,
+        &l::STATUS,
+        (&shape, &chunk),
+        l::STATUS_NOT_COMPUTED,
+        &sref,
+        &aux,
+        out,
+    )?;
     attr_vec(&status, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe status")?;
     attr_str(&status, "flag_meanings", "not_computed ok failed").ctx(out, "describe status")?;
-    let point_id = new_var(&g, &l::POINT_ID, &shape, &chunk, 0u64, &sref, &aux, out)?;
-    let bat_index = new_var(&g, &l::BAT_INDEX, &shape, &chunk, -1i32, &sref, &aux, out)?;
+    let point_id = new_var(&g, &l::POINT_ID, (&shape, &chunk), 0u64, &sref, &aux, out)?;
+    let bat_index = new_var(&g, &l::BAT_INDEX, (&shape, &chunk), -1i32, &sref, &aux, out)?;
 
     let iz = dims.iter().position(|d| d.name == l::IMPACT_Z);
     let sweet = match iz {
         Some(iz) => {
-            let sg = f.create_group(l::GROUP_SWEET_SPOT).ctx(out, "create group sweet_spot")?;
-            let rest: Vec<Dim> = dims.iter().enumerate().filter(|&(k, _)| k != iz).map(|(_, d)| d.clone()).collect();
+            let sg = f
+                .create_group(l::GROUP_SWEET_SPOT)
+                .ctx(out, "create group sweet_spot")?;
+            let rest: Vec<Dim> = dims
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != iz)
+                .map(|(_, d)| d.clone())
+                .collect();
             let (ss, saux) = study_dims(&sg, &rest, out)?;
             let ssref: Vec<&Dataset> = ss.iter().collect();
             let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
-            let rchunk: Vec<usize> = chunk.iter().enumerate().filter(|&(k, _)| k != iz).map(|(_, &c)| c).collect();
+            let rchunk: Vec<usize> = chunk
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != iz)
+                .map(|(_, &c)| c)
+                .collect();
             let mut vars = Vec::new();
             for def in [&l::SWEET_POSITION, &l::SWEET_EXIT_SPEED, &l::SWEET_WIDTH] {
-                vars.push(new_var(&sg, def, &rshape, &rchunk, f64::NAN, &ssref, &saux, out)?);
+                vars.push(new_var(
+                    &sg,
+                    def,
+                    (&rshape, &rchunk),
+                    f64::NAN,
+                    &ssref,
+                    &saux,
+                    out,
+                )?);
             }
-            let z = match dims[iz].coords.iter().find(|c| c.name == l::IMPACT_Z).map(|c| &c.values) {
+            let z = match dims[iz]
+                .coords
+                .iter()
+                .find(|c| c.name == l::IMPACT_Z)
+                .map(|c| &c.values)
+            {
                 Some(CoordValues::Numbers(z)) => z.clone(),
                 _ => {
                     return Err(StoreError::BadRecord {
@@ -218,8 +280,16 @@ pub fn write_file(
     };
 
     let mut errors: Vec<(u64, u64, String)> = Vec::new();
-    let grid: Vec<usize> = shape.iter().zip(&chunk).map(|(&n, &c)| n.div_ceil(c)).collect();
-    let n_blocks: usize = if shape.contains(&0) { 0 } else { grid.iter().product() };
+    let grid: Vec<usize> = shape
+        .iter()
+        .zip(&chunk)
+        .map(|(&n, &c)| n.div_ceil(c))
+        .collect();
+    let n_blocks: usize = if shape.contains(&0) {
+        0
+    } else {
+        grid.iter().product()
+    };
     for b in 0..n_blocks {
         // block b of the chunk grid, row-major
         let mut gi = vec![0; grid.len()];
@@ -229,7 +299,12 @@ pub fn write_file(
             r /= grid[k];
         }
         let start: Vec<usize> = gi.iter().zip(&chunk).map(|(&i, &c)| i * c).collect();
-        let count: Vec<usize> = start.iter().zip(&chunk).zip(&shape).map(|((&s, &c), &n)| c.min(n - s)).collect();
+        let count: Vec<usize> = start
+            .iter()
+            .zip(&chunk)
+            .zip(&shape)
+            .map(|((&s, &c), &n)| c.min(n - s))
+            .collect();
         let m: usize = count.iter().product();
         let mut fv = vec![vec![f64::NAN; m]; N_SUMMARY_FLOATS];
         let mut rc = vec![-1i8; m];
@@ -290,8 +365,18 @@ pub fn write_file(
                     res[2][slot] = w;
                 }
             }
-            let rs: Vec<usize> = start.iter().enumerate().filter(|&(k, _)| k != *iz).map(|(_, &s)| s).collect();
-            let rcnt: Vec<usize> = count.iter().enumerate().filter(|&(k, _)| k != *iz).map(|(_, &s)| s).collect();
+            let rs: Vec<usize> = start
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != *iz)
+                .map(|(_, &s)| s)
+                .collect();
+            let rcnt: Vec<usize> = count
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != *iz)
+                .map(|(_, &s)| s)
+                .collect();
             for (ds, data) in vars.iter().zip(res) {
                 write_block(ds, &rs, &rcnt, data, out)?;
             }
@@ -307,9 +392,15 @@ pub fn write_file(
 
     // ---- /errors
     errors.sort_by_key(|e| e.0);
-    let eg = f.create_group(l::GROUP_ERRORS).ctx(out, "create group errors")?;
+    let eg = f
+        .create_group(l::GROUP_ERRORS)
+        .ctx(out, "create group errors")?;
     let eidx: Vec<i64> = (0..errors.len() as i64).collect();
-    let edef = VarDef { name: l::ERR_DIM, units: "1", long_name: "failed point number" };
+    let edef = VarDef {
+        name: l::ERR_DIM,
+        units: "1",
+        long_name: "failed point number",
+    };
     let escale = h5u::scale_coord(&eg, l::ERR_DIM, &eidx, &edef).ctx(out, "write errors")?;
     let cols: [(&VarDef, Vec<u64>); 2] = [
         (&l::ERR_FLAT_INDEX, errors.iter().map(|e| e.0).collect()),
@@ -366,7 +457,10 @@ fn root_attrs(
     s("command_line", &meta.command_line)?;
     s("shard", meta.shard.as_deref().unwrap_or(""))?;
     let header = super::journal::JournalHeader::of(info);
-    s(super::read::HEADER_ATTR, &serde_json::to_string(&header).expect("header serialises"))?;
+    s(
+        super::read::HEADER_ATTR,
+        &serde_json::to_string(&header).expect("header serialises"),
+    )?;
     let n = |k: &str, v: i64| attr_num(f, k, v).ctx(out, "write root attributes");
     n("layout_version", l::LAYOUT_VERSION as i64)?;
     n("git_dirty", meta.git_dirty as i64)?;
@@ -387,7 +481,9 @@ fn write_history(
     out: &Path,
 ) -> Result<(), StoreError> {
     let dims = &info.shape.dims;
-    let g = f.create_group(l::GROUP_HISTORY).ctx(out, "create group history")?;
+    let g = f
+        .create_group(l::GROUP_HISTORY)
+        .ctx(out, "create group history")?;
     let (scales, aux) = study_dims(&g, dims, out)?;
     let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
     let tscale = h5u::scale_coord(&g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
@@ -409,13 +505,17 @@ fn write_history(
             sc.push(&zscale);
         }
         let ds = match h.precision {
-            HistoryPrecision::F64 => new_var(&g, def, &s, &c, f64::NAN, &sc, &aux, out)?,
-            HistoryPrecision::F32 => new_var(&g, def, &s, &c, f32::NAN, &sc, &aux, out)?,
+            HistoryPrecision::F64 => new_var(&g, def, (&s, &c), f64::NAN, &sc, &aux, out)?,
+            HistoryPrecision::F32 => new_var(&g, def, (&s, &c), f32::NAN, &sc, &aux, out)?,
         };
-        attr_str(&ds, "precision", match h.precision {
-            HistoryPrecision::F64 => "f64",
-            HistoryPrecision::F32 => "f32",
-        })
+        attr_str(
+            &ds,
+            "precision",
+            match h.precision {
+                HistoryPrecision::F64 => "f64",
+                HistoryPrecision::F32 => "f32",
+            },
+        )
         .ctx(out, "describe history")?;
         created.push((k, ds, s));
     }
@@ -439,9 +539,13 @@ fn write_history(
             }
             match h.precision {
                 HistoryPrecision::F64 => write_block(ds, &start, &count, a.clone(), out)?,
-                HistoryPrecision::F32 => {
-                    write_block(ds, &start, &count, a.iter().map(|&x| x as f32).collect(), out)?
-                }
+                HistoryPrecision::F32 => write_block(
+                    ds,
+                    &start,
+                    &count,
+                    a.iter().map(|&x| x as f32).collect(),
+                    out,
+                )?,
             }
         }
     }
@@ -466,41 +570,107 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
     let p: Vec<_> = info.bats.iter().map(|b| &b.properties).collect();
     let n_modes = p.iter().map(|p| p.mode_frequency.len()).max().unwrap_or(0);
     let modes: Vec<i64> = (1..=n_modes as i64).collect();
-    let mode = h5u::scale_coord(&g, l::MODE_DIM.name, &modes, &l::MODE_DIM).ctx(out, &e("modes"))?;
+    let mode =
+        h5u::scale_coord(&g, l::MODE_DIM.name, &modes, &l::MODE_DIM).ctx(out, &e("modes"))?;
     let nodes_rows: Vec<Vec<f64>> = p
         .iter()
         .flat_map(|p| (0..n_modes).map(move |m| p.mode_nodes.get(m).cloned().unwrap_or_default()))
         .collect();
     let (nodes, n_nodes) = padded(&nodes_rows, f64::NAN);
     let node_idx: Vec<i64> = (0..n_nodes as i64).collect();
-    let node = h5u::scale_coord(&g, l::NODE_DIM.name, &node_idx, &l::NODE_DIM).ctx(out, &e("nodes"))?;
+    let node =
+        h5u::scale_coord(&g, l::NODE_DIM.name, &node_idx, &l::NODE_DIM).ctx(out, &e("nodes"))?;
     let (pz, n_prof) = padded(&p.iter().map(|p| p.z.clone()).collect::<Vec<_>>(), f64::NAN);
     let prof_idx: Vec<i64> = (0..n_prof as i64).collect();
-    let prof = h5u::scale_coord(&g, l::PROFILE_DIM.name, &prof_idx, &l::PROFILE_DIM).ctx(out, &e("profile"))?;
+    let prof = h5u::scale_coord(&g, l::PROFILE_DIM.name, &prof_idx, &l::PROFILE_DIM)
+        .ctx(out, &e("profile"))?;
     let nb = info.bats.len();
-    let var = |def: &VarDef, shape: Vec<usize>, data: Vec<f64>, sc: &[&Dataset]| -> Result<(), StoreError> {
-        let ds = g.new_dataset::<f64>().shape(shape.clone()).create(def.name).ctx(out, &e(def.name))?;
+    let var = |def: &VarDef,
+               shape: Vec<usize>,
+               data: Vec<f64>,
+               sc: &[&Dataset]|
+     -> Result<(), StoreError> {
+        let ds = g
+            .new_dataset::<f64>()
+            .shape(shape.clone())
+            .create(def.name)
+            .ctx(out, &e(def.name))?;
         if !data.is_empty() {
             ds.write_raw(&data).ctx(out, &e(def.name))?;
         }
         describe(&ds, def).ctx(out, &e(def.name))?;
         attach_scales(&ds, sc).ctx(out, &e(def.name))
     };
-    var(&l::BAT_MASS, vec![nb], p.iter().map(|p| p.mass).collect(), &[&bat])?;
-    var(&l::BAT_Z_CM, vec![nb], p.iter().map(|p| p.z_cm).collect(), &[&bat])?;
-    var(&l::BAT_MOI, vec![nb], p.iter().map(|p| p.moment_of_inertia).collect(), &[&bat])?;
-    var(&l::BAT_MOI6, vec![nb], p.iter().map(|p| p.moment_of_inertia_knob6).collect(), &[&bat])?;
-    var(&l::BAT_LENGTH, vec![nb], p.iter().map(|p| p.length).collect(), &[&bat])?;
-    let (mf, _) = padded(&p.iter().map(|p| p.mode_frequency.clone()).collect::<Vec<_>>(), f64::NAN);
+    var(
+        &l::BAT_MASS,
+        vec![nb],
+        p.iter().map(|p| p.mass).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_Z_CM,
+        vec![nb],
+        p.iter().map(|p| p.z_cm).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_MOI,
+        vec![nb],
+        p.iter().map(|p| p.moment_of_inertia).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_MOI6,
+        vec![nb],
+        p.iter().map(|p| p.moment_of_inertia_knob6).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_LENGTH,
+        vec![nb],
+        p.iter().map(|p| p.length).collect(),
+        &[&bat],
+    )?;
+    let (mf, _) = padded(
+        &p.iter()
+            .map(|p| p.mode_frequency.clone())
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
     let mf = if n_modes == 0 { vec![] } else { mf };
     // rows shorter than n_modes are padded by `padded` only up to the longest row: same here
     var(&l::BAT_MODE_FREQ, vec![nb, n_modes], mf, &[&bat, &mode])?;
-    var(&l::BAT_MODE_NODES, vec![nb, n_modes, n_nodes], nodes, &[&bat, &mode, &node])?;
+    var(
+        &l::BAT_MODE_NODES,
+        vec![nb, n_modes, n_nodes],
+        nodes,
+        &[&bat, &mode, &node],
+    )?;
     var(&l::BAT_PROFILE_Z, vec![nb, n_prof], pz, &[&bat, &prof])?;
-    let (ro, _) = padded(&p.iter().map(|p| pad_to(&p.outer_radius, n_prof)).collect::<Vec<_>>(), f64::NAN);
-    let (ri, _) = padded(&p.iter().map(|p| pad_to(&p.inner_radius, n_prof)).collect::<Vec<_>>(), f64::NAN);
-    var(&l::BAT_OUTER, vec![nb, n_prof], if n_prof == 0 { vec![] } else { ro }, &[&bat, &prof])?;
-    var(&l::BAT_INNER, vec![nb, n_prof], if n_prof == 0 { vec![] } else { ri }, &[&bat, &prof])?;
+    let (ro, _) = padded(
+        &p.iter()
+            .map(|p| pad_to(&p.outer_radius, n_prof))
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    let (ri, _) = padded(
+        &p.iter()
+            .map(|p| pad_to(&p.inner_radius, n_prof))
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    var(
+        &l::BAT_OUTER,
+        vec![nb, n_prof],
+        if n_prof == 0 { vec![] } else { ro },
+        &[&bat, &prof],
+    )?;
+    var(
+        &l::BAT_INNER,
+        vec![nb, n_prof],
+        if n_prof == 0 { vec![] } else { ri },
+        &[&bat, &prof],
+    )?;
     let spec: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.spec_json)).collect();
     let ds = h5u::write_1d(&g, l::BAT_SPEC.name, &spec).ctx(out, &e("spec"))?;
     describe(&ds, &l::BAT_SPEC).ctx(out, &e("spec"))?;

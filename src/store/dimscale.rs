@@ -94,7 +94,12 @@ pub fn write_1d<T: H5Type>(g: &Group, name: &str, data: &[T]) -> hdf5::Result<Da
 }
 
 /// Create a dimension-scale coordinate variable of numbers or labels.
-pub fn scale_coord<T: H5Type>(g: &Group, name: &str, data: &[T], def: &VarDef) -> hdf5::Result<Dataset> {
+pub fn scale_coord<T: H5Type>(
+    g: &Group,
+    name: &str,
+    data: &[T],
+    def: &VarDef,
+) -> hdf5::Result<Dataset> {
     let ds = write_1d(g, name, data)?;
     set_scale(&ds, name)?;
     describe(&ds, def)?;

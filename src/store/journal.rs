@@ -57,7 +57,12 @@ impl JournalHeader {
             layout_version: layout::LAYOUT_VERSION,
             study_name: info.name.clone(),
             study_sha256: info.study_sha256.clone(),
-            dims: info.shape.dims.iter().map(|d| (d.name.clone(), d.size)).collect(),
+            dims: info
+                .shape
+                .dims
+                .iter()
+                .map(|d| (d.name.clone(), d.size))
+                .collect(),
             history: info.history.as_ref().map(|h| {
                 (
                     super::build::history_vars(h)
@@ -245,9 +250,11 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
         return Err(bad("header length is implausible"));
     }
     let mut json = vec![0u8; n];
-    r.read_exact(&mut json).map_err(|_| bad("truncated header"))?;
+    r.read_exact(&mut json)
+        .map_err(|_| bad("truncated header"))?;
     let mut sum = [0u8; 8];
-    r.read_exact(&mut sum).map_err(|_| bad("truncated header"))?;
+    r.read_exact(&mut sum)
+        .map_err(|_| bad("truncated header"))?;
     if u64::from_le_bytes(sum) != fnv1a(&json) {
         return Err(bad("header checksum mismatch"));
     }
@@ -417,7 +424,8 @@ impl JournalWriter {
         self.buf.extend_from_slice(&REC_MAGIC.to_le_bytes());
         self.buf
             .extend_from_slice(&(self.payload.len() as u32).to_le_bytes());
-        self.buf.extend_from_slice(&fnv1a(&self.payload).to_le_bytes());
+        self.buf
+            .extend_from_slice(&fnv1a(&self.payload).to_le_bytes());
         self.buf.extend_from_slice(&self.payload);
     }
 

@@ -36,18 +36,42 @@ pub const N_SUMMARY_FLOATS: usize = 14;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
-    v("exit_speed", "m/s", "ball exit speed, bat-CM frame, positive toward the pitcher"),
-    v("exit_speed_lab", "m/s", "ball exit speed, lab frame, positive toward the pitcher"),
+    v(
+        "exit_speed",
+        "m/s",
+        "ball exit speed, bat-CM frame, positive toward the pitcher",
+    ),
+    v(
+        "exit_speed_lab",
+        "m/s",
+        "ball exit speed, lab frame, positive toward the pitcher",
+    ),
     v("collision_efficiency", "1", "collision efficiency e_A"),
-    v("approach_speed", "m/s", "relative approach speed at the impact point, bat-CM frame"),
+    v(
+        "approach_speed",
+        "m/s",
+        "relative approach speed at the impact point, bat-CM frame",
+    ),
     v("contact_time", "s", "contact duration"),
     v("peak_force", "N", "peak contact force"),
     v("max_compression", "m", "maximum ball compression"),
     v("impulse", "N s", "impulse delivered to the ball"),
-    v("energy_initial", "J", "kinetic energy of ball and bat before contact, bat-CM frame"),
-    v("energy_ball_final", "J", "ball kinetic energy after separation, bat-CM frame"),
+    v(
+        "energy_initial",
+        "J",
+        "kinetic energy of ball and bat before contact, bat-CM frame",
+    ),
+    v(
+        "energy_ball_final",
+        "J",
+        "ball kinetic energy after separation, bat-CM frame",
+    ),
     v("energy_ball_loss", "J", "energy dissipated in the ball"),
-    v("energy_bat_rigid", "J", "energy left in the bat's rigid motion, bat-CM frame"),
+    v(
+        "energy_bat_rigid",
+        "J",
+        "energy left in the bat's rigid motion, bat-CM frame",
+    ),
     v("energy_bat_vibration", "J", "energy left in bat vibration"),
     v("energy_hoop", "J", "energy left in the hoop mode"),
 ];
@@ -99,16 +123,28 @@ pub const RECONTACT: VarDef = v(
     "1",
     "ball came back into contact after separating (1 yes, 0 no, -1 not available)",
 );
-pub const STATUS: VarDef = v("status", "1", "point status (0 ok, 1 failed, -1 not computed)");
+pub const STATUS: VarDef = v(
+    "status",
+    "1",
+    "point status (0 ok, 1 failed, -1 not computed)",
+);
 pub const POINT_ID: VarDef = v("point_id", "1", "stable point id (0 = not computed)");
-pub const BAT_INDEX: VarDef = v("bat_index", "1", "index of the point's bat in group bat (-1 = not computed)");
+pub const BAT_INDEX: VarDef = v(
+    "bat_index",
+    "1",
+    "index of the point's bat in group bat (-1 = not computed)",
+);
 
 pub const STATUS_OK: i8 = 0;
 pub const STATUS_FAILED: i8 = 1;
 pub const STATUS_NOT_COMPUTED: i8 = -1;
 
 pub const ERR_DIM: &str = "error";
-pub const ERR_FLAT_INDEX: VarDef = v("flat_index", "1", "row-major flat index of the failed point in group summary");
+pub const ERR_FLAT_INDEX: VarDef = v(
+    "flat_index",
+    "1",
+    "row-major flat index of the failed point in group summary",
+);
 pub const ERR_POINT_ID: VarDef = v("point_id", "1", "stable point id of the failed point");
 pub const ERR_MESSAGE: VarDef = v("message", "", "error message of the failed point");
 
@@ -134,26 +170,54 @@ pub const HIST_Z: VarDef = v("z", "m", "position along the bat from the knob");
 /// The history variables: public name, units, long name, the field that requests it,
 /// whether it has a `z` dim.
 pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
-    (v("force", "N", "contact force between ball and bat"), HistoryField::Force, false),
-    (v("compression", "m", "ball compression"), HistoryField::Compression, false),
     (
-        v("ball_velocity", "m/s", "ball velocity, positive toward the bat, bat-CM frame"),
+        v("force", "N", "contact force between ball and bat"),
+        HistoryField::Force,
+        false,
+    ),
+    (
+        v("compression", "m", "ball compression"),
+        HistoryField::Compression,
+        false,
+    ),
+    (
+        v(
+            "ball_velocity",
+            "m/s",
+            "ball velocity, positive toward the bat, bat-CM frame",
+        ),
         HistoryField::BallVelocity,
         false,
     ),
-    (v("displacement", "m", "bat transverse displacement"), HistoryField::Displacement, true),
     (
-        v("rigid_translation", "m", "rigid translation of the bat's centre of mass"),
+        v("displacement", "m", "bat transverse displacement"),
+        HistoryField::Displacement,
+        true,
+    ),
+    (
+        v(
+            "rigid_translation",
+            "m",
+            "rigid translation of the bat's centre of mass",
+        ),
         HistoryField::RigidMotion,
         false,
     ),
     (
-        v("rigid_rotation", "rad", "rigid rotation of the bat about its centre of mass"),
+        v(
+            "rigid_rotation",
+            "rad",
+            "rigid rotation of the bat about its centre of mass",
+        ),
         HistoryField::RigidMotion,
         false,
     ),
     (
-        v("hoop_displacement", "m", "hoop mass displacement relative to the impact point"),
+        v(
+            "hoop_displacement",
+            "m",
+            "hoop mass displacement relative to the impact point",
+        ),
         HistoryField::HoopDisplacement,
         false,
     ),
@@ -191,7 +255,11 @@ pub const NODE_DIM: VarDef = v("node", "1", "node number within a mode");
 pub const PROFILE_DIM: VarDef = v("profile_point", "1", "profile sample number");
 pub const BAT_MASS: VarDef = v("mass", "kg", "bat mass");
 pub const BAT_Z_CM: VarDef = v("z_cm", "m", "centre of mass, from the knob");
-pub const BAT_MOI: VarDef = v("moment_of_inertia", "kg m2", "moment of inertia about the centre of mass");
+pub const BAT_MOI: VarDef = v(
+    "moment_of_inertia",
+    "kg m2",
+    "moment of inertia about the centre of mass",
+);
 pub const BAT_MOI6: VarDef = v(
     "moment_of_inertia_knob6",
     "kg m2",
@@ -199,11 +267,23 @@ pub const BAT_MOI6: VarDef = v(
 );
 pub const BAT_LENGTH: VarDef = v("length", "m", "bat length");
 pub const BAT_MODE_FREQ: VarDef = v("mode_frequency", "Hz", "free-free flexible mode frequency");
-pub const BAT_MODE_NODES: VarDef = v("mode_nodes", "m", "node positions of the mode, from the knob");
+pub const BAT_MODE_NODES: VarDef = v(
+    "mode_nodes",
+    "m",
+    "node positions of the mode, from the knob",
+);
 pub const BAT_PROFILE_Z: VarDef = v("profile_z", "m", "profile sample position, from the knob");
 pub const BAT_OUTER: VarDef = v("outer_radius", "m", "outer radius of the bat");
-pub const BAT_INNER: VarDef = v("inner_radius", "m", "inner radius of the bat (0 where solid)");
-pub const BAT_SPEC: VarDef = v("spec_json", "", "the bat's resolved parameters as canonical JSON");
+pub const BAT_INNER: VarDef = v(
+    "inner_radius",
+    "m",
+    "inner radius of the bat (0 where solid)",
+);
+pub const BAT_SPEC: VarDef = v(
+    "spec_json",
+    "",
+    "the bat's resolved parameters as canonical JSON",
+);
 
 /// Target number of elements in one summary chunk.
 pub const SUMMARY_CHUNK_ELEMS: usize = 65536;

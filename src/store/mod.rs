@@ -57,7 +57,9 @@ impl Default for RunMeta {
         RunMeta {
             command_line: std::env::args().collect::<Vec<_>>().join(" "),
             threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
-            git_commit: option_env!("BATSTUDY_GIT_COMMIT").unwrap_or("unknown").to_string(),
+            git_commit: option_env!("BATSTUDY_GIT_COMMIT")
+                .unwrap_or("unknown")
+                .to_string(),
             git_dirty: option_env!("BATSTUDY_GIT_DIRTY") == Some("1"),
             host,
             batstudy_version: env!("CARGO_PKG_VERSION").to_string(),
@@ -173,10 +175,12 @@ fn remove_if_exists(p: &Path) -> Result<(), StoreError> {
 }
 
 fn check_info(info: &StudyInfo, path: &Path) -> Result<(), StoreError> {
-    let bad = |what: String| Err(StoreError::BadRecord {
-        path: path.to_path_buf(),
-        what,
-    });
+    let bad = |what: String| {
+        Err(StoreError::BadRecord {
+            path: path.to_path_buf(),
+            what,
+        })
+    };
     for d in &info.shape.dims {
         for c in &d.coords {
             if c.values.len() != d.size {
@@ -382,12 +386,16 @@ impl Session {
         self.flush()?;
         drop(self.journal.take());
         let scan = journal::scan(&self.journal_path)?;
-        if let Some(e) = scan.header.mismatch(&JournalHeader::of(&self.info), &self.journal_path) {
+        if let Some(e) = scan
+            .header
+            .mismatch(&JournalHeader::of(&self.info), &self.journal_path)
+        {
             return Err(e);
         }
         let partial = partial_path(&self.path);
         self.meta.created = iso8601_now();
-        let summary = build::write_file(&self.journal_path, &scan, &self.info, &self.meta, &partial)?;
+        let summary =
+            build::write_file(&self.journal_path, &scan, &self.info, &self.meta, &partial)?;
         std::fs::File::open(&partial)
             .and_then(|f| f.sync_all())
             .map_err(|e| StoreError::io(&partial, "sync the finished file", e))?;

@@ -63,8 +63,12 @@ fn open_checked(path: &Path) -> Result<(hdf5::File, JournalHeader, u32), StoreEr
         .and_then(|a| a.read_scalar())
         .map_err(|_| bad(path, "root attribute layout_version missing"))?;
     let json = str_attr(&f, HEADER_ATTR, path)?;
-    let header: JournalHeader = serde_json::from_str(&json)
-        .map_err(|e| bad(path, format!("root attribute {HEADER_ATTR} unreadable: {e}")))?;
+    let header: JournalHeader = serde_json::from_str(&json).map_err(|e| {
+        bad(
+            path,
+            format!("root attribute {HEADER_ATTR} unreadable: {e}"),
+        )
+    })?;
     Ok((f, header, version as u32))
 }
 
@@ -88,15 +92,30 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
         floats.push(get(def.name)?.read_raw::<f64>().ctx(path, def.name)?);
     }
     let status = get(l::STATUS.name)?.read_raw::<i8>().ctx(path, "status")?;
-    let recontact = get(l::RECONTACT.name)?.read_raw::<i8>().ctx(path, "recontact")?;
-    let ids = get(l::POINT_ID.name)?.read_raw::<u64>().ctx(path, "point_id")?;
-    let bats = get(l::BAT_INDEX.name)?.read_raw::<i32>().ctx(path, "bat_index")?;
-    if [status.len(), ids.len(), bats.len(), floats[0].len()].iter().any(|&m| m != n) {
+    let recontact = get(l::RECONTACT.name)?
+        .read_raw::<i8>()
+        .ctx(path, "recontact")?;
+    let ids = get(l::POINT_ID.name)?
+        .read_raw::<u64>()
+        .ctx(path, "point_id")?;
+    let bats = get(l::BAT_INDEX.name)?
+        .read_raw::<i32>()
+        .ctx(path, "bat_index")?;
+    if [status.len(), ids.len(), bats.len(), floats[0].len()]
+        .iter()
+        .any(|&m| m != n)
+    {
         return Err(bad(path, "summary arrays do not match the study's shape"));
     }
     let eg = f.group(l::GROUP_ERRORS).ctx(path, "open group errors")?;
-    let eidx = eg.dataset(l::ERR_FLAT_INDEX.name).and_then(|d| d.read_raw::<u64>()).ctx(path, "errors/flat_index")?;
-    let emsg = eg.dataset(l::ERR_MESSAGE.name).and_then(|d| d.read_raw::<VarLenUnicode>()).ctx(path, "errors/message")?;
+    let eidx = eg
+        .dataset(l::ERR_FLAT_INDEX.name)
+        .and_then(|d| d.read_raw::<u64>())
+        .ctx(path, "errors/flat_index")?;
+    let emsg = eg
+        .dataset(l::ERR_MESSAGE.name)
+        .and_then(|d| d.read_raw::<VarLenUnicode>())
+        .ctx(path, "errors/message")?;
     let mut msgs = std::collections::HashMap::new();
     for (i, m) in eidx.iter().zip(emsg) {
         msgs.insert(*i as usize, m.as_str().to_string());
@@ -110,8 +129,14 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
                     .iter()
                     .position(|h| h.0.name == name)
                     .ok_or_else(|| bad(path, format!("unknown history variable {name}")))?;
-                let ds = hg.dataset(name).ctx(path, &format!("open history/{name}"))?;
-                let tail = if l::HISTORY_VARS[k].2 { vec![*nt, *nz] } else { vec![*nt] };
+                let ds = hg
+                    .dataset(name)
+                    .ctx(path, &format!("open history/{name}"))?;
+                let tail = if l::HISTORY_VARS[k].2 {
+                    vec![*nt, *nz]
+                } else {
+                    vec![*nt]
+                };
                 v.push((k, ds, tail));
             }
             Some(v)
@@ -184,16 +209,31 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
     let (f, header, version) = open_checked(path)?;
     let mut s = String::new();
     let name = str_attr(&f, "study_name", path)?;
-    let _ = writeln!(s, "{}: batstudy results, layout version {version}", path.display());
-    let _ = writeln!(s, "study: {name} (sha256 {})", str_attr(&f, "study_sha256", path)?);
+    let _ = writeln!(
+        s,
+        "{}: batstudy results, layout version {version}",
+        path.display()
+    );
+    let _ = writeln!(
+        s,
+        "study: {name} (sha256 {})",
+        str_attr(&f, "study_sha256", path)?
+    );
     if let Ok(c) = str_attr(&f, "created", path) {
         let _ = writeln!(s, "created: {c}");
     }
-    let dims: Vec<String> = header.dims.iter().map(|(n, k)| format!("{n}={k}")).collect();
+    let dims: Vec<String> = header
+        .dims
+        .iter()
+        .map(|(n, k)| format!("{n}={k}"))
+        .collect();
     let n: usize = header.dims.iter().map(|d| d.1).product();
     let _ = writeln!(s, "dims: {} ({n} points)", dims.join(" × "));
     let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
-    let status = g.dataset(l::STATUS.name).and_then(|d| d.read_raw::<i8>()).ctx(path, "read summary/status")?;
+    let status = g
+        .dataset(l::STATUS.name)
+        .and_then(|d| d.read_raw::<i8>())
+        .ctx(path, "read summary/status")?;
     let count = |v: i8| status.iter().filter(|&&x| x == v).count();
     let _ = writeln!(
         s,
@@ -203,10 +243,18 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
         count(l::STATUS_NOT_COMPUTED)
     );
     if let Some((names, nt, nz)) = &header.history {
-        let _ = writeln!(s, "history: {} ({nt} samples, {nz} z positions)", names.join(", "));
+        let _ = writeln!(
+            s,
+            "history: {} ({nt} samples, {nz} z positions)",
+            names.join(", ")
+        );
     }
     if let Ok(sg) = f.group(l::GROUP_SWEET_SPOT) {
-        let rd = |v: &str| sg.dataset(v).and_then(|d| d.read_raw::<f64>()).ctx(path, "read sweet_spot");
+        let rd = |v: &str| {
+            sg.dataset(v)
+                .and_then(|d| d.read_raw::<f64>())
+                .ctx(path, "read sweet_spot")
+        };
         let (p, e, w) = (rd("position")?, rd("exit_speed")?, rd("width")?);
         let fin: Vec<usize> = (0..p.len()).filter(|&i| p[i].is_finite()).collect();
         if fin.is_empty() {
@@ -222,7 +270,10 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
         } else {
             let mm = |v: &[f64]| {
                 let it = fin.iter().map(|&i| v[i]);
-                (it.clone().fold(f64::INFINITY, f64::min), it.fold(f64::NEG_INFINITY, f64::max))
+                (
+                    it.clone().fold(f64::INFINITY, f64::min),
+                    it.fold(f64::NEG_INFINITY, f64::max),
+                )
             };
             let ((p0, p1), (e0, e1), (w0, w1)) = (mm(&p), mm(&e), mm(&w));
             let _ = writeln!(

@@ -65,7 +65,11 @@ pub fn sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<(f64, f64, f64)> {
     while hi + 1 < n && exit_speed[hi + 1] >= thr {
         hi += 1;
     }
-    let right = if hi + 1 == n { z[n - 1] } else { cross(hi, hi + 1) };
+    let right = if hi + 1 == n {
+        z[n - 1]
+    } else {
+        cross(hi, hi + 1)
+    };
     Some((pos, vmax, right - left))
 }
 
@@ -74,14 +78,19 @@ mod tests {
     use super::*;
 
     fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
-        (0..n).map(|k| a + (b - a) * k as f64 / (n - 1) as f64).collect()
+        (0..n)
+            .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+            .collect()
     }
 
     #[test]
     fn parabola_is_exact() {
         // v = 30 - 400 (z - 0.713)^2 : max 30 at 0.713, v >= 29 for |z - z0| <= 0.05
         let z = grid(0.5, 0.8, 13);
-        let v: Vec<f64> = z.iter().map(|z| 30.0 - 400.0 * (z - 0.713).powi(2)).collect();
+        let v: Vec<f64> = z
+            .iter()
+            .map(|z| 30.0 - 400.0 * (z - 0.713).powi(2))
+            .collect();
         let (p, m, w) = sweet_spot(&z, &v).unwrap();
         assert!((p - 0.713).abs() < 1e-12, "{p}");
         assert!((m - 30.0).abs() < 1e-12, "{m}");
