@@ -133,8 +133,12 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
         ));
     }
     let idx = info.shape.unravel(index);
-    let z = grid(0.55, 0.79, 9)[idx[1]];
-    let w = -40.0 + 10.0 * idx[0] as f64;
+    let z = idx.last().map_or(0.68, |&q| grid(0.55, 0.79, 9)[q]);
+    let w = if idx.len() == 2 {
+        -40.0 + 10.0 * idx[0] as f64
+    } else {
+        -30.0
+    };
     let v = 20.0 + 5.0 * (-((z - 0.68) / 0.1f64).powi(2)).exp() - 0.1 * w;
     let history = info.history.as_ref().map(|h| {
         let t = |k: usize| k as f64 * h.interval;
@@ -528,6 +532,38 @@ fn zip_dim_with_aux_coords() {
     );
 }
 
+/// A single-point study (no dims) and a study over impact_z only (scalar sweet spot).
+fn small_study(dims: Vec<Dim>) -> StudyInfo {
+    let mut s = study(false, HistoryPrecision::F64);
+    s.study_sha256 = format!("{:064}", dims.len());
+    s.shape.dims = dims;
+    s
+}
+
+#[test]
+fn degenerate_shapes() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let single = small_study(vec![]);
+    let p = dir.path().join("single.h5");
+    full_run(&single, &p);
+    let back = store::read_results(&p).unwrap();
+    assert_eq!(back.records.len(), 1);
+    assert!(store::inspect(&p).unwrap().contains("1 ok, 0 failed"));
+    let only_z = small_study(vec![
+        study(false, HistoryPrecision::F64).shape.dims[1].clone()
+    ]);
+    let p = dir.path().join("z.h5");
+    full_run(&only_z, &p);
+    let f = hdf5::File::open(&p).unwrap();
+    let pos: f64 = f
+        .dataset("sweet_spot/position")
+        .unwrap()
+        .read_scalar()
+        .unwrap();
+    assert!(pos > 0.6 && pos < 0.75, "{pos}");
+}
+
 /// Writes fixtures for tests/python/test_store_layout.py into $BATSTUDY_STORE_FIXTURES.
 #[test]
 #[ignore]
@@ -538,6 +574,7 @@ fn write_python_fixture() {
     let dir = PathBuf::from(dir);
     full_run(&study(true, HistoryPrecision::F32), &dir.join("synth.h5"));
     full_run(&zip_study(), &dir.join("zip.h5"));
+    full_run(&small_study(vec![]), &dir.join("single.h5"));
     let info = study(false, HistoryPrecision::F64);
     let p = dir.join("partial.h5");
     let mut s = store::open(&p, &info, &opts(false, true)).unwrap();

@@ -117,3 +117,12 @@ def test_partial_file_marks_not_computed(files):
     with h5py.File(files / "partial.h5", "r") as f:
         assert f.attrs["complete"] == 0
         assert f.attrs["n_done"] == 5
+
+
+@pytest.mark.parametrize("group", ["summary", "errors", "bat"])
+def test_single_point_study_opens(files, group):
+    ds = xr.open_dataset(files / "single.h5", engine="h5netcdf", group=group)
+    if group == "summary":
+        assert ds.exit_speed.dims == () and int(ds.status) == 0
+    if group == "errors":
+        assert ds.sizes["error"] == 0
