@@ -532,6 +532,51 @@ fn zip_dim_with_aux_coords() {
     );
 }
 
+#[test]
+fn merge_shards_equals_single_run_and_refuses_bad_sets() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F32);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+    let mut shards = Vec::new();
+    for k in 0..3 {
+        let p = dir.path().join(format!("shard{k}.h5"));
+        let mut o = opts(false, false);
+        o.run_meta.shard = Some(format!("{}/3", k + 1));
+        let mut s = store::open(&p, &info, &o).unwrap();
+        for i in (0..27).filter(|i| i % 3 == k) {
+            s.write(record(&info, i)).unwrap();
+        }
+        s.finish().unwrap();
+        shards.push(p);
+    }
+    let out = dir.path().join("merged.h5");
+    let sum = store::merge(&out, &info, &shards, &opts(false, false)).unwrap();
+    assert_eq!(sum.n_done, 27);
+    assert_eq!(dump(&out), dump(&clean));
+    let bad = dir.path().join("bad.h5");
+    let e = store::merge(&bad, &info, &shards[..2], &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("lack 9"), "{e}");
+    let twice = [
+        shards[0].clone(),
+        shards[1].clone(),
+        shards[2].clone(),
+        shards[1].clone(),
+    ];
+    let e = store::merge(&bad, &info, &twice, &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("also in"), "{e}");
+    let e = store::merge(&bad, &small_study(vec![]), &shards, &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(matches!(e, StoreError::WrongStudy { .. }), "{e}");
+    assert!(!bad.exists() && !store::journal_path(&bad).exists());
+}
+
 /// A single-point study (no dims) and a study over impact_z only (scalar sweet spot).
 fn small_study(dims: Vec<Dim>) -> StudyInfo {
     let mut s = study(false, HistoryPrecision::F64);

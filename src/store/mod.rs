@@ -279,6 +279,69 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
     Ok(s)
 }
 
+/// Merge shard files (each the same layout with a subset of the points) into one complete
+/// results file `out`, identical in data to a single-process run. Refuses, before writing
+/// anything, shards of another study or layout version, points present twice, and missing
+/// points. (Each shard is read into memory one at a time.)
+pub fn merge(
+    out: &Path,
+    info: &StudyInfo,
+    shards: &[PathBuf],
+    opts: &StoreOptions,
+) -> Result<Summary, StoreError> {
+    let want = JournalHeader::of(info);
+    let n = info.shape.n_points();
+    let mut owner: Vec<Option<usize>> = vec![None; n];
+    for (k, p) in shards.iter().enumerate() {
+        let back = read::read_results(p)?;
+        if let Some(e) = back.header.mismatch(&want, p) {
+            return Err(e);
+        }
+        for r in &back.records {
+            if let Some(o) = owner[r.index] {
+                return Err(StoreError::WrongStudy {
+                    path: p.clone(),
+                    what: format!(
+                        "point {} (flat index {}) is also in {}",
+                        r.id,
+                        r.index,
+                        shards[o].display()
+                    ),
+                });
+            }
+            owner[r.index] = Some(k);
+        }
+    }
+    let missing: Vec<usize> = (0..n).filter(|&i| owner[i].is_none()).collect();
+    if !missing.is_empty() {
+        return Err(StoreError::WrongStudy {
+            path: out.to_path_buf(),
+            what: format!(
+                "the shards lack {} of the study's {} points (flat indices {:?}{})",
+                missing.len(),
+                n,
+                &missing[..missing.len().min(8)],
+                if missing.len() > 8 { ", ..." } else { "" }
+            ),
+        });
+    }
+    drop(owner);
+    let mut s = open(
+        out,
+        info,
+        &StoreOptions {
+            resume: false,
+            ..opts.clone()
+        },
+    )?;
+    for p in shards {
+        for r in read::read_results(p)?.records {
+            s.write(r)?;
+        }
+    }
+    s.finish()
+}
+
 impl Session {
     /// The output path.
     pub fn path(&self) -> &Path {
