@@ -453,6 +453,15 @@ fn rejects_bad_records() {
     assert!(s.write(r).is_err());
     s.write(record(&info, 2)).unwrap();
     s.write(record(&info, 2)).unwrap(); // duplicate ignored
+    s.idle().unwrap();
+    // flushed by idle(): visible to a scan without finish
+    assert_eq!(
+        store::journal::scan(&store::journal_path(s.path()))
+            .unwrap()
+            .records
+            .len(),
+        1
+    );
     assert_eq!(s.n_done(), 1);
 }
 

@@ -432,6 +432,20 @@ impl Session {
         Ok(())
     }
 
+    /// Call when no record arrived for a while (e.g. on the channel's `recv_timeout`): hands
+    /// buffered records to the OS, and fsyncs if one is due, so that slow points are not left
+    /// only in this process's memory.
+    pub fn idle(&mut self) -> Result<(), StoreError> {
+        let j = self.journal.as_mut().expect("open session has a journal");
+        j.flush()?;
+        self.last_flush = Instant::now();
+        if self.last_sync.elapsed() >= self.sync_interval {
+            j.sync()?;
+            self.last_sync = Instant::now();
+        }
+        Ok(())
+    }
+
     /// Make everything written so far durable (e.g. on Ctrl-C, before exiting to resume later).
     pub fn flush(&mut self) -> Result<(), StoreError> {
         if let Some(j) = self.journal.as_mut() {
