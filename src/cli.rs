@@ -5,6 +5,7 @@
 
 #![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
 
+use crate::model::outcome::HistoryPrecision;
 use crate::results::StudyInfo;
 use crate::run::{self, RunOptions, RunReport, Shard, Simulator, Sink};
 use crate::study::checks::bat_length;
@@ -328,8 +329,8 @@ fn cmd_plan(a: &PlanArgs) -> i32 {
     if let Some(h) = &s.file.history {
         let req = h.request(max_len);
         let width = match h.precision {
-            study::Precision::F32 => 4.0,
-            study::Precision::F64 => 8.0,
+            HistoryPrecision::F32 => 4.0,
+            HistoryPrecision::F64 => 8.0,
         };
         let series: f64 = req
             .fields

@@ -8,4 +8,5 @@ pub mod cli;
 pub mod model;
 pub mod results;
 pub mod run;
+pub mod store;
 pub mod study;

@@ -36,6 +36,21 @@ pub struct HistoryRequest {
     /// Positions (m from the knob) at which the bat displacement is sampled; points
     /// beyond the bat's length get NaN.
     pub z: Vec<f64>,
+    /// Stored precision of the histories (`history.precision`; the physics always computes f64).
+    pub precision: HistoryPrecision,
+}
+
+/// Floating-point precision in which histories are stored.
+#[derive(
+    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum HistoryPrecision {
+    /// 4-byte floats (half the size; about 7 significant digits).
+    F32,
+    /// 8-byte floats.
+    #[default]
+    F64,
 }
 
 /// Sampled time histories. Arrays for fields not requested are empty.

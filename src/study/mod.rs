@@ -19,4 +19,4 @@ pub mod types;
 pub use error::StudyError;
 pub use load::{load, load_str, LoadOptions, Study, DEFAULT_MAX_POINTS};
 pub use plan::{point_id, BatChoice, Plan, PlanDim, Point, PointError};
-pub use types::{schema_json, AxisValues, HistorySpec, Precision, StudyFile, ZipGroup};
+pub use types::{schema_json, AxisValues, HistorySpec, StudyFile, ZipGroup};

@@ -1,7 +1,7 @@
 //! The study file as written: serde + schemars types. `batstudy schema` prints the JSON
 //! Schema generated from these types (committed as `schemas/study.schema.json`).
 
-use crate::model::outcome::HistoryField;
+use crate::model::outcome::{HistoryField, HistoryPrecision};
 use crate::model::spec::{CollisionSpec, ModelKind};
 use indexmap::IndexMap;
 use schemars::{JsonSchema, Schema, SchemaGenerator};
@@ -313,15 +313,6 @@ impl<'de> Deserialize<'de> for ZipGroup {
     }
 }
 
-/// Storage precision of histories.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
-#[serde(rename_all = "lowercase")]
-pub enum Precision {
-    #[default]
-    F32,
-    F64,
-}
-
 /// Which time histories to keep.
 #[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -333,12 +324,16 @@ pub struct HistorySpec {
     /// Duration in s from first contact (>= interval).
     pub duration: f64,
     /// Stored precision, `f32` (default) or `f64`.
-    #[serde(default)]
-    pub precision: Precision,
+    #[serde(default = "default_precision")]
+    pub precision: HistoryPrecision,
     /// Spacing in m of the z grid on which `displacement` is sampled (from the knob).
     /// Default 0.01.
     #[serde(default = "default_z_step")]
     pub z_step: f64,
+}
+
+fn default_precision() -> HistoryPrecision {
+    HistoryPrecision::F32
 }
 
 fn default_z_step() -> f64 {
@@ -360,6 +355,7 @@ impl HistorySpec {
             fields: self.fields.clone(),
             interval: self.interval,
             n_samples: self.n_samples(),
+            precision: self.precision,
             z: if self.fields.contains(&HistoryField::Displacement) {
                 self.z(max_length)
             } else {

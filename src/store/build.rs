@@ -1,0 +1,686 @@
+//! Writing the final HDF5 file from a journal (the only place that writes results to HDF5).
+//! Memory: one summary chunk of every variable, one history, and the list of failed points.
+
+use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
+use super::error::{H5Ctx, StoreError};
+use super::journal::{JournalReader, RecordLoc, Scan};
+use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
+use super::sweet_spot::sweet_spot;
+use super::{RunMeta, Summary};
+use crate::model::outcome::{HistoryPrecision, HistoryRequest};
+use crate::results::{CoordValues, Dim, StudyInfo};
+use hdf5::types::VarLenUnicode;
+use hdf5::{Dataset, Group};
+use ndarray::{ArrayD, IxDyn};
+use std::path::Path;
+
+/// Indices into [`l::HISTORY_VARS`] of the variables a request stores.
+pub fn history_vars(h: &HistoryRequest) -> Vec<usize> {
+    (0..l::HISTORY_VARS.len())
+        .filter(|&k| h.fields.contains(&l::HISTORY_VARS[k].1))
+        .collect()
+}
+
+/// Chunk shape of the summary arrays: the whole `impact_z` axis, then growing along the last
+/// dims up to [`l::SUMMARY_CHUNK_ELEMS`] elements.
+pub fn summary_chunk(dims: &[Dim]) -> Vec<usize> {
+    let mut c = vec![1usize; dims.len()];
+    let iz = dims.iter().position(|d| d.name == l::IMPACT_Z);
+    if let Some(iz) = iz {
+        c[iz] = dims[iz].size.max(1);
+    }
+    for k in (0..dims.len()).rev() {
+        if Some(k) == iz {
+            continue;
+        }
+        let rest: usize = c.iter().product();
+        c[k] = dims[k]
+            .size
+            .min((l::SUMMARY_CHUNK_ELEMS / rest).max(1))
+            .max(1);
+    }
+    c
+}
+
+/// Coordinate variables of the study dims in one group; returns the scales (one per dim) and
+/// the names of auxiliary coordinates (for the `coordinates` attribute).
+fn study_dims(
+    g: &Group,
+    dims: &[Dim],
+    path: &Path,
+) -> Result<(Vec<Dataset>, Vec<String>), StoreError> {
+    let mut scales = Vec::new();
+    let mut aux = Vec::new();
+    for d in dims {
+        let own = d.coords.iter().find(|c| c.name == d.name);
+        let scale = match own {
+            Some(c) => {
+                let def = VarDef {
+                    name: "",
+                    units: leak(&c.units),
+                    long_name: leak(&c.long_name),
+                };
+                let ds = coord_values(g, &d.name, &c.values, path)?;
+                h5u::set_scale(&ds, &d.name).ctx(path, "make a dimension scale")?;
+                describe(&ds, &def).ctx(path, "describe a coordinate")?;
+                attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
+                ds
+            }
+            None => {
+                let idx: Vec<i64> = (0..d.size as i64).collect();
+                let def = VarDef {
+                    name: "",
+                    units: "1",
+                    long_name: leak(&format!("index along {}", d.name)),
+                };
+                h5u::scale_coord(g, &d.name, &idx, &def).ctx(path, "write an index coordinate")?
+            }
+        };
+        for c in d.coords.iter().filter(|c| c.name != d.name) {
+            let ds = coord_values(g, &c.name, &c.values, path)?;
+            attr_str(&ds, "units", &c.units).ctx(path, "describe a coordinate")?;
+            attr_str(&ds, "long_name", &c.long_name).ctx(path, "describe a coordinate")?;
+            attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
+            attach_scales(&ds, &[&scale]).ctx(path, "attach a dimension scale")?;
+            aux.push(c.name.clone());
+        }
+        scales.push(scale);
+    }
+    Ok((scales, aux))
+}
+
+/// Attribute strings must outlive VarDef; coordinate metadata is small and written once.
+fn leak(s: &str) -> &'static str {
+    Box::leak(s.to_string().into_boxed_str())
+}
+
+fn coord_values(
+    g: &Group,
+    name: &str,
+    v: &CoordValues,
+    path: &Path,
+) -> Result<Dataset, StoreError> {
+    match v {
+        CoordValues::Numbers(x) => h5u::write_1d(g, name, x),
+        CoordValues::Labels(s) => {
+            let s: Vec<VarLenUnicode> = s.iter().map(|s| h5u::vlstr(s)).collect();
+            h5u::write_1d(g, name, &s)
+        }
+    }
+    .ctx(path, &format!("write coordinate {name}"))
+}
+
+fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
+    g: &Group,
+    def: &VarDef,
+    (shape, chunk): (&[usize], &[usize]),
+    fill: T,
+    scales: &[&Dataset],
+    aux: &[String],
+    path: &Path,
+) -> Result<Dataset, StoreError> {
+    let what = format!("create variable {}/{}", g.name(), def.name);
+    let ds = h5u::create_var(g, def.name, shape, chunk, fill).ctx(path, &what)?;
+    describe(&ds, def).ctx(path, &what)?;
+    if !aux.is_empty() {
+        attr_str(&ds, "coordinates", &aux.join(" ")).ctx(path, &what)?;
+    }
+    attach_scales(&ds, scales).ctx(path, &what)?;
+    Ok(ds)
+}
+
+fn write_block<T: hdf5::H5Type>(
+    ds: &Dataset,
+    start: &[usize],
+    count: &[usize],
+    data: Vec<T>,
+    path: &Path,
+) -> Result<(), StoreError> {
+    let arr = ArrayD::from_shape_vec(IxDyn(count), data).expect("block shape");
+    if start.is_empty() {
+        return ds.write(&arr).ctx(path, "write a scalar");
+    }
+    ds.write_slice(&arr, h5u::block(start, count))
+        .ctx(path, &format!("write a block of {}", ds.name()))
+}
+
+/// Row-major iteration over the multi-indices of a block.
+fn for_each_in_block(start: &[usize], count: &[usize], mut f: impl FnMut(&[usize])) {
+    let n: usize = count.iter().product();
+    let mut idx = start.to_vec();
+    for _ in 0..n {
+        f(&idx);
+        for k in (0..idx.len()).rev() {
+            idx[k] += 1;
+            if idx[k] < start[k] + count[k] {
+                break;
+            }
+            idx[k] = start[k];
+        }
+    }
+}
+
+fn ravel(dims: &[Dim], idx: &[usize]) -> usize {
+    dims.iter()
+        .zip(idx)
+        .fold(0, |acc, (d, &i)| acc * d.size + i)
+}
+
+/// Write the complete results file `out` from the scanned journal.
+pub fn write_file(
+    journal: &Path,
+    scan: &Scan,
+    info: &StudyInfo,
+    meta: &RunMeta,
+    out: &Path,
+) -> Result<Summary, StoreError> {
+    let n_points = info.shape.n_points();
+    // first valid record per flat index
+    let mut loc: Vec<Option<RecordLoc>> = vec![None; n_points];
+    let mut n_done = 0;
+    let mut n_failed = 0;
+    for &(index, _, ok, l) in &scan.records {
+        if index < n_points && loc[index].is_none() {
+            loc[index] = Some(l);
+            n_done += 1;
+            n_failed += usize::from(!ok);
+        }
+    }
+    let mut jr = JournalReader::open(journal)?;
+    let f = hdf5::File::create(out).ctx(out, "create the results file")?;
+    root_attrs(&f, info, meta, n_points, n_done, n_failed, out)?;
+
+    let dims = &info.shape.dims;
+    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
+    let chunk = summary_chunk(dims);
+
+    // ---- /summary (and /sweet_spot, computed from the same blocks)
+    let g = f
+        .create_group(l::GROUP_SUMMARY)
+        .ctx(out, "create group summary")?;
+    let (scales, aux) = study_dims(&g, dims, out)?;
+    let sref: Vec<&Dataset> = scales.iter().collect();
+    let mut floats = Vec::new();
+    for def in &l::SUMMARY_FLOATS {
+        floats.push(new_var(
+            &g,
+            def,
+            (&shape, &chunk),
+            f64::NAN,
+            &sref,
+            &aux,
+            out,
+        )?);
+    }
+    let recontact = new_var(&g, &l::RECONTACT, (&shape, &chunk), -1i8, &sref, &aux, out)?;
+    let status = new_var(
+        &g,
+        &l::STATUS,
+        (&shape, &chunk),
+        l::STATUS_NOT_COMPUTED,
+        &sref,
+        &aux,
+        out,
+    )?;
+    attr_vec(&status, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe status")?;
+    attr_str(&status, "flag_meanings", "not_computed ok failed").ctx(out, "describe status")?;
+    let point_id = new_var(&g, &l::POINT_ID, (&shape, &chunk), 0u64, &sref, &aux, out)?;
+    let bat_index = new_var(&g, &l::BAT_INDEX, (&shape, &chunk), -1i32, &sref, &aux, out)?;
+
+    let iz = dims.iter().position(|d| d.name == l::IMPACT_Z);
+    let sweet = match iz {
+        Some(iz) => {
+            let sg = f
+                .create_group(l::GROUP_SWEET_SPOT)
+                .ctx(out, "create group sweet_spot")?;
+            let rest: Vec<Dim> = dims
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != iz)
+                .map(|(_, d)| d.clone())
+                .collect();
+            let (ss, saux) = study_dims(&sg, &rest, out)?;
+            let ssref: Vec<&Dataset> = ss.iter().collect();
+            let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
+            let rchunk: Vec<usize> = chunk
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != iz)
+                .map(|(_, &c)| c)
+                .collect();
+            let mut vars = Vec::new();
+            for def in [&l::SWEET_POSITION, &l::SWEET_EXIT_SPEED, &l::SWEET_WIDTH] {
+                vars.push(new_var(
+                    &sg,
+                    def,
+                    (&rshape, &rchunk),
+                    f64::NAN,
+                    &ssref,
+                    &saux,
+                    out,
+                )?);
+            }
+            let z = match dims[iz]
+                .coords
+                .iter()
+                .find(|c| c.name == l::IMPACT_Z)
+                .map(|c| &c.values)
+            {
+                Some(CoordValues::Numbers(z)) => z.clone(),
+                _ => {
+                    return Err(StoreError::BadRecord {
+                        path: out.to_path_buf(),
+                        what: "dim impact_z has no numeric coordinate impact_z".into(),
+                    })
+                }
+            };
+            Some((iz, vars, z))
+        }
+        None => None,
+    };
+
+    let mut errors: Vec<(u64, u64, String)> = Vec::new();
+    let grid: Vec<usize> = shape
+        .iter()
+        .zip(&chunk)
+        .map(|(&n, &c)| n.div_ceil(c))
+        .collect();
+    let n_blocks: usize = if shape.contains(&0) {
+        0
+    } else {
+        grid.iter().product()
+    };
+    for b in 0..n_blocks {
+        // block b of the chunk grid, row-major
+        let mut gi = vec![0; grid.len()];
+        let mut r = b;
+        for k in (0..grid.len()).rev() {
+            gi[k] = r % grid[k];
+            r /= grid[k];
+        }
+        let start: Vec<usize> = gi.iter().zip(&chunk).map(|(&i, &c)| i * c).collect();
+        let count: Vec<usize> = start
+            .iter()
+            .zip(&chunk)
+            .zip(&shape)
+            .map(|((&s, &c), &n)| c.min(n - s))
+            .collect();
+        let m: usize = count.iter().product();
+        let mut fv = vec![vec![f64::NAN; m]; N_SUMMARY_FLOATS];
+        let mut rc = vec![-1i8; m];
+        let mut st = vec![l::STATUS_NOT_COMPUTED; m];
+        let mut pid = vec![0u64; m];
+        let mut bi = vec![-1i32; m];
+        let mut j = 0;
+        let mut err: Option<StoreError> = None;
+        for_each_in_block(&start, &count, |idx| {
+            let flat = ravel(dims, idx);
+            if let (Some(l), None) = (loc[flat], &err) {
+                match jr.read(l, true) {
+                    Ok(rec) => {
+                        pid[j] = rec.id;
+                        bi[j] = rec.bat as i32;
+                        match rec.result {
+                            Ok(o) => {
+                                st[j] = l::STATUS_OK;
+                                rc[j] = o.recontact as i8;
+                                for (k, x) in l::summary_floats(&o).into_iter().enumerate() {
+                                    fv[k][j] = x;
+                                }
+                            }
+                            Err(msg) => {
+                                st[j] = l::STATUS_FAILED;
+                                errors.push((flat as u64, rec.id, msg));
+                            }
+                        }
+                    }
+                    Err(e) => err = Some(e),
+                }
+            }
+            j += 1;
+        });
+        if let Some(e) = err {
+            return Err(e);
+        }
+        if let Some((iz, vars, z)) = &sweet {
+            // curves along impact_z within the block
+            let nz = count[*iz];
+            let stride: usize = count[iz + 1..].iter().product();
+            let outer = m / nz;
+            let mut res = vec![vec![f64::NAN; outer]; 3];
+            for (o, slot) in (0..outer).enumerate() {
+                let (hi, lo) = (o / stride, o % stride);
+                let base = hi * nz * stride + lo;
+                let (mut zz, mut vv) = (Vec::with_capacity(nz), Vec::with_capacity(nz));
+                for q in 0..nz {
+                    let v = fv[0][base + q * stride];
+                    if v.is_finite() {
+                        zz.push(z[start[*iz] + q]);
+                        vv.push(v);
+                    }
+                }
+                if let Some((p, e, w)) = sweet_spot(&zz, &vv) {
+                    res[0][slot] = p;
+                    res[1][slot] = e;
+                    res[2][slot] = w;
+                }
+            }
+            let rs: Vec<usize> = start
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != *iz)
+                .map(|(_, &s)| s)
+                .collect();
+            let rcnt: Vec<usize> = count
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != *iz)
+                .map(|(_, &s)| s)
+                .collect();
+            for (ds, data) in vars.iter().zip(res) {
+                write_block(ds, &rs, &rcnt, data, out)?;
+            }
+        }
+        for (ds, data) in floats.iter().zip(fv) {
+            write_block(ds, &start, &count, data, out)?;
+        }
+        write_block(&recontact, &start, &count, rc, out)?;
+        write_block(&status, &start, &count, st, out)?;
+        write_block(&point_id, &start, &count, pid, out)?;
+        write_block(&bat_index, &start, &count, bi, out)?;
+    }
+
+    // ---- /errors
+    errors.sort_by_key(|e| e.0);
+    let eg = f
+        .create_group(l::GROUP_ERRORS)
+        .ctx(out, "create group errors")?;
+    let eidx: Vec<i64> = (0..errors.len() as i64).collect();
+    let edef = VarDef {
+        name: l::ERR_DIM,
+        units: "1",
+        long_name: "failed point number",
+    };
+    let escale = h5u::scale_coord(&eg, l::ERR_DIM, &eidx, &edef).ctx(out, "write errors")?;
+    let cols: [(&VarDef, Vec<u64>); 2] = [
+        (&l::ERR_FLAT_INDEX, errors.iter().map(|e| e.0).collect()),
+        (&l::ERR_POINT_ID, errors.iter().map(|e| e.1).collect()),
+    ];
+    for (def, data) in cols {
+        let ds = h5u::write_1d(&eg, def.name, &data).ctx(out, "write errors")?;
+        describe(&ds, def).ctx(out, "write errors")?;
+        attach_scales(&ds, &[&escale]).ctx(out, "write errors")?;
+    }
+    let msgs: Vec<VarLenUnicode> = errors.iter().map(|e| h5u::vlstr(&e.2)).collect();
+    let ds = h5u::write_1d(&eg, l::ERR_MESSAGE.name, &msgs).ctx(out, "write errors")?;
+    describe(&ds, &l::ERR_MESSAGE).ctx(out, "write errors")?;
+    attach_scales(&ds, &[&escale]).ctx(out, "write errors")?;
+    drop(errors);
+
+    // ---- /history
+    if let Some(h) = &info.history {
+        write_history(&f, h, info, &loc, &mut jr, out)?;
+    }
+
+    // ---- /bat
+    write_bats(&f, info, out)?;
+    f.flush().ctx(out, "flush the results file")?;
+    drop(f);
+    Ok(Summary {
+        n_points,
+        n_done,
+        n_failed,
+    })
+}
+
+fn root_attrs(
+    f: &hdf5::File,
+    info: &StudyInfo,
+    meta: &RunMeta,
+    n_points: usize,
+    n_done: usize,
+    n_failed: usize,
+    out: &Path,
+) -> Result<(), StoreError> {
+    let s = |k: &str, v: &str| attr_str(f, k, v).ctx(out, "write root attributes");
+    s("Conventions", "CF-1.8")?;
+    s("title", &format!("batstudy results: {}", info.name))?;
+    s("study_name", &info.name)?;
+    s("study_description", &info.description)?;
+    s("study_yaml", &info.study_text)?;
+    s("study_sha256", &info.study_sha256)?;
+    s("study_path", &info.study_path)?;
+    s("batstudy_version", &meta.batstudy_version)?;
+    s("git_commit", &meta.git_commit)?;
+    s("created", &meta.created)?;
+    s("host", &meta.host)?;
+    s("command_line", &meta.command_line)?;
+    s("shard", meta.shard.as_deref().unwrap_or(""))?;
+    let header = super::journal::JournalHeader::of(info);
+    s(
+        super::read::HEADER_ATTR,
+        &serde_json::to_string(&header).expect("header serialises"),
+    )?;
+    let n = |k: &str, v: i64| attr_num(f, k, v).ctx(out, "write root attributes");
+    n("layout_version", l::LAYOUT_VERSION as i64)?;
+    n("git_dirty", meta.git_dirty as i64)?;
+    n("threads", meta.threads as i64)?;
+    n("n_points", n_points as i64)?;
+    n("n_done", n_done as i64)?;
+    n("n_failed", n_failed as i64)?;
+    n("complete", (n_done == n_points) as i64)?;
+    Ok(())
+}
+
+fn write_history(
+    f: &hdf5::File,
+    h: &HistoryRequest,
+    info: &StudyInfo,
+    loc: &[Option<RecordLoc>],
+    jr: &mut JournalReader,
+    out: &Path,
+) -> Result<(), StoreError> {
+    let dims = &info.shape.dims;
+    let g = f
+        .create_group(l::GROUP_HISTORY)
+        .ctx(out, "create group history")?;
+    let (scales, aux) = study_dims(&g, dims, out)?;
+    let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
+    let tscale = h5u::scale_coord(&g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
+    let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
+    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
+    let vars = history_vars(h);
+    let mut created: Vec<(usize, Dataset, Vec<usize>)> = Vec::new();
+    for &k in &vars {
+        let (def, _, with_z) = &l::HISTORY_VARS[k];
+        let mut s = shape.clone();
+        let mut c = vec![1; shape.len()];
+        let mut sc: Vec<&Dataset> = scales.iter().collect();
+        s.push(h.n_samples);
+        c.push(h.n_samples.max(1));
+        sc.push(&tscale);
+        if *with_z {
+            s.push(h.z.len());
+            c.push(h.z.len().max(1));
+            sc.push(&zscale);
+        }
+        let ds = match h.precision {
+            HistoryPrecision::F64 => new_var(&g, def, (&s, &c), f64::NAN, &sc, &aux, out)?,
+            HistoryPrecision::F32 => new_var(&g, def, (&s, &c), f32::NAN, &sc, &aux, out)?,
+        };
+        attr_str(
+            &ds,
+            "precision",
+            match h.precision {
+                HistoryPrecision::F64 => "f64",
+                HistoryPrecision::F32 => "f32",
+            },
+        )
+        .ctx(out, "describe history")?;
+        created.push((k, ds, s));
+    }
+    for (flat, l) in loc.iter().enumerate() {
+        let Some(l) = l else { continue };
+        let rec = jr.read(*l, false)?;
+        let Ok(o) = rec.result else { continue };
+        let Some(hist) = o.history else { continue };
+        let idx = info.shape.unravel(flat);
+        for (k, ds, s) in &created {
+            let a = l::history_array(&hist, *k);
+            let tail = &s[dims.len()..];
+            if a.len() != tail.iter().product::<usize>() || a.is_empty() {
+                continue;
+            }
+            let mut start = idx.clone();
+            let mut count = vec![1; idx.len()];
+            for &n in tail {
+                start.push(0);
+                count.push(n);
+            }
+            match h.precision {
+                HistoryPrecision::F64 => write_block(ds, &start, &count, a.clone(), out)?,
+                HistoryPrecision::F32 => write_block(
+                    ds,
+                    &start,
+                    &count,
+                    a.iter().map(|&x| x as f32).collect(),
+                    out,
+                )?,
+            }
+        }
+    }
+    Ok(())
+}
+
+fn padded<T: Clone>(rows: &[Vec<T>], fill: T) -> (Vec<T>, usize) {
+    let w = rows.iter().map(|r| r.len()).max().unwrap_or(0);
+    let mut v = Vec::with_capacity(rows.len() * w);
+    for r in rows {
+        v.extend_from_slice(r);
+        v.extend(std::iter::repeat_n(fill.clone(), w - r.len()));
+    }
+    (v, w)
+}
+
+fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreError> {
+    let g = f.create_group(l::GROUP_BAT).ctx(out, "create group bat")?;
+    let e = |what: &str| format!("write bat {what}");
+    let labels: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.label)).collect();
+    let bat = h5u::scale_coord(&g, l::BAT_DIM.name, &labels, &l::BAT_DIM).ctx(out, &e("labels"))?;
+    let p: Vec<_> = info.bats.iter().map(|b| &b.properties).collect();
+    let n_modes = p.iter().map(|p| p.mode_frequency.len()).max().unwrap_or(0);
+    let modes: Vec<i64> = (1..=n_modes as i64).collect();
+    let mode =
+        h5u::scale_coord(&g, l::MODE_DIM.name, &modes, &l::MODE_DIM).ctx(out, &e("modes"))?;
+    let nodes_rows: Vec<Vec<f64>> = p
+        .iter()
+        .flat_map(|p| (0..n_modes).map(move |m| p.mode_nodes.get(m).cloned().unwrap_or_default()))
+        .collect();
+    let (nodes, n_nodes) = padded(&nodes_rows, f64::NAN);
+    let node_idx: Vec<i64> = (0..n_nodes as i64).collect();
+    let node =
+        h5u::scale_coord(&g, l::NODE_DIM.name, &node_idx, &l::NODE_DIM).ctx(out, &e("nodes"))?;
+    let (pz, n_prof) = padded(&p.iter().map(|p| p.z.clone()).collect::<Vec<_>>(), f64::NAN);
+    let prof_idx: Vec<i64> = (0..n_prof as i64).collect();
+    let prof = h5u::scale_coord(&g, l::PROFILE_DIM.name, &prof_idx, &l::PROFILE_DIM)
+        .ctx(out, &e("profile"))?;
+    let nb = info.bats.len();
+    let var = |def: &VarDef,
+               shape: Vec<usize>,
+               data: Vec<f64>,
+               sc: &[&Dataset]|
+     -> Result<(), StoreError> {
+        let ds = g
+            .new_dataset::<f64>()
+            .shape(shape.clone())
+            .create(def.name)
+            .ctx(out, &e(def.name))?;
+        if !data.is_empty() {
+            ds.write_raw(&data).ctx(out, &e(def.name))?;
+        }
+        describe(&ds, def).ctx(out, &e(def.name))?;
+        attach_scales(&ds, sc).ctx(out, &e(def.name))
+    };
+    var(
+        &l::BAT_MASS,
+        vec![nb],
+        p.iter().map(|p| p.mass).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_Z_CM,
+        vec![nb],
+        p.iter().map(|p| p.z_cm).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_MOI,
+        vec![nb],
+        p.iter().map(|p| p.moment_of_inertia).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_MOI6,
+        vec![nb],
+        p.iter().map(|p| p.moment_of_inertia_knob6).collect(),
+        &[&bat],
+    )?;
+    var(
+        &l::BAT_LENGTH,
+        vec![nb],
+        p.iter().map(|p| p.length).collect(),
+        &[&bat],
+    )?;
+    let (mf, _) = padded(
+        &p.iter()
+            .map(|p| p.mode_frequency.clone())
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    let mf = if n_modes == 0 { vec![] } else { mf };
+    // rows shorter than n_modes are padded by `padded` only up to the longest row: same here
+    var(&l::BAT_MODE_FREQ, vec![nb, n_modes], mf, &[&bat, &mode])?;
+    var(
+        &l::BAT_MODE_NODES,
+        vec![nb, n_modes, n_nodes],
+        nodes,
+        &[&bat, &mode, &node],
+    )?;
+    var(&l::BAT_PROFILE_Z, vec![nb, n_prof], pz, &[&bat, &prof])?;
+    let (ro, _) = padded(
+        &p.iter()
+            .map(|p| pad_to(&p.outer_radius, n_prof))
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    let (ri, _) = padded(
+        &p.iter()
+            .map(|p| pad_to(&p.inner_radius, n_prof))
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    var(
+        &l::BAT_OUTER,
+        vec![nb, n_prof],
+        if n_prof == 0 { vec![] } else { ro },
+        &[&bat, &prof],
+    )?;
+    var(
+        &l::BAT_INNER,
+        vec![nb, n_prof],
+        if n_prof == 0 { vec![] } else { ri },
+        &[&bat, &prof],
+    )?;
+    let spec: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.spec_json)).collect();
+    let ds = h5u::write_1d(&g, l::BAT_SPEC.name, &spec).ctx(out, &e("spec"))?;
+    describe(&ds, &l::BAT_SPEC).ctx(out, &e("spec"))?;
+    attach_scales(&ds, &[&bat]).ctx(out, &e("spec"))?;
+    Ok(())
+}
+
+fn pad_to(v: &[f64], n: usize) -> Vec<f64> {
+    let mut v = v.to_vec();
+    v.truncate(n);
+    v.resize(n, f64::NAN);
+    v
+}

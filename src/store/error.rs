@@ -1,0 +1,54 @@
+//! Store errors: each names the file and what is wrong.
+
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    #[error("{}: cannot {what}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        what: String,
+        source: std::io::Error,
+    },
+    #[error("{}: HDF5 error while trying to {what}: {source}", path.display())]
+    Hdf5 {
+        path: PathBuf,
+        what: String,
+        source: hdf5::Error,
+    },
+    #[error("{}: output already exists; use --resume to continue it or --force to overwrite it", path.display())]
+    Exists { path: PathBuf },
+    #[error("{}: cannot resume: {what}", path.display())]
+    WrongStudy { path: PathBuf, what: String },
+    #[error("{}: damaged journal: {what}", path.display())]
+    BadJournal { path: PathBuf, what: String },
+    #[error("{}: not a batstudy results file: {what}", path.display())]
+    BadFile { path: PathBuf, what: String },
+    #[error("{}: rejected point record: {what}", path.display())]
+    BadRecord { path: PathBuf, what: String },
+}
+
+impl StoreError {
+    pub fn io(path: &Path, what: &str, source: std::io::Error) -> Self {
+        StoreError::Io {
+            path: path.to_path_buf(),
+            what: what.to_string(),
+            source,
+        }
+    }
+}
+
+/// Attach a file and an action to an HDF5 result.
+pub(crate) trait H5Ctx<T> {
+    fn ctx(self, path: &Path, what: &str) -> Result<T, StoreError>;
+}
+
+impl<T> H5Ctx<T> for hdf5::Result<T> {
+    fn ctx(self, path: &Path, what: &str) -> Result<T, StoreError> {
+        self.map_err(|source| StoreError::Hdf5 {
+            path: path.to_path_buf(),
+            what: what.to_string(),
+            source,
+        })
+    }
+}

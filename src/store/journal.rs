@@ -1,0 +1,465 @@
+//! The append-only journal `OUT.h5.journal`: the source of truth while a study runs.
+//!
+//! Format (little endian):
+//! - header: magic `BATSJRN1`, u32 `n` = length of the header JSON, the JSON ([`JournalHeader`]),
+//!   u64 FNV-1a checksum of the JSON;
+//! - then records, each: u32 magic `REC1`, u32 payload length, u64 FNV-1a checksum of the
+//!   payload, the payload ([`encode_record`]).
+//!
+//! Records are only appended. A run killed mid-write leaves at worst a torn last record; a
+//! record whose magic, length or checksum is wrong ends the journal (it and everything after it
+//! are dropped and truncated away on resume; those points are simply computed again).
+
+use super::error::StoreError;
+use super::layout::{self, N_SUMMARY_FLOATS};
+use crate::model::outcome::History;
+use crate::results::{PointRecord, StudyInfo};
+use serde::{Deserialize, Serialize};
+use std::fs::File;
+use std::io::{BufReader, Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+const MAGIC: &[u8; 8] = b"BATSJRN1";
+const REC_MAGIC: u32 = u32::from_le_bytes(*b"REC1");
+const REC_PREFIX: usize = 16;
+/// Largest accepted record payload (a corrupt length beyond this ends the journal).
+const MAX_PAYLOAD: u64 = 1 << 34;
+
+/// Size of the fixed part of an ok record's payload (everything before the history).
+pub(crate) const OK_SUMMARY_LEN: usize = 8 + 8 + 4 + 1 + 8 * N_SUMMARY_FLOATS + 1 + 1;
+
+/// FNV-1a 64-bit checksum.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// What identifies the study a journal belongs to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JournalHeader {
+    pub layout_version: u32,
+    pub study_name: String,
+    pub study_sha256: String,
+    /// (name, size) of each result dim.
+    pub dims: Vec<(String, usize)>,
+    /// Stored history variable names, samples and z count (None: summary only).
+    pub history: Option<(Vec<String>, usize, usize)>,
+    pub n_bats: usize,
+}
+
+impl JournalHeader {
+    pub fn of(info: &StudyInfo) -> Self {
+        JournalHeader {
+            layout_version: layout::LAYOUT_VERSION,
+            study_name: info.name.clone(),
+            study_sha256: info.study_sha256.clone(),
+            dims: info
+                .shape
+                .dims
+                .iter()
+                .map(|d| (d.name.clone(), d.size))
+                .collect(),
+            history: info.history.as_ref().map(|h| {
+                (
+                    super::build::history_vars(h)
+                        .iter()
+                        .map(|&k| layout::HISTORY_VARS[k].0.name.to_string())
+                        .collect(),
+                    h.n_samples,
+                    h.z.len(),
+                )
+            }),
+            n_bats: info.bats.len(),
+        }
+    }
+
+    /// Why `self` (found in `file`) does not belong to `want`, if it does not.
+    pub fn mismatch(&self, want: &JournalHeader, file: &Path) -> Option<StoreError> {
+        let what = if self.layout_version != want.layout_version {
+            format!(
+                "it was written with layout version {} but this batstudy writes version {}",
+                self.layout_version, want.layout_version
+            )
+        } else if self.study_sha256 != want.study_sha256 {
+            format!(
+                "it belongs to study '{}' (sha256 {}), not to study '{}' (sha256 {}): the study file changed or is another study",
+                self.study_name, short(&self.study_sha256), want.study_name, short(&want.study_sha256)
+            )
+        } else if self != want {
+            format!(
+                "its result shape or history request differs (found {:?}, expected {:?})",
+                (&self.dims, &self.history, self.n_bats),
+                (&want.dims, &want.history, want.n_bats)
+            )
+        } else {
+            return None;
+        };
+        Some(StoreError::WrongStudy {
+            path: file.to_path_buf(),
+            what,
+        })
+    }
+}
+
+fn short(s: &str) -> &str {
+    &s[..s.len().min(12)]
+}
+
+/// Encode one record's payload.
+pub fn encode_record(rec: &PointRecord, out: &mut Vec<u8>) {
+    out.extend_from_slice(&(rec.index as u64).to_le_bytes());
+    out.extend_from_slice(&rec.id.to_le_bytes());
+    out.extend_from_slice(&rec.bat.to_le_bytes());
+    match &rec.result {
+        Ok(o) => {
+            out.push(1);
+            for x in layout::summary_floats(o) {
+                out.extend_from_slice(&x.to_le_bytes());
+            }
+            out.push(o.recontact as u8);
+            match &o.history {
+                None => out.push(0),
+                Some(h) => {
+                    out.push(1);
+                    for k in 0..layout::HISTORY_VARS.len() {
+                        let a = layout::history_array(h, k);
+                        out.extend_from_slice(&(a.len() as u64).to_le_bytes());
+                        for x in a {
+                            out.extend_from_slice(&x.to_le_bytes());
+                        }
+                    }
+                }
+            }
+        }
+        Err(msg) => {
+            out.push(0);
+            out.extend_from_slice(&(msg.len() as u64).to_le_bytes());
+            out.extend_from_slice(msg.as_bytes());
+        }
+    }
+}
+
+struct Cursor<'a> {
+    b: &'a [u8],
+    p: usize,
+}
+
+impl Cursor<'_> {
+    fn take(&mut self, n: usize) -> Option<&[u8]> {
+        let s = self.b.get(self.p..self.p.checked_add(n)?)?;
+        self.p += n;
+        Some(s)
+    }
+    fn u8(&mut self) -> Option<u8> {
+        Some(self.take(1)?[0])
+    }
+    fn u32(&mut self) -> Option<u32> {
+        Some(u32::from_le_bytes(self.take(4)?.try_into().ok()?))
+    }
+    fn u64(&mut self) -> Option<u64> {
+        Some(u64::from_le_bytes(self.take(8)?.try_into().ok()?))
+    }
+    fn f64(&mut self) -> Option<f64> {
+        Some(f64::from_bits(self.u64()?))
+    }
+}
+
+/// Decode a payload. With `summary_only`, histories are skipped (and may be absent from
+/// `payload`, which may then be just the first [`OK_SUMMARY_LEN`] bytes).
+pub fn decode_record(payload: &[u8], summary_only: bool) -> Option<PointRecord> {
+    let mut c = Cursor { b: payload, p: 0 };
+    let index = c.u64()? as usize;
+    let id = c.u64()?;
+    let bat = c.u32()?;
+    let ok = c.u8()?;
+    let result = if ok == 1 {
+        let mut f = [0.0; N_SUMMARY_FLOATS];
+        for x in f.iter_mut() {
+            *x = c.f64()?;
+        }
+        let mut o = layout::outcome_from_floats(&f);
+        o.recontact = c.u8()? != 0;
+        let has_history = c.u8()? != 0;
+        if has_history && !summary_only {
+            let mut h = History::default();
+            for k in 0..layout::HISTORY_VARS.len() {
+                let n = c.u64()? as usize;
+                if n > payload.len() / 8 {
+                    return None;
+                }
+                let a = layout::history_array_mut(&mut h, k);
+                a.reserve_exact(n);
+                for _ in 0..n {
+                    a.push(c.f64()?);
+                }
+            }
+            o.history = Some(h);
+        }
+        Ok(o)
+    } else {
+        let n = c.u64()? as usize;
+        let s = c.take(n)?;
+        Err(String::from_utf8_lossy(s).into_owned())
+    };
+    Some(PointRecord {
+        index,
+        id,
+        bat,
+        result,
+    })
+}
+
+/// Where one valid record lies in the journal.
+#[derive(Debug, Clone, Copy)]
+pub struct RecordLoc {
+    /// Offset of the payload.
+    pub offset: u64,
+    pub len: u32,
+}
+
+/// Result of scanning a journal.
+pub struct Scan {
+    pub header: JournalHeader,
+    /// Valid records in file order: (flat index, point id, ok, location).
+    pub records: Vec<(usize, u64, bool, RecordLoc)>,
+    /// Byte length of the valid part (header + complete records).
+    pub valid_len: u64,
+    /// Bytes after the valid part (a torn or corrupt tail).
+    pub dropped_bytes: u64,
+}
+
+fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), StoreError> {
+    let bad = |what: &str| StoreError::BadJournal {
+        path: path.to_path_buf(),
+        what: what.to_string(),
+    };
+    let mut magic = [0u8; 8];
+    r.read_exact(&mut magic)
+        .map_err(|_| bad("too short to hold a journal header"))?;
+    if &magic != MAGIC {
+        return Err(bad("not a batstudy journal (wrong magic bytes)"));
+    }
+    let mut n = [0u8; 4];
+    r.read_exact(&mut n).map_err(|_| bad("truncated header"))?;
+    let n = u32::from_le_bytes(n) as usize;
+    if n > 1 << 24 {
+        return Err(bad("header length is implausible"));
+    }
+    let mut json = vec![0u8; n];
+    r.read_exact(&mut json)
+        .map_err(|_| bad("truncated header"))?;
+    let mut sum = [0u8; 8];
+    r.read_exact(&mut sum)
+        .map_err(|_| bad("truncated header"))?;
+    if u64::from_le_bytes(sum) != fnv1a(&json) {
+        return Err(bad("header checksum mismatch"));
+    }
+    let header: JournalHeader =
+        serde_json::from_slice(&json).map_err(|e| bad(&format!("unreadable header: {e}")))?;
+    Ok((header, (8 + 4 + n + 8) as u64))
+}
+
+/// Read a journal's header and index its valid records (the payloads are checksummed, not kept).
+pub fn scan(path: &Path) -> Result<Scan, StoreError> {
+    let file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+    let file_len = file
+        .metadata()
+        .map_err(|e| StoreError::io(path, "stat the journal", e))?
+        .len();
+    let mut r = BufReader::with_capacity(1 << 20, file);
+    let (header, mut pos) = read_header(&mut r, path)?;
+    let mut records = Vec::new();
+    let mut payload = Vec::new();
+    loop {
+        let mut pre = [0u8; REC_PREFIX];
+        if pos + REC_PREFIX as u64 > file_len || r.read_exact(&mut pre).is_err() {
+            break;
+        }
+        let magic = u32::from_le_bytes(pre[0..4].try_into().unwrap());
+        let len = u32::from_le_bytes(pre[4..8].try_into().unwrap()) as u64;
+        let sum = u64::from_le_bytes(pre[8..16].try_into().unwrap());
+        if magic != REC_MAGIC || len > MAX_PAYLOAD || pos + REC_PREFIX as u64 + len > file_len {
+            break;
+        }
+        payload.resize(len as usize, 0);
+        if r.read_exact(&mut payload).is_err() || fnv1a(&payload) != sum {
+            break;
+        }
+        let Some(rec) = decode_record(&payload[..payload.len().min(OK_SUMMARY_LEN)], true) else {
+            break;
+        };
+        records.push((
+            rec.index,
+            rec.id,
+            rec.result.is_ok(),
+            RecordLoc {
+                offset: pos + REC_PREFIX as u64,
+                len: len as u32,
+            },
+        ));
+        pos += REC_PREFIX as u64 + len;
+    }
+    Ok(Scan {
+        header,
+        records,
+        valid_len: pos,
+        dropped_bytes: file_len - pos,
+    })
+}
+
+/// Random access to records of a scanned journal.
+pub struct JournalReader {
+    file: File,
+    path: PathBuf,
+    buf: Vec<u8>,
+}
+
+impl JournalReader {
+    pub fn open(path: &Path) -> Result<Self, StoreError> {
+        Ok(JournalReader {
+            file: File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?,
+            path: path.to_path_buf(),
+            buf: Vec::new(),
+        })
+    }
+
+    /// Read the record at `loc`; `summary_only` reads only the fixed summary part.
+    pub fn read(&mut self, loc: RecordLoc, summary_only: bool) -> Result<PointRecord, StoreError> {
+        let n = if summary_only {
+            (loc.len as usize).min(OK_SUMMARY_LEN)
+        } else {
+            loc.len as usize
+        };
+        // failed records keep their message after the summary part: read them whole
+        self.buf.resize(n, 0);
+        self.file
+            .seek(SeekFrom::Start(loc.offset))
+            .and_then(|_| self.file.read_exact(&mut self.buf))
+            .map_err(|e| StoreError::io(&self.path, "read the journal", e))?;
+        if self.buf.get(20) == Some(&0) && n < loc.len as usize {
+            return self.read(loc, false);
+        }
+        if !summary_only && fnv1a(&self.buf) != fnv1a_expected(&self.file, loc, &self.path)? {
+            return Err(StoreError::BadJournal {
+                path: self.path.clone(),
+                what: format!("record at byte {} changed after it was scanned", loc.offset),
+            });
+        }
+        decode_record(&self.buf, summary_only).ok_or_else(|| StoreError::BadJournal {
+            path: self.path.clone(),
+            what: format!("undecodable record at byte {}", loc.offset),
+        })
+    }
+}
+
+fn fnv1a_expected(mut file: &File, loc: RecordLoc, path: &Path) -> Result<u64, StoreError> {
+    let mut sum = [0u8; 8];
+    file.seek(SeekFrom::Start(loc.offset - 8))
+        .and_then(|_| file.read_exact(&mut sum))
+        .map_err(|e| StoreError::io(path, "read the journal", e))?;
+    Ok(u64::from_le_bytes(sum))
+}
+
+/// Appends records; the caller decides when to flush and sync.
+pub struct JournalWriter {
+    file: File,
+    path: PathBuf,
+    buf: Vec<u8>,
+    payload: Vec<u8>,
+}
+
+impl JournalWriter {
+    /// Create a new journal (the file must not exist) and make its header durable.
+    pub fn create(path: &Path, header: &JournalHeader) -> Result<Self, StoreError> {
+        let mut file = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(path)
+            .map_err(|e| StoreError::io(path, "create the journal", e))?;
+        let json = serde_json::to_vec(header).expect("header serialises");
+        let mut b = Vec::with_capacity(json.len() + 20);
+        b.extend_from_slice(MAGIC);
+        b.extend_from_slice(&(json.len() as u32).to_le_bytes());
+        b.extend_from_slice(&json);
+        b.extend_from_slice(&fnv1a(&json).to_le_bytes());
+        file.write_all(&b)
+            .and_then(|_| file.sync_all())
+            .map_err(|e| StoreError::io(path, "write the journal header", e))?;
+        sync_parent_dir(path);
+        Ok(JournalWriter {
+            file,
+            path: path.to_path_buf(),
+            buf: Vec::with_capacity(1 << 20),
+            payload: Vec::new(),
+        })
+    }
+
+    /// Open an existing, scanned journal for appending after its valid part (a torn tail is
+    /// cut off first).
+    pub fn append_to(path: &Path, valid_len: u64) -> Result<Self, StoreError> {
+        let mut file = std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map_err(|e| StoreError::io(path, "open the journal for appending", e))?;
+        file.set_len(valid_len)
+            .and_then(|_| file.sync_all())
+            .and_then(|_| file.seek(SeekFrom::Start(valid_len)).map(|_| ()))
+            .map_err(|e| StoreError::io(path, "cut the journal's torn tail", e))?;
+        Ok(JournalWriter {
+            file,
+            path: path.to_path_buf(),
+            buf: Vec::with_capacity(1 << 20),
+            payload: Vec::new(),
+        })
+    }
+
+    /// Buffer one record.
+    pub fn append(&mut self, rec: &PointRecord) {
+        self.payload.clear();
+        encode_record(rec, &mut self.payload);
+        self.buf.extend_from_slice(&REC_MAGIC.to_le_bytes());
+        self.buf
+            .extend_from_slice(&(self.payload.len() as u32).to_le_bytes());
+        self.buf
+            .extend_from_slice(&fnv1a(&self.payload).to_le_bytes());
+        self.buf.extend_from_slice(&self.payload);
+    }
+
+    pub fn buffered_bytes(&self) -> usize {
+        self.buf.len()
+    }
+
+    /// Hand the buffered records to the OS (survives the process being killed).
+    pub fn flush(&mut self) -> Result<(), StoreError> {
+        if !self.buf.is_empty() {
+            self.file
+                .write_all(&self.buf)
+                .map_err(|e| StoreError::io(&self.path, "append to the journal", e))?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    /// Flush and make durable (survives power loss).
+    pub fn sync(&mut self) -> Result<(), StoreError> {
+        self.flush()?;
+        self.file
+            .sync_data()
+            .map_err(|e| StoreError::io(&self.path, "sync the journal", e))
+    }
+}
+
+/// Best effort: make a created/renamed/removed directory entry durable.
+pub fn sync_parent_dir(path: &Path) {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
+}

@@ -1,0 +1,494 @@
+//! The HDF5 results store (docs/layout.md): one study → one self-describing HDF5 file.
+//!
+//! Crash safety: finished points are appended to `OUT.h5.journal` (checksummed records,
+//! handed to the OS every 50 ms and fsync'd every second); the journal is the only state
+//! while a run is in progress. [`Session::finish`] writes `OUT.h5.partial` from the journal,
+//! fsyncs it, renames it to `OUT.h5` and only then removes the journal. A run killed at any
+//! moment therefore leaves either a journal (whose torn tail, if any, is dropped on resume) or
+//! a finished file; `--resume` continues from the journal, or from the finished file's records
+//! when no journal is left. The final file's data depend only on the set of records, never on
+//! their order or on interruptions, so a resumed run's data equal an uninterrupted run's.
+//!
+//! Modules: [`layout`] (names, units), [`dimscale`] (HDF5 dimension scales and helpers),
+//! [`journal`], [`build`] (journal → HDF5), [`read`] (reading back, inspect),
+//! [`sweet_spot`].
+
+pub mod build;
+pub mod dimscale;
+pub mod error;
+pub mod journal;
+pub mod layout;
+pub mod read;
+pub mod sweet_spot;
+
+pub use error::StoreError;
+pub use read::{inspect, read_results, ReadBack};
+
+use crate::results::{PointId, PointRecord, StudyInfo};
+use journal::{JournalHeader, JournalWriter};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// Facts about the run, stored as root attributes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunMeta {
+    pub command_line: String,
+    pub threads: usize,
+    pub git_commit: String,
+    pub git_dirty: bool,
+    pub host: String,
+    pub batstudy_version: String,
+    /// ISO 8601 UTC.
+    pub created: String,
+    /// `Some("I/N")` for a shard file.
+    pub shard: Option<String>,
+}
+
+impl Default for RunMeta {
+    /// This process: its command line, host, the time now, crate version; git commit from the
+    /// build environment (`BATSTUDY_GIT_COMMIT`, `BATSTUDY_GIT_DIRTY`) or "unknown".
+    fn default() -> Self {
+        let host = std::env::var("HOSTNAME")
+            .ok()
+            .or_else(|| std::fs::read_to_string("/etc/hostname").ok())
+            .map(|s| s.trim().to_string())
+            .unwrap_or_default();
+        RunMeta {
+            command_line: std::env::args().collect::<Vec<_>>().join(" "),
+            threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            git_commit: option_env!("BATSTUDY_GIT_COMMIT")
+                .unwrap_or("unknown")
+                .to_string(),
+            git_dirty: option_env!("BATSTUDY_GIT_DIRTY") == Some("1"),
+            host,
+            batstudy_version: env!("CARGO_PKG_VERSION").to_string(),
+            created: iso8601_now(),
+            shard: None,
+        }
+    }
+}
+
+/// The current UTC time as `YYYY-MM-DDTHH:MM:SSZ`.
+pub fn iso8601_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs()) as i64;
+    let (days, rem) = (secs.div_euclid(86400), secs.rem_euclid(86400));
+    // civil from days (H. Hinnant)
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
+
+/// How to open the output.
+#[derive(Debug, Clone)]
+pub struct StoreOptions {
+    /// Continue an interrupted run of the same study (journal or finished file).
+    pub resume: bool,
+    /// Overwrite an existing output (and discard its journal) when not resuming.
+    pub force: bool,
+    pub run_meta: RunMeta,
+    /// Hand records to the OS at least this often (protects against the process being killed).
+    pub flush_interval: Duration,
+    /// fsync the journal at least this often (protects against power loss).
+    pub sync_interval: Duration,
+}
+
+impl Default for StoreOptions {
+    fn default() -> Self {
+        StoreOptions {
+            resume: false,
+            force: false,
+            run_meta: RunMeta::default(),
+            flush_interval: Duration::from_millis(50),
+            sync_interval: Duration::from_secs(1),
+        }
+    }
+}
+
+/// What [`Session::finish`] wrote.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Summary {
+    /// Points of the study.
+    pub n_points: usize,
+    /// Points present in the file (ok or failed).
+    pub n_done: usize,
+    pub n_failed: usize,
+}
+
+/// Path of the journal next to `out`.
+pub fn journal_path(out: &Path) -> PathBuf {
+    with_suffix(out, ".journal")
+}
+
+/// Path of the file being finished next to `out`.
+pub fn partial_path(out: &Path) -> PathBuf {
+    with_suffix(out, ".partial")
+}
+
+fn with_suffix(p: &Path, s: &str) -> PathBuf {
+    let mut o = p.as_os_str().to_owned();
+    o.push(s);
+    PathBuf::from(o)
+}
+
+/// An open output: owned by the runner's single writer thread.
+pub struct Session {
+    path: PathBuf,
+    journal_path: PathBuf,
+    info: StudyInfo,
+    meta: RunMeta,
+    journal: Option<JournalWriter>,
+    done_ids: HashSet<PointId>,
+    done_index: Vec<bool>,
+    n_done: usize,
+    history_keep: Option<Vec<usize>>,
+    flush_interval: Duration,
+    sync_interval: Duration,
+    last_flush: Instant,
+    last_sync: Instant,
+    /// Records recovered on resume (journal records; a dropped torn tail is not counted).
+    pub resumed: usize,
+    /// Bytes of torn or corrupt journal tail dropped on resume.
+    pub dropped_bytes: u64,
+}
+
+fn remove_if_exists(p: &Path) -> Result<(), StoreError> {
+    match std::fs::remove_file(p) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(StoreError::io(p, "remove", e)),
+    }
+}
+
+fn check_info(info: &StudyInfo, path: &Path) -> Result<(), StoreError> {
+    let bad = |what: String| {
+        Err(StoreError::BadRecord {
+            path: path.to_path_buf(),
+            what,
+        })
+    };
+    for d in &info.shape.dims {
+        for c in &d.coords {
+            if c.values.len() != d.size {
+                return bad(format!(
+                    "coordinate {} has {} values but dim {} has size {}",
+                    c.name,
+                    c.values.len(),
+                    d.name,
+                    d.size
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Open the output `path` for a study: a new run, or (`opts.resume`) the continuation of an
+/// interrupted one. Never overwrites an existing output unless `opts.force`.
+pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Session, StoreError> {
+    check_info(info, path)?;
+    let jpath = journal_path(path);
+    let want = JournalHeader::of(info);
+    remove_if_exists(&partial_path(path))?;
+    let n_points = info.shape.n_points();
+    let mut s = Session {
+        path: path.to_path_buf(),
+        journal_path: jpath.clone(),
+        info: info.clone(),
+        meta: opts.run_meta.clone(),
+        journal: None,
+        done_ids: HashSet::new(),
+        done_index: vec![false; n_points],
+        n_done: 0,
+        history_keep: info.history.as_ref().map(build::history_vars),
+        flush_interval: opts.flush_interval,
+        sync_interval: opts.sync_interval,
+        last_flush: Instant::now(),
+        last_sync: Instant::now(),
+        resumed: 0,
+        dropped_bytes: 0,
+    };
+    let out_exists = path.exists();
+    let j_exists = jpath.exists();
+    if opts.resume && j_exists {
+        let scan = journal::scan(&jpath)?;
+        if let Some(e) = scan.header.mismatch(&want, &jpath) {
+            return Err(e);
+        }
+        for &(index, id, _, _) in &scan.records {
+            if index < n_points && !s.done_index[index] {
+                s.done_index[index] = true;
+                s.done_ids.insert(id);
+                s.n_done += 1;
+            }
+        }
+        s.resumed = s.n_done;
+        s.dropped_bytes = scan.dropped_bytes;
+        s.journal = Some(JournalWriter::append_to(&jpath, scan.valid_len)?);
+        return Ok(s);
+    }
+    if opts.resume && out_exists {
+        // a finished (possibly partial, e.g. interrupted-then-finished) file: its records
+        // seed a new journal
+        let back = read::read_results(path)?;
+        let file_header = back.header();
+        if let Some(e) = file_header.mismatch(&want, path) {
+            return Err(e);
+        }
+        let mut w = JournalWriter::create(&jpath, &want)?;
+        for rec in back.records {
+            if rec.index < n_points && !s.done_index[rec.index] {
+                s.done_index[rec.index] = true;
+                s.done_ids.insert(rec.id);
+                s.n_done += 1;
+                w.append(&rec);
+                if w.buffered_bytes() > 1 << 22 {
+                    w.flush()?;
+                }
+            }
+        }
+        w.sync()?;
+        s.resumed = s.n_done;
+        s.journal = Some(w);
+        return Ok(s);
+    }
+    if !opts.resume && (out_exists || j_exists) {
+        if !opts.force {
+            return Err(StoreError::Exists {
+                path: path.to_path_buf(),
+            });
+        }
+        remove_if_exists(path)?;
+        remove_if_exists(&jpath)?;
+    }
+    s.journal = Some(JournalWriter::create(&jpath, &want)?);
+    Ok(s)
+}
+
+/// Merge shard files (each the same layout with a subset of the points) into one complete
+/// results file `out`, identical in data to a single-process run. Refuses, before writing
+/// anything, shards of another study or layout version, points present twice, and missing
+/// points. (Each shard is read into memory one at a time.)
+pub fn merge(
+    out: &Path,
+    info: &StudyInfo,
+    shards: &[PathBuf],
+    opts: &StoreOptions,
+) -> Result<Summary, StoreError> {
+    let want = JournalHeader::of(info);
+    let n = info.shape.n_points();
+    let mut owner: Vec<Option<usize>> = vec![None; n];
+    for (k, p) in shards.iter().enumerate() {
+        let back = read::read_results(p)?;
+        if let Some(e) = back.header.mismatch(&want, p) {
+            return Err(e);
+        }
+        for r in &back.records {
+            if let Some(o) = owner[r.index] {
+                return Err(StoreError::WrongStudy {
+                    path: p.clone(),
+                    what: format!(
+                        "point {} (flat index {}) is also in {}",
+                        r.id,
+                        r.index,
+                        shards[o].display()
+                    ),
+                });
+            }
+            owner[r.index] = Some(k);
+        }
+    }
+    let missing: Vec<usize> = (0..n).filter(|&i| owner[i].is_none()).collect();
+    if !missing.is_empty() {
+        return Err(StoreError::WrongStudy {
+            path: out.to_path_buf(),
+            what: format!(
+                "the shards lack {} of the study's {} points (flat indices {:?}{})",
+                missing.len(),
+                n,
+                &missing[..missing.len().min(8)],
+                if missing.len() > 8 { ", ..." } else { "" }
+            ),
+        });
+    }
+    drop(owner);
+    let mut s = open(
+        out,
+        info,
+        &StoreOptions {
+            resume: false,
+            ..opts.clone()
+        },
+    )?;
+    for p in shards {
+        for r in read::read_results(p)?.records {
+            s.write(r)?;
+        }
+    }
+    s.finish()
+}
+
+impl Session {
+    /// The output path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Whether the point with this id is already stored (resume: skip it).
+    pub fn is_done(&self, id: PointId) -> bool {
+        self.done_ids.contains(&id)
+    }
+
+    /// Whether the point at this flat index is already stored.
+    pub fn is_done_index(&self, index: usize) -> bool {
+        self.done_index.get(index).copied().unwrap_or(false)
+    }
+
+    /// Number of points stored so far (including those recovered on resume).
+    pub fn n_done(&self) -> usize {
+        self.n_done
+    }
+
+    fn reject(&self, what: String) -> StoreError {
+        StoreError::BadRecord {
+            path: self.path.clone(),
+            what,
+        }
+    }
+
+    /// Store one finished point (buffered; see the module docs for when it becomes durable).
+    /// A point already stored is ignored.
+    pub fn write(&mut self, mut rec: PointRecord) -> Result<(), StoreError> {
+        let n = self.done_index.len();
+        if rec.index >= n {
+            return Err(self.reject(format!(
+                "point index {} is outside the study's {} points",
+                rec.index, n
+            )));
+        }
+        if rec.bat as usize >= self.info.bats.len() {
+            return Err(self.reject(format!(
+                "point {} refers to bat {} but the study has {} bats",
+                rec.index,
+                rec.bat,
+                self.info.bats.len()
+            )));
+        }
+        if self.done_index[rec.index] {
+            return Ok(());
+        }
+        if let Ok(o) = &mut rec.result {
+            match (&self.history_keep, &self.info.history, o.history.as_mut()) {
+                (Some(keep), Some(req), Some(h)) => {
+                    for (k, (def, _, with_z)) in layout::HISTORY_VARS.iter().enumerate() {
+                        let a = layout::history_array_mut(h, k);
+                        if keep.contains(&k) {
+                            let want = req.n_samples * if *with_z { req.z.len() } else { 1 };
+                            if a.len() != want {
+                                return Err(self.reject(format!(
+                                    "point {}: history {} has {} samples, expected {}",
+                                    rec.index,
+                                    def.name,
+                                    a.len(),
+                                    want
+                                )));
+                            }
+                        } else {
+                            a.clear();
+                            a.shrink_to_fit();
+                        }
+                    }
+                }
+                _ => o.history = None,
+            }
+        }
+        let j = self.journal.as_mut().expect("open session has a journal");
+        j.append(&rec);
+        self.done_index[rec.index] = true;
+        self.done_ids.insert(rec.id);
+        self.n_done += 1;
+        if j.buffered_bytes() >= 1 << 22 || self.last_flush.elapsed() >= self.flush_interval {
+            j.flush()?;
+            self.last_flush = Instant::now();
+        }
+        if self.last_sync.elapsed() >= self.sync_interval {
+            j.sync()?;
+            self.last_sync = Instant::now();
+        }
+        Ok(())
+    }
+
+    /// Call when no record arrived for a while (e.g. on the channel's `recv_timeout`): hands
+    /// buffered records to the OS, and fsyncs if one is due, so that slow points are not left
+    /// only in this process's memory.
+    pub fn idle(&mut self) -> Result<(), StoreError> {
+        let j = self.journal.as_mut().expect("open session has a journal");
+        j.flush()?;
+        self.last_flush = Instant::now();
+        if self.last_sync.elapsed() >= self.sync_interval {
+            j.sync()?;
+            self.last_sync = Instant::now();
+        }
+        Ok(())
+    }
+
+    /// Make everything written so far durable (e.g. on Ctrl-C, before exiting to resume later).
+    pub fn flush(&mut self) -> Result<(), StoreError> {
+        if let Some(j) = self.journal.as_mut() {
+            j.sync()?;
+        }
+        self.last_flush = Instant::now();
+        self.last_sync = Instant::now();
+        Ok(())
+    }
+
+    /// Write the final file from the journal (atomically: `.partial`, fsync, rename), then
+    /// remove the journal. Works for incomplete studies too (missing points have status -1,
+    /// e.g. a shard or an interrupted run); `--resume` continues from such a file.
+    pub fn finish(mut self) -> Result<Summary, StoreError> {
+        self.flush()?;
+        drop(self.journal.take());
+        let scan = journal::scan(&self.journal_path)?;
+        if let Some(e) = scan
+            .header
+            .mismatch(&JournalHeader::of(&self.info), &self.journal_path)
+        {
+            return Err(e);
+        }
+        let partial = partial_path(&self.path);
+        self.meta.created = iso8601_now();
+        let summary =
+            build::write_file(&self.journal_path, &scan, &self.info, &self.meta, &partial)?;
+        std::fs::File::open(&partial)
+            .and_then(|f| f.sync_all())
+            .map_err(|e| StoreError::io(&partial, "sync the finished file", e))?;
+        std::fs::rename(&partial, &self.path)
+            .map_err(|e| StoreError::io(&self.path, "rename the finished file into place", e))?;
+        journal::sync_parent_dir(&self.path);
+        remove_if_exists(&self.journal_path)?;
+        journal::sync_parent_dir(&self.path);
+        Ok(summary)
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        if let Some(j) = self.journal.as_mut() {
+            let _ = j.sync();
+        }
+    }
+}

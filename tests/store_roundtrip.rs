@@ -1,0 +1,639 @@
+//! Store tests: round trip, crash/resume (torn journal and real `kill -9`), refusals.
+//! `write_python_fixture` (ignored) writes files for tests/python/test_store_layout.py.
+
+use batstudy::model::outcome::{
+    BatProperties, EnergyPartition, History, HistoryField, HistoryPrecision, HistoryRequest,
+    Outcome,
+};
+use batstudy::results::{BatVariant, Coord, CoordValues, Dim, PointRecord, ResultShape, StudyInfo};
+use batstudy::store::{self, StoreError, StoreOptions};
+use std::path::{Path, PathBuf};
+
+/// Spawned children inherit open (locked) HDF5 file descriptors of other tests' threads until
+/// they exit: `kill9_at_several_moments` runs alone, the others share.
+static SERIAL: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
+fn shared() -> std::sync::RwLockReadGuard<'static, ()> {
+    SERIAL.read().unwrap_or_else(|e| e.into_inner())
+}
+
+fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+        .collect()
+}
+
+fn coord(name: &str, path: &str, units: &str, values: CoordValues) -> Coord {
+    Coord {
+        name: name.into(),
+        path: path.into(),
+        units: units.into(),
+        long_name: format!("{path} (study parameter)"),
+        values,
+    }
+}
+
+fn bat(label: &str, n_modes: usize) -> BatVariant {
+    let z = grid(0.0, 0.84, 6);
+    BatVariant {
+        label: label.into(),
+        spec_json: format!("{{\"preset\":\"{label}\"}}"),
+        properties: BatProperties {
+            outer_radius: z.iter().map(|z| 0.012 + 0.02 * z).collect(),
+            inner_radius: vec![0.0; z.len()],
+            z,
+            length: 0.84,
+            mass: 0.9,
+            z_cm: 0.56,
+            moment_of_inertia: 0.045,
+            moment_of_inertia_knob6: 0.2,
+            mode_frequency: (1..=n_modes).map(|k| 170.0 * (k * k) as f64).collect(),
+            mode_nodes: (1..=n_modes).map(|k| grid(0.1, 0.7, k + 1)).collect(),
+        },
+    }
+}
+
+/// swing_omega (3) × impact_z (9), histories of force, ball velocity and displacement.
+fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
+    let text = format!("name: synth\nhistory: {history}\nprecision: {precision:?}\n");
+    StudyInfo {
+        name: "synth".into(),
+        description: "synthetic store test study".into(),
+        study_sha256: format!("{:064x}", text.len() as u64 * 7919 + history as u64),
+        study_text: text,
+        study_path: "studies/synth.yaml".into(),
+        shape: ResultShape {
+            dims: vec![
+                Dim {
+                    name: "swing_omega".into(),
+                    size: 3,
+                    coords: vec![coord(
+                        "swing_omega",
+                        "swing.omega",
+                        "rad/s",
+                        CoordValues::Numbers(vec![-40.0, -30.0, -20.0]),
+                    )],
+                },
+                Dim {
+                    name: "impact_z".into(),
+                    size: 9,
+                    coords: vec![coord(
+                        "impact_z",
+                        "impact.z",
+                        "m",
+                        CoordValues::Numbers(grid(0.55, 0.79, 9)),
+                    )],
+                },
+            ],
+        },
+        history: history.then(|| HistoryRequest {
+            fields: vec![
+                HistoryField::Force,
+                HistoryField::BallVelocity,
+                HistoryField::Displacement,
+            ],
+            interval: 1e-5,
+            n_samples: 20,
+            z: vec![0.2, 0.4, 0.6, 0.8, 1.0],
+            precision,
+        }),
+        bats: vec![bat("r161", 3), bat("r161, bat.material.density=700", 2)],
+    }
+}
+
+/// A zip dim `point` (ball speed and a label) × impact_z, no history.
+fn zip_study() -> StudyInfo {
+    let mut s = study(false, HistoryPrecision::F64);
+    s.study_sha256 = "zip".repeat(20);
+    s.shape.dims[0] = Dim {
+        name: "point".into(),
+        size: 2,
+        coords: vec![
+            coord(
+                "ball_speed",
+                "ball.speed",
+                "m/s",
+                CoordValues::Numbers(vec![30.0, 40.0]),
+            ),
+            coord(
+                "bat_preset",
+                "bat.preset",
+                "",
+                CoordValues::Labels(vec!["r161".into(), "c243".into()]),
+            ),
+        ],
+    };
+    s
+}
+
+fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
+    if index % 7 == 3 {
+        return Err(format!(
+            "synthetic failure at point {index}: solver diverged"
+        ));
+    }
+    let idx = info.shape.unravel(index);
+    let z = idx.last().map_or(0.68, |&q| grid(0.55, 0.79, 9)[q]);
+    let w = if idx.len() == 2 {
+        -40.0 + 10.0 * idx[0] as f64
+    } else {
+        -30.0
+    };
+    let v = 20.0 + 5.0 * (-((z - 0.68) / 0.1f64).powi(2)).exp() - 0.1 * w;
+    let history = info.history.as_ref().map(|h| {
+        let t = |k: usize| k as f64 * h.interval;
+        History {
+            force: (0..h.n_samples)
+                .map(|k| 1e3 * (t(k) * 1e5 + index as f64).sin())
+                .collect(),
+            ball_velocity: (0..h.n_samples)
+                .map(|k| v * (1.0 - t(k) * 1e4) / 3.0)
+                .collect(),
+            displacement: (0..h.n_samples * h.z.len())
+                .map(|k| 1e-4 * (k as f64 * 0.37 + index as f64).cos())
+                .collect(),
+            // not requested: must be dropped
+            hoop_displacement: vec![1.0; 3],
+            ..Default::default()
+        }
+    });
+    Ok(Outcome {
+        exit_speed: v,
+        exit_speed_lab: v + 30.0,
+        collision_efficiency: 0.2 + 0.001 * index as f64,
+        approach_speed: 50.0 - w * z,
+        contact_time: 6e-4 + 1e-7 * index as f64,
+        peak_force: 2e4 + index as f64,
+        max_compression: 0.012,
+        impulse: 12.3 + index as f64 / 3.0,
+        energy: EnergyPartition {
+            initial: 300.0,
+            ball_final: 100.0,
+            ball_loss: 120.0,
+            bat_rigid: 60.0,
+            bat_vibration: 15.0 + index as f64 / 7.0,
+            hoop: 0.0,
+        },
+        recontact: index % 5 == 0,
+        history,
+    })
+}
+
+fn record(info: &StudyInfo, index: usize) -> PointRecord {
+    PointRecord {
+        index,
+        id: 1_000_003 * index as u64 + 17,
+        bat: (index % 2) as u32,
+        result: outcome(info, index),
+    }
+}
+
+fn opts(resume: bool, force: bool) -> StoreOptions {
+    StoreOptions {
+        resume,
+        force,
+        ..Default::default()
+    }
+}
+
+/// Write every point (in a scrambled order) and finish.
+fn full_run(info: &StudyInfo, path: &Path) -> store::Summary {
+    let mut s = store::open(path, info, &opts(false, true)).unwrap();
+    let n = info.shape.n_points();
+    for k in 0..n {
+        s.write(record(info, (k * 11 + 5) % n)).unwrap();
+    }
+    s.finish().unwrap()
+}
+
+/// Everything a file holds, as a comparable string (f64 Debug round-trips bits).
+fn dump(path: &Path) -> String {
+    let back = store::read_results(path).unwrap();
+    let f = hdf5::File::open(path).unwrap();
+    let mut s = format!("{:?}\n", back.records);
+    if let Ok(g) = f.group("sweet_spot") {
+        for v in ["position", "exit_speed", "width"] {
+            let a = g.dataset(v).unwrap().read_raw::<f64>().unwrap();
+            s += &format!(
+                "{v}: {:?}\n",
+                a.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+            );
+        }
+    }
+    for v in ["status", "recontact"] {
+        s += &format!(
+            "{v}: {:?}\n",
+            f.dataset(&format!("summary/{v}"))
+                .unwrap()
+                .read_raw::<i8>()
+                .unwrap()
+        );
+    }
+    s
+}
+
+fn expected(info: &StudyInfo, index: usize) -> PointRecord {
+    let mut r = record(info, index);
+    if let Ok(o) = &mut r.result {
+        if let Some(h) = &mut o.history {
+            h.hoop_displacement.clear();
+            if info.history.as_ref().unwrap().precision == HistoryPrecision::F32 {
+                for a in [&mut h.force, &mut h.ball_velocity, &mut h.displacement] {
+                    for x in a.iter_mut() {
+                        *x = *x as f32 as f64;
+                    }
+                }
+            }
+        }
+    }
+    r
+}
+
+#[test]
+fn round_trip_summary_history_errors_bats() {
+    let _g = shared();
+    for precision in [HistoryPrecision::F64, HistoryPrecision::F32] {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.h5");
+        let info = study(true, precision);
+        let sum = full_run(&info, &path);
+        assert_eq!(
+            sum,
+            store::Summary {
+                n_points: 27,
+                n_done: 27,
+                n_failed: 4
+            }
+        );
+        assert!(!store::journal_path(&path).exists());
+        let back = store::read_results(&path).unwrap();
+        assert_eq!(back.records.len(), 27);
+        for r in &back.records {
+            let e = expected(&info, r.index);
+            assert_eq!((r.id, r.bat), (e.id, e.bat));
+            assert_eq!(r.result, e.result, "point {}", r.index);
+        }
+        let f = hdf5::File::open(&path).unwrap();
+        let m = f
+            .dataset("bat/mode_frequency")
+            .unwrap()
+            .read_2d::<f64>()
+            .unwrap();
+        assert_eq!(m.shape(), &[2, 3]);
+        assert!(m[[1, 2]].is_nan() && m[[1, 1]] == 680.0);
+        let msg = f
+            .dataset("errors/message")
+            .unwrap()
+            .read_raw::<hdf5::types::VarLenUnicode>()
+            .unwrap();
+        assert_eq!(msg.len(), 4);
+        assert!(msg[0].as_str().contains("point 3"));
+        let text = store::inspect(&path).unwrap();
+        assert!(text.contains("23 ok, 4 failed, 0 not computed"), "{text}");
+        assert!(text.contains("swing_omega=3 × impact_z=9"), "{text}");
+    }
+}
+
+#[test]
+fn sweet_spot_group_matches_function() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.h5");
+    let info = study(false, HistoryPrecision::F64);
+    full_run(&info, &path);
+    let f = hdf5::File::open(&path).unwrap();
+    let pos = f
+        .dataset("sweet_spot/position")
+        .unwrap()
+        .read_raw::<f64>()
+        .unwrap();
+    let z = grid(0.55, 0.79, 9);
+    for (w, &p) in pos.iter().enumerate() {
+        let (zz, vv): (Vec<f64>, Vec<f64>) = (0..9)
+            .filter_map(|q| outcome(&info, w * 9 + q).ok().map(|o| (z[q], o.exit_speed)))
+            .unzip();
+        let want = store::sweet_spot::sweet_spot(&zz, &vv).unwrap();
+        assert_eq!(p.to_bits(), want.0.to_bits());
+    }
+}
+
+#[test]
+fn torn_journal_resume_equals_uninterrupted() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F32);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+
+    let path = dir.path().join("out.h5");
+    let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+    for k in (0..27).rev().take(15) {
+        s.write(record(&info, k)).unwrap();
+    }
+    s.flush().unwrap();
+    drop(s); // killed: no finish
+    let j = store::journal_path(&path);
+    let len = std::fs::metadata(&j).unwrap().len();
+    // tear the last record
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&j)
+        .unwrap()
+        .set_len(len - 37)
+        .unwrap();
+
+    let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+    assert_eq!(s.n_done(), 14);
+    assert!(s.dropped_bytes > 0);
+    let mut computed = 0;
+    for k in 0..27 {
+        let r = record(&info, k);
+        if !s.is_done(r.id) {
+            computed += 1;
+            s.write(r).unwrap();
+        }
+    }
+    assert_eq!(computed, 13);
+    s.finish().unwrap();
+    assert_eq!(dump(&path), dump(&clean));
+}
+
+#[test]
+fn resume_from_finished_partial_file() {
+    let _g = shared();
+    // interrupted, then finished incomplete (e.g. Ctrl-C path or a shard), then resumed
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F64);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+    let path = dir.path().join("out.h5");
+    let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+    for k in 0..10 {
+        s.write(record(&info, k)).unwrap();
+    }
+    let sum = s.finish().unwrap();
+    assert_eq!((sum.n_done, sum.n_points), (10, 27));
+    assert!(store::inspect(&path).unwrap().contains("17 not computed"));
+    let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+    assert_eq!(s.n_done(), 10);
+    for k in 0..27 {
+        if !s.is_done_index(k) {
+            s.write(record(&info, k)).unwrap();
+        }
+    }
+    s.finish().unwrap();
+    assert_eq!(dump(&path), dump(&clean));
+}
+
+#[test]
+fn refuses_other_study_and_overwrite() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("out.h5");
+    let info = study(false, HistoryPrecision::F64);
+    full_run(&info, &path);
+    // no resume, no force
+    let e = store::open(&path, &info, &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(matches!(e, StoreError::Exists { .. }), "{e}");
+    assert!(e.to_string().contains("--force"), "{e}");
+    // resume with another study: from the finished file
+    let other = study(true, HistoryPrecision::F64);
+    let e = store::open(&path, &other, &opts(true, false))
+        .err()
+        .unwrap();
+    assert!(matches!(e, StoreError::WrongStudy { .. }), "{e}");
+    assert!(e.to_string().contains("out.h5"), "{e}");
+    // and from a journal
+    let p2 = dir.path().join("b.h5");
+    let s = store::open(&p2, &info, &opts(false, false)).unwrap();
+    drop(s);
+    let e = store::open(&p2, &other, &opts(true, false)).err().unwrap();
+    assert!(
+        e.to_string().contains("b.h5.journal") && e.to_string().contains("sha256"),
+        "{e}"
+    );
+    // a journal left behind also blocks a fresh run without force
+    let e = store::open(&p2, &info, &opts(false, false)).err().unwrap();
+    assert!(matches!(e, StoreError::Exists { .. }));
+    // force overwrites
+    store::open(&path, &info, &opts(false, true))
+        .unwrap()
+        .finish()
+        .unwrap();
+    // garbage is reported, not panicked on
+    let g = dir.path().join("garbage.h5");
+    std::fs::write(&g, b"not hdf5").unwrap();
+    let e = store::inspect(&g).err().unwrap();
+    assert!(e.to_string().contains("garbage.h5"), "{e}");
+    std::fs::write(store::journal_path(&g), b"BATSJRN1\xff").unwrap();
+    let e = store::open(&g, &info, &opts(true, false)).err().unwrap();
+    assert!(e.to_string().contains("garbage.h5.journal"), "{e}");
+}
+
+#[test]
+fn rejects_bad_records() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F64);
+    let mut s = store::open(&dir.path().join("o.h5"), &info, &opts(false, false)).unwrap();
+    let mut r = record(&info, 0);
+    r.index = 27;
+    assert!(s.write(r).is_err());
+    let mut r = record(&info, 1);
+    r.result
+        .as_mut()
+        .unwrap()
+        .history
+        .as_mut()
+        .unwrap()
+        .force
+        .pop();
+    assert!(s.write(r).is_err());
+    s.write(record(&info, 2)).unwrap();
+    s.write(record(&info, 2)).unwrap(); // duplicate ignored
+    s.idle().unwrap();
+    // flushed by idle(): visible to a scan without finish
+    assert_eq!(
+        store::journal::scan(&store::journal_path(s.path()))
+            .unwrap()
+            .records
+            .len(),
+        1
+    );
+    assert_eq!(s.n_done(), 1);
+}
+
+/// Child side of `kill9_at_several_moments`: writes points slowly until killed.
+#[test]
+#[ignore]
+fn child_writer() {
+    let Ok(out) = std::env::var("BATSTUDY_STORE_CHILD_OUT") else {
+        return;
+    };
+    let info = study(true, HistoryPrecision::F64);
+    let mut s = store::open(Path::new(&out), &info, &opts(true, false)).unwrap();
+    for k in 0..27 {
+        let r = record(&info, (k * 11 + 5) % 27);
+        if !s.is_done(r.id) {
+            s.write(r).unwrap();
+            std::thread::sleep(std::time::Duration::from_millis(15));
+        }
+    }
+    s.finish().unwrap();
+}
+
+#[test]
+fn kill9_at_several_moments() {
+    let _g = SERIAL.write().unwrap_or_else(|e| e.into_inner());
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F64);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+    let exe = std::env::current_exe().unwrap();
+    for (n, ms) in [30u64, 120, 250, 600].into_iter().enumerate() {
+        let path = dir.path().join(format!("k{n}.h5"));
+        // run 1: killed after `ms`; run 2: killed again a bit later; run 3: completes
+        for kill_after in [Some(ms), Some(ms / 2 + 20), None] {
+            let mut child = std::process::Command::new(&exe)
+                .args(["--exact", "child_writer", "--ignored", "--quiet"])
+                .env("BATSTUDY_STORE_CHILD_OUT", &path)
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::null())
+                .spawn()
+                .unwrap();
+            match kill_after {
+                Some(ms) => {
+                    std::thread::sleep(std::time::Duration::from_millis(ms));
+                    child.kill().unwrap(); // SIGKILL
+                    child.wait().unwrap();
+                }
+                None => assert!(child.wait().unwrap().success()),
+            }
+        }
+        assert!(!store::journal_path(&path).exists());
+        assert_eq!(dump(&path), dump(&clean), "kill at {ms} ms");
+    }
+}
+
+#[test]
+fn zip_dim_with_aux_coords() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("zip.h5");
+    let info = zip_study();
+    full_run(&info, &path);
+    let f = hdf5::File::open(&path).unwrap();
+    let c = f
+        .dataset("summary/exit_speed")
+        .unwrap()
+        .attr("coordinates")
+        .unwrap();
+    let c: hdf5::types::VarLenUnicode = c.read_scalar().unwrap();
+    assert_eq!(c.as_str(), "ball_speed bat_preset");
+    assert_eq!(
+        f.dataset("summary/point")
+            .unwrap()
+            .read_raw::<i64>()
+            .unwrap(),
+        vec![0, 1]
+    );
+}
+
+#[test]
+fn merge_shards_equals_single_run_and_refuses_bad_sets() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F32);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+    let mut shards = Vec::new();
+    for k in 0..3 {
+        let p = dir.path().join(format!("shard{k}.h5"));
+        let mut o = opts(false, false);
+        o.run_meta.shard = Some(format!("{}/3", k + 1));
+        let mut s = store::open(&p, &info, &o).unwrap();
+        for i in (0..27).filter(|i| i % 3 == k) {
+            s.write(record(&info, i)).unwrap();
+        }
+        s.finish().unwrap();
+        shards.push(p);
+    }
+    let out = dir.path().join("merged.h5");
+    let sum = store::merge(&out, &info, &shards, &opts(false, false)).unwrap();
+    assert_eq!(sum.n_done, 27);
+    assert_eq!(dump(&out), dump(&clean));
+    let bad = dir.path().join("bad.h5");
+    let e = store::merge(&bad, &info, &shards[..2], &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("lack 9"), "{e}");
+    let twice = [
+        shards[0].clone(),
+        shards[1].clone(),
+        shards[2].clone(),
+        shards[1].clone(),
+    ];
+    let e = store::merge(&bad, &info, &twice, &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("also in"), "{e}");
+    let e = store::merge(&bad, &small_study(vec![]), &shards, &opts(false, false))
+        .err()
+        .unwrap();
+    assert!(matches!(e, StoreError::WrongStudy { .. }), "{e}");
+    assert!(!bad.exists() && !store::journal_path(&bad).exists());
+}
+
+/// A single-point study (no dims) and a study over impact_z only (scalar sweet spot).
+fn small_study(dims: Vec<Dim>) -> StudyInfo {
+    let mut s = study(false, HistoryPrecision::F64);
+    s.study_sha256 = format!("{:064}", dims.len());
+    s.shape.dims = dims;
+    s
+}
+
+#[test]
+fn degenerate_shapes() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let single = small_study(vec![]);
+    let p = dir.path().join("single.h5");
+    full_run(&single, &p);
+    let back = store::read_results(&p).unwrap();
+    assert_eq!(back.records.len(), 1);
+    assert!(store::inspect(&p).unwrap().contains("1 ok, 0 failed"));
+    let only_z = small_study(vec![
+        study(false, HistoryPrecision::F64).shape.dims[1].clone()
+    ]);
+    let p = dir.path().join("z.h5");
+    full_run(&only_z, &p);
+    let f = hdf5::File::open(&p).unwrap();
+    let pos: f64 = f
+        .dataset("sweet_spot/position")
+        .unwrap()
+        .read_scalar()
+        .unwrap();
+    assert!(pos > 0.6 && pos < 0.75, "{pos}");
+}
+
+/// Writes fixtures for tests/python/test_store_layout.py into $BATSTUDY_STORE_FIXTURES.
+#[test]
+#[ignore]
+fn write_python_fixture() {
+    let Ok(dir) = std::env::var("BATSTUDY_STORE_FIXTURES") else {
+        return;
+    };
+    let dir = PathBuf::from(dir);
+    full_run(&study(true, HistoryPrecision::F32), &dir.join("synth.h5"));
+    full_run(&zip_study(), &dir.join("zip.h5"));
+    full_run(&small_study(vec![]), &dir.join("single.h5"));
+    let info = study(false, HistoryPrecision::F64);
+    let p = dir.join("partial.h5");
+    let mut s = store::open(&p, &info, &opts(false, true)).unwrap();
+    for k in 0..5 {
+        s.write(record(&info, k)).unwrap();
+    }
+    s.finish().unwrap();
+}
