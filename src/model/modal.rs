@@ -59,6 +59,34 @@ impl ModalBasis {
                 shapes[(i, col)] = sign * v[i] * inv_sqrt_m[i];
             }
         }
+        if n_rigid == 2 {
+            // Replace the solver's rigid pair (exact only to ~ε·λ_max) by the exact
+            // translation and rotation, and M-orthogonalise the flexible shapes against them,
+            // so that the modal integrator conserves momentum and angular momentum to
+            // round-off (completeness: Σ_n (1ᵀMφ_n) φ_n(z) = 1).
+            let mass = &beam.mass;
+            let total: f64 = mass.iter().sum();
+            let z_cm = mass.iter().zip(&beam.z).map(|(m, z)| m * z).sum::<f64>() / total;
+            let inertia: f64 = mass
+                .iter()
+                .zip(&beam.z)
+                .map(|(m, z)| m * (z - z_cm).powi(2))
+                .sum();
+            for i in 0..n {
+                shapes[(i, 0)] = 1.0 / total.sqrt();
+                shapes[(i, 1)] = (beam.z[i] - z_cm) / inertia.sqrt();
+            }
+            for col in 2..n {
+                for r in 0..2 {
+                    let overlap: f64 = (0..n)
+                        .map(|i| mass[i] * shapes[(i, r)] * shapes[(i, col)])
+                        .sum();
+                    for i in 0..n {
+                        shapes[(i, col)] -= overlap * shapes[(i, r)];
+                    }
+                }
+            }
+        }
         Self {
             omega,
             shapes,

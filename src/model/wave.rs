@@ -447,10 +447,13 @@ fn run_modal(
     let h2 = h * h;
     loop {
         // free propagation of the contact point
-        let mut y_free = 0.0;
-        for j in 0..n {
-            y_free += phi[j] * (st.cos[j] * q[j] + st.sin_over_omega[j] * qd[j]);
-        }
+        let y_free: f64 = phi
+            .iter()
+            .zip(&st.cos)
+            .zip(&st.sin_over_omega)
+            .zip(q.iter().zip(&qd))
+            .map(|(((p, c), so), (qj, qdj))| p * (c * qj + so * qdj))
+            .sum();
         let w_free = w + h * v - h2 * force / (3.0 * m);
         let (new_force, new_hoop_force, new_s);
         match c.hoop {
@@ -489,14 +492,11 @@ fn run_modal(
         } else {
             (force, new_force)
         };
-        for j in 0..n {
-            let (qj, qdj) = (q[j], qd[j]);
-            q[j] =
-                st.cos[j] * qj + st.sin_over_omega[j] * qdj + st.q_start[j] * p0 + st.q_end[j] * p1;
-            qd[j] = st.minus_omega_sin[j] * qj
-                + st.cos[j] * qdj
-                + st.v_start[j] * p0
-                + st.v_end[j] * p1;
+        for (j, (qj, qdj)) in q.iter_mut().zip(qd.iter_mut()).enumerate().take(n) {
+            let (x, xd) = (*qj, *qdj);
+            *qj = st.cos[j] * x + st.sin_over_omega[j] * xd + st.q_start[j] * p0 + st.q_end[j] * p1;
+            *qdj =
+                st.minus_omega_sin[j] * x + st.cos[j] * xd + st.v_start[j] * p0 + st.v_end[j] * p1;
         }
         y_c = y_free + g_start * p0 + g_end * p1;
         w = w_free - h2 * new_force / (6.0 * m);
