@@ -171,37 +171,86 @@ impl ContactLaw {
         self.tangent(s, s * (1.0 + 1e-12)).max(self.tangent(s, 0.0))
     }
 
+    /// Force and its tangent dF/ds together (one `powf`).
+    pub fn force_and_tangent(&self, s: f64, s_max: f64) -> (f64, f64) {
+        if s <= 0.0 {
+            return (0.0, 0.0);
+        }
+        match *self {
+            Self::Elastic { stiffness } => (stiffness * s, stiffness),
+            Self::LinearHysteresis {
+                stiffness,
+                exponent,
+            } => {
+                if s >= s_max {
+                    (stiffness * s, stiffness)
+                } else {
+                    let x = s / s_max;
+                    let r = x.powf(exponent - 1.0);
+                    (stiffness * s_max * r * x, stiffness * exponent * r)
+                }
+            }
+            Self::PowerLaw {
+                k1, alpha, beta, ..
+            } => {
+                let (base, exponent, x, scale) = if s >= s_max {
+                    (k1, alpha, s, 1.0)
+                } else {
+                    (k1 * s_max.powf(alpha), beta, s / s_max, 1.0 / s_max)
+                };
+                let r = x.powf(exponent - 1.0);
+                (base * r * x, base * exponent * r * scale)
+            }
+        }
+    }
+
     /// Solve F = f(S0 − C F) for the force (C > 0): the implicit contact equation of one
-    /// step. Returns (F, s). h(s) = s + C f(s) − S0 increases in s, with its root in (0, S0].
-    pub fn solve_implicit(&self, s0: f64, c: f64, s_max: f64) -> (f64, f64) {
+    /// step. Returns (F, s). h(s) = s + C f(s) − S0 increases in s, with its root in (0, S0];
+    /// safeguarded Newton from the guess `s_guess`.
+    pub fn solve_implicit(&self, s0: f64, c: f64, s_max: f64, s_guess: f64) -> (f64, f64) {
         if s0 <= 0.0 {
             return (0.0, s0);
         }
-        if let Self::Elastic { stiffness } = *self {
-            let s = s0 / (1.0 + c * stiffness);
-            return (stiffness * s, s);
+        match *self {
+            Self::Elastic { stiffness } => {
+                let s = s0 / (1.0 + c * stiffness);
+                return (stiffness * s, s);
+            }
+            Self::LinearHysteresis { stiffness, .. } => {
+                // on the loading line the equation is linear
+                let s = s0 / (1.0 + c * stiffness);
+                if s >= s_max {
+                    return (stiffness * s, s);
+                }
+            }
+            Self::PowerLaw { .. } => {}
         }
         let (mut lo, mut hi) = (0.0, s0);
-        let mut s = s0;
+        let mut s = if s_guess > 0.0 && s_guess < s0 {
+            s_guess
+        } else {
+            s0
+        };
+        let mut f = 0.0;
         for _ in 0..100 {
-            let h = s + c * self.force(s, s_max) - s0;
+            let (force, tangent) = self.force_and_tangent(s, s_max);
+            f = force;
+            let h = s + c * force - s0;
             if h > 0.0 {
                 hi = s;
             } else {
                 lo = s;
             }
-            let slope = 1.0 + c * self.tangent(s, s_max);
-            let mut next = s - h / slope;
+            let mut next = s - h / (1.0 + c * tangent);
             if !(next > lo && next < hi) {
                 next = 0.5 * (lo + hi);
             }
-            if (next - s).abs() <= 1e-15 * s0 {
-                s = next;
+            if (next - s).abs() <= 1e-14 * s0 {
                 break;
             }
             s = next;
         }
-        (self.force(s, s_max), s)
+        (f, s)
     }
 }
 
@@ -246,7 +295,7 @@ mod tests {
     #[test]
     fn implicit_solve_satisfies_its_equation() {
         let law = ContactLaw::from_spec(&BallLaw::default());
-        let (f, s) = law.solve_implicit(0.01, 1e-8, 0.012);
+        let (f, s) = law.solve_implicit(0.01, 1e-8, 0.012, 0.0);
         assert!((s + 1e-8 * f - 0.01).abs() < 1e-15);
         assert!((law.force(s, 0.012) - f).abs() < 1e-9 * f);
     }

@@ -28,6 +28,11 @@ pub const COAST_TIME: f64 = 0.5e-3;
 pub const MAX_TIME: f64 = 20e-3;
 /// Default modal step as a fraction of the contact's time scale 1/ω_c.
 pub const MODAL_STEP_FRACTION: f64 = 0.02;
+/// Modes with ω_n above this multiple of the contact's frequency scale are treated
+/// quasi-statically by the modal integrator (their dynamic correction is ~(ω_c/ω_n)²).
+pub const MODE_CUTOFF_FACTOR: f64 = 50.0;
+/// Fewest modes the modal integrator keeps.
+const MIN_MODES: usize = 12;
 /// Default Verlet step as a fraction of its stability limit.
 pub const VERLET_STEP_FRACTION: f64 = 0.9;
 
@@ -43,6 +48,8 @@ pub struct Diagnostics {
     pub dt: f64,
     pub steps: usize,
     pub segments: usize,
+    /// Modes time-stepped (modal integrator; all segments for Verlet).
+    pub modes: usize,
 }
 
 /// The hoop mode: mass and spring constant.
@@ -64,6 +71,8 @@ struct Collision {
     a: f64,
     lever: f64,
     dt: f64,
+    /// Modes above this angular frequency are treated quasi-statically (modal integrator).
+    mode_cutoff: f64,
 }
 
 /// The contact's angular frequency scale: the stiffest ball tangent on the ball (and hoop).
@@ -205,6 +214,7 @@ struct FinalState {
     hoop_energy: f64,
     hoop_velocity: f64,
     steps: usize,
+    modes: usize,
 }
 
 /// Run one wave-model collision.
@@ -234,6 +244,8 @@ pub fn simulate_wave(
         a,
         lever: spec.impact.z - bat.z_cm,
         dt,
+        mode_cutoff: MODE_CUTOFF_FACTOR
+            * contact_omega(spec, &ContactLaw::from_spec(&spec.ball.law), approach),
     };
     let mut recorder = history.map(Recorder::new);
     let mut contact = Contact::started();
@@ -290,6 +302,7 @@ pub fn simulate_wave(
         dt,
         steps: fin.steps,
         segments: bat.beam.len(),
+        modes: fin.modes,
     };
     Ok((outcome, diagnostics))
 }
@@ -378,19 +391,43 @@ fn run_modal(
     recorder: &mut Option<Recorder>,
 ) -> Result<FinalState, ModelError> {
     let modes = &bat.modes;
-    let n = modes.omega.len();
+    let n_all = modes.omega.len();
     let shapes = &modes.shapes;
-    let phi: Vec<f64> = (0..n)
+    let phi_all: Vec<f64> = (0..n_all)
         .map(|m| (1.0 - c.a) * shapes[(c.k, m)] + c.a * shapes[(c.k + 1, m)])
         .collect();
+    // Modes far above the contact's frequency respond quasi-statically: keep them out of the
+    // time stepping and add their static compliance at the contact point instead (the
+    // mode-acceleration method). Dropping them is exact for the initial state only when they
+    // carry none of it: always for a free–free bat (the rigid rotation is two rigid modes).
+    let n = if bat.modes.n_rigid == 2 || c.omega == 0.0 {
+        modes
+            .omega
+            .partition_point(|&w| w <= c.mode_cutoff)
+            .max(MIN_MODES.min(n_all))
+    } else {
+        n_all
+    };
+    let static_weight: Vec<f64> = (n..n_all)
+        .map(|j| phi_all[j] / modes.omega[j].powi(2))
+        .collect();
+    let g_static: f64 = static_weight
+        .iter()
+        .zip(&phi_all[n..])
+        .map(|(w, p)| w * p)
+        .sum();
+    let phi = &phi_all[..n];
     let h = c.dt;
-    let st = ModalStep::new(&modes.omega, &phi, h);
-    // contact-point compliance to the start/end force over one step
-    let g_start: f64 = st.q_start.iter().zip(&phi).map(|(x, p)| x * p).sum();
-    let g_end: f64 = st.q_end.iter().zip(&phi).map(|(x, p)| x * p).sum();
+    let st = ModalStep::new(&modes.omega[..n], phi, h);
+    // contact-point compliance to the start/end force over one step (high modes: static)
+    let g_start: f64 = st.q_start.iter().zip(phi).map(|(x, p)| x * p).sum();
+    let g_end: f64 = st.q_end.iter().zip(phi).map(|(x, p)| x * p).sum::<f64>() + g_static;
 
     let mut q = vec![0.0; n];
-    let mut qd: Vec<f64> = bat.angular_weight.iter().map(|l| c.omega * l).collect();
+    let mut qd: Vec<f64> = bat.angular_weight[..n]
+        .iter()
+        .map(|l| c.omega * l)
+        .collect();
     let m = c.ball_mass;
     let (mut w, mut v) = (0.0, c.ball_speed);
     let v_contact0 = c.omega * c.lever;
@@ -398,6 +435,7 @@ fn run_modal(
     let (mut force, mut hoop_force) = (0.0, 0.0);
     let mut y_c;
     let mut s = 0.0;
+    let mut s_before = 0.0;
     let mut t = 0.0;
     let mut steps = 0usize;
 
@@ -410,37 +448,55 @@ fn run_modal(
                 .collect()
         })
         .collect();
+    // static displacement of the dropped modes at each requested z per unit contact force
+    let static_at: Vec<f64> = points
+        .iter()
+        .map(|&(k, a, _)| {
+            (n..n_all)
+                .map(|j| {
+                    ((1.0 - a) * shapes[(k, j)] + a * shapes[(k + 1, j)]) * static_weight[j - n]
+                })
+                .sum()
+        })
+        .collect();
     let total_mass = bat.beam.total_mass();
-    let sample = |q: &[f64], rec: &Recorder, force: f64, s: f64, v: f64, hoop_rel: f64| {
-        let dot = |x: &[f64]| x.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
-        Sample {
-            force,
-            compression: s,
-            ball_velocity: v,
-            hoop_displacement: hoop_rel,
-            rigid_translation: if rec.wants_rigid {
-                dot(&bat.momentum_weight) / total_mass
-            } else {
-                0.0
-            },
-            rigid_rotation: if rec.wants_rigid {
-                dot(&bat.angular_weight) / bat.inertia_cm
-            } else {
-                0.0
-            },
-            displacement: if rec.wants_displacement {
-                points
-                    .iter()
-                    .zip(&shape_at)
-                    .map(|(&(_, _, inside), psi)| if inside { dot(psi) } else { f64::NAN })
-                    .collect()
-            } else {
-                Vec::new()
-            },
-        }
-    };
+    let sample =
+        |q: &[f64], rec: &Recorder, force: f64, p_bat: f64, s: f64, v: f64, hoop_rel: f64| {
+            let dot = |x: &[f64]| x.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
+            Sample {
+                force,
+                compression: s,
+                ball_velocity: v,
+                hoop_displacement: hoop_rel,
+                rigid_translation: if rec.wants_rigid {
+                    dot(&bat.momentum_weight) / total_mass
+                } else {
+                    0.0
+                },
+                rigid_rotation: if rec.wants_rigid {
+                    dot(&bat.angular_weight) / bat.inertia_cm
+                } else {
+                    0.0
+                },
+                displacement: if rec.wants_displacement {
+                    points
+                        .iter()
+                        .zip(shape_at.iter().zip(&static_at))
+                        .map(|(&(_, _, inside), (psi, st))| {
+                            if inside {
+                                dot(psi) + st * p_bat
+                            } else {
+                                f64::NAN
+                            }
+                        })
+                        .collect()
+                } else {
+                    Vec::new()
+                },
+            }
+        };
     if let Some(rec) = recorder.as_mut() {
-        let smp = sample(&q, rec, 0.0, 0.0, v, 0.0);
+        let smp = sample(&q, rec, 0.0, 0.0, 0.0, v, 0.0);
         rec.push(0.0, smp);
     }
 
@@ -460,7 +516,9 @@ fn run_modal(
             None => {
                 let s0 = w_free - y_free - g_start * force;
                 let cc = h2 / (6.0 * m) + g_end;
-                let (f1, s1) = c.law.solve_implicit(s0, cc, contact.s_max);
+                let (f1, s1) = c
+                    .law
+                    .solve_implicit(s0, cc, contact.s_max, 2.0 * s - s_before);
                 new_force = f1;
                 new_hoop_force = 0.0;
                 new_s = s1;
@@ -477,7 +535,9 @@ fn run_modal(
                 );
                 let s0 = w_free - x0 + ah * r;
                 let cc = h2 / (6.0 * m) + r * (1.0 - bh);
-                let (f1, s1) = c.law.solve_implicit(s0, cc, contact.s_max);
+                let (f1, s1) = c
+                    .law
+                    .solve_implicit(s0, cc, contact.s_max, 2.0 * s - s_before);
                 new_force = f1;
                 new_hoop_force = ah + bh * f1;
                 new_s = s1;
@@ -502,6 +562,7 @@ fn run_modal(
         w = w_free - h2 * new_force / (6.0 * m);
         v -= h * (force + new_force) / (2.0 * m);
         let s_prev = s;
+        s_before = s;
         s = if c.hoop.is_some() { w - xh } else { w - y_c };
         // s from the solve and from the states agree to round-off; use the solve's in-contact
         let s_track = if new_force > 0.0 { new_s } else { s };
@@ -513,7 +574,8 @@ fn run_modal(
         contact.update(&c.law, t_prev, s_prev, t, s_track, force);
         s = s_track;
         if let Some(rec) = recorder.as_mut() {
-            let smp = sample(&q, rec, force, s.max(0.0), v, xh - y_c);
+            let p_bat = if c.hoop.is_some() { hoop_force } else { force };
+            let smp = sample(&q, rec, force, p_bat, s.max(0.0), v, xh - y_c);
             rec.push(t, smp);
         }
         if contact.finished(t, recorder) {
@@ -530,6 +592,9 @@ fn run_modal(
     for j in 0..n {
         bat_energy += 0.5 * (qd[j] * qd[j] + (modes.omega[j] * q[j]).powi(2));
     }
+    // strain energy of the dropped modes under the final contact load (zero once separated)
+    let p_final = if c.hoop.is_some() { hoop_force } else { force };
+    bat_energy += 0.5 * g_static * p_final * p_final;
     let dot = |x: &[f64]| x.iter().zip(&qd).map(|(a, b)| a * b).sum::<f64>();
     let hoop_energy = c.hoop.map_or(0.0, |hp| {
         0.5 * hp.mass * vh * vh + 0.5 * hp.stiffness * (xh - y_c).powi(2)
@@ -542,6 +607,7 @@ fn run_modal(
         hoop_energy,
         hoop_velocity: if c.hoop.is_some() { vh } else { 0.0 },
         steps,
+        modes: n,
     })
 }
 
@@ -683,5 +749,6 @@ fn run_verlet(
         hoop_energy,
         hoop_velocity: if c.hoop.is_some() { vh } else { 0.0 },
         steps,
+        modes: n,
     })
 }
