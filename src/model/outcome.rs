@@ -95,13 +95,17 @@ pub struct EnergyPartition {
 pub struct Outcome {
     /// Ball speed after separation, m/s, CM frame, positive back toward the pitcher.
     pub exit_speed: f64,
-    /// Exit speed in the lab frame (bat CM moving at `swing.cm_speed`), m/s.
+    /// Exit speed in the lab frame (bat CM moving toward the pitcher at `swing.cm_speed`):
+    /// `exit_speed + swing.cm_speed`, m/s.
     pub exit_speed_lab: f64,
-    /// Collision efficiency e_A (Nathan; ASTM F2219), dimensionless.
+    /// Collision efficiency e_A (Nathan; ASTM F2219), dimensionless. From
+    /// v_exit = e_A v_pitch + (1 + e_A) v_bat with v_pitch = `ball.speed` and the impact
+    /// point's speed toward the pitcher v_bat = −ω (z_imp − z_cm):
+    /// e_A = (exit_speed + ω l) / approach_speed (frame-independent).
     pub collision_efficiency: f64,
     /// Relative approach speed at the impact point, m/s.
     pub approach_speed: f64,
-    /// Contact duration, s.
+    /// Duration of the first contact (first touch to the force returning to zero), s.
     pub contact_time: f64,
     /// Peak contact force, N.
     pub peak_force: f64,
@@ -111,7 +115,8 @@ pub struct Outcome {
     pub impulse: f64,
     /// Energy partition, J.
     pub energy: EnergyPartition,
-    /// The ball came back into contact after first separating (within the simulated time).
+    /// The ball came back into contact after first separating (within the simulated time:
+    /// 0.5 ms after each separation, or longer if histories ask for it).
     pub recontact: bool,
     /// Requested histories.
     pub history: Option<History>,

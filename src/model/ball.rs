@@ -1,0 +1,302 @@
+//! The ball's force–compression laws (PHYSICS.md "The ball").
+//!
+//! Every lossy law unloads along a lower branch chosen so that a ball on a rigid wall
+//! gives back exactly e² of the energy stored at maximum compression.
+//! Given the largest compression so far `s_max`, each law is one continuous function of the
+//! compression that increases monotonically (unloading branch below s_max, loading above),
+//! which is what makes the integrators' implicit contact solve well posed.
+
+use super::spec::{BallLaw, BallLawKind};
+
+/// A force law F(s; s_max) ≥ 0 for compression s (> 0 in contact).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactLaw {
+    /// Loading F = k s; unloading F = k s_max (s/s_max)^p, p = 2/e² − 1 (the paper's, with
+    /// the unloading branch fixed by the COR).
+    LinearHysteresis { stiffness: f64, exponent: f64 },
+    /// Nathan (2000): loading F = k₁ s^α, unloading F = k₂ s^β, β = (1 + α)/e² − 1,
+    /// k₂ = k₁ s_max^(α−β) by continuity at s_max.
+    PowerLaw {
+        k1: f64,
+        alpha: f64,
+        beta: f64,
+        cor: f64,
+    },
+    /// F = k s both ways (no loss).
+    Elastic { stiffness: f64 },
+}
+
+impl ContactLaw {
+    /// The law a spec asks for.
+    pub fn from_spec(law: &BallLaw) -> Self {
+        match law.kind {
+            BallLawKind::LinearHysteresis => Self::LinearHysteresis {
+                stiffness: law.stiffness,
+                exponent: 2.0 / (law.cor * law.cor) - 1.0,
+            },
+            BallLawKind::PowerLaw => Self::PowerLaw {
+                k1: law.k1,
+                alpha: law.alpha,
+                beta: (1.0 + law.alpha) / (law.cor * law.cor) - 1.0,
+                cor: law.cor,
+            },
+            BallLawKind::Elastic => Self::Elastic {
+                stiffness: law.stiffness,
+            },
+        }
+    }
+
+    /// Force at compression `s` after a largest compression `s_max` (0 when unloaded).
+    pub fn force(&self, s: f64, s_max: f64) -> f64 {
+        if s <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            Self::Elastic { stiffness } => stiffness * s,
+            Self::LinearHysteresis {
+                stiffness,
+                exponent,
+            } => {
+                if s >= s_max {
+                    stiffness * s
+                } else {
+                    stiffness * s_max * (s / s_max).powf(exponent)
+                }
+            }
+            Self::PowerLaw {
+                k1, alpha, beta, ..
+            } => {
+                if s >= s_max {
+                    k1 * s.powf(alpha)
+                } else {
+                    k1 * s_max.powf(alpha) * (s / s_max).powf(beta)
+                }
+            }
+        }
+    }
+
+    /// dF/ds at compression `s` (the branch that applies at s).
+    pub fn tangent(&self, s: f64, s_max: f64) -> f64 {
+        if s <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            Self::Elastic { stiffness } => stiffness,
+            Self::LinearHysteresis {
+                stiffness,
+                exponent,
+            } => {
+                if s >= s_max {
+                    stiffness
+                } else {
+                    stiffness * exponent * (s / s_max).powf(exponent - 1.0)
+                }
+            }
+            Self::PowerLaw {
+                k1, alpha, beta, ..
+            } => {
+                if s >= s_max {
+                    k1 * alpha * s.powf(alpha - 1.0)
+                } else {
+                    k1 * s_max.powf(alpha - 1.0) * beta * (s / s_max).powf(beta - 1.0)
+                }
+            }
+        }
+    }
+
+    /// Work done compressing the ball from 0 to `s` along the loading branch, J.
+    pub fn loading_work(&self, s: f64) -> f64 {
+        match *self {
+            Self::Elastic { stiffness } | Self::LinearHysteresis { stiffness, .. } => {
+                0.5 * stiffness * s * s
+            }
+            Self::PowerLaw { k1, alpha, .. } => k1 * s.powf(alpha + 1.0) / (alpha + 1.0),
+        }
+    }
+
+    /// Energy lost in one full loop that reached `s_max`, J: (1 − e²) of the loading work.
+    pub fn loop_loss(&self, s_max: f64) -> f64 {
+        let e2 = match *self {
+            Self::Elastic { .. } => 1.0,
+            Self::LinearHysteresis { exponent, .. } => 2.0 / (exponent + 1.0),
+            Self::PowerLaw { cor, .. } => cor * cor,
+        };
+        (1.0 - e2) * self.loading_work(s_max)
+    }
+
+    /// Energy stored in the ball at compression `s` after largest compression `s_max`, J:
+    /// the loading work up to s_max less what the unloading branch gives back down to s.
+    pub fn stored_energy(&self, s: f64, s_max: f64) -> f64 {
+        if s <= 0.0 {
+            return 0.0;
+        }
+        if s >= s_max {
+            return self.loading_work(s);
+        }
+        let given_back = match *self {
+            Self::Elastic { stiffness } => 0.5 * stiffness * (s_max * s_max - s * s),
+            Self::LinearHysteresis {
+                stiffness,
+                exponent,
+            } => {
+                stiffness * s_max * s_max / (exponent + 1.0)
+                    * (1.0 - (s / s_max).powf(exponent + 1.0))
+            }
+            Self::PowerLaw {
+                k1, alpha, beta, ..
+            } => k1 * s_max.powf(alpha + 1.0) / (beta + 1.0) * (1.0 - (s / s_max).powf(beta + 1.0)),
+        };
+        self.loading_work(s_max) - given_back
+    }
+
+    /// Upper bound of the largest compression for an approach speed `v` and ball mass `m`:
+    /// all the ball's kinetic energy stored on a rigid wall.
+    pub fn wall_compression(&self, mass: f64, v: f64) -> f64 {
+        let energy = 0.5 * mass * v * v;
+        match *self {
+            Self::Elastic { stiffness } | Self::LinearHysteresis { stiffness, .. } => {
+                (2.0 * energy / stiffness).sqrt()
+            }
+            Self::PowerLaw { k1, alpha, .. } => {
+                (energy * (alpha + 1.0) / k1).powf(1.0 / (alpha + 1.0))
+            }
+        }
+    }
+
+    /// Largest tangent stiffness met in a collision at approach speed `v` (bounded by the
+    /// rigid-wall compression), N/m: sets the contact's time scale and stability limits.
+    pub fn max_tangent(&self, mass: f64, v: f64) -> f64 {
+        let s = self.wall_compression(mass, v);
+        // just below s_max on the unloading branch, and at s_max on the loading one
+        self.tangent(s, s * (1.0 + 1e-12)).max(self.tangent(s, 0.0))
+    }
+
+    /// Force and its tangent dF/ds together (one `powf`).
+    pub fn force_and_tangent(&self, s: f64, s_max: f64) -> (f64, f64) {
+        if s <= 0.0 {
+            return (0.0, 0.0);
+        }
+        match *self {
+            Self::Elastic { stiffness } => (stiffness * s, stiffness),
+            Self::LinearHysteresis {
+                stiffness,
+                exponent,
+            } => {
+                if s >= s_max {
+                    (stiffness * s, stiffness)
+                } else {
+                    let x = s / s_max;
+                    let r = x.powf(exponent - 1.0);
+                    (stiffness * s_max * r * x, stiffness * exponent * r)
+                }
+            }
+            Self::PowerLaw {
+                k1, alpha, beta, ..
+            } => {
+                let (base, exponent, x, scale) = if s >= s_max {
+                    (k1, alpha, s, 1.0)
+                } else {
+                    (k1 * s_max.powf(alpha), beta, s / s_max, 1.0 / s_max)
+                };
+                let r = x.powf(exponent - 1.0);
+                (base * r * x, base * exponent * r * scale)
+            }
+        }
+    }
+
+    /// Solve F = f(S0 − C F) for the force (C > 0): the implicit contact equation of one
+    /// step. Returns (F, s). h(s) = s + C f(s) − S0 increases in s, with its root in (0, S0];
+    /// safeguarded Newton from the guess `s_guess`.
+    pub fn solve_implicit(&self, s0: f64, c: f64, s_max: f64, s_guess: f64) -> (f64, f64) {
+        if s0 <= 0.0 {
+            return (0.0, s0);
+        }
+        match *self {
+            Self::Elastic { stiffness } => {
+                let s = s0 / (1.0 + c * stiffness);
+                return (stiffness * s, s);
+            }
+            Self::LinearHysteresis { stiffness, .. } => {
+                // on the loading line the equation is linear
+                let s = s0 / (1.0 + c * stiffness);
+                if s >= s_max {
+                    return (stiffness * s, s);
+                }
+            }
+            Self::PowerLaw { .. } => {}
+        }
+        let (mut lo, mut hi) = (0.0, s0);
+        let mut s = if s_guess > 0.0 && s_guess < s0 {
+            s_guess
+        } else {
+            s0
+        };
+        let mut f = 0.0;
+        for _ in 0..100 {
+            let (force, tangent) = self.force_and_tangent(s, s_max);
+            f = force;
+            let h = s + c * force - s0;
+            if h > 0.0 {
+                hi = s;
+            } else {
+                lo = s;
+            }
+            let mut next = s - h / (1.0 + c * tangent);
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if (next - s).abs() <= 1e-14 * s0 {
+                break;
+            }
+            s = next;
+        }
+        (f, s)
+    }
+}
+
+/// Exit speed of a ball fired at `speed` into a rigid, immovable wall: the ball's own
+/// equation m s̈ = −F(s) integrated with small velocity-Verlet steps (independent of the
+/// bat integrators). Returns the rebound speed (positive = away from the wall).
+pub fn wall_rebound_speed(law: &ContactLaw, mass: f64, speed: f64) -> f64 {
+    let s_peak = law.wall_compression(mass, speed);
+    let steps_per_contact = 200_000.0;
+    let dt = 4.0 * s_peak / speed / steps_per_contact;
+    let (mut s, mut v, mut s_max) = (0.0f64, speed, 0.0f64);
+    let mut a = 0.0;
+    for _ in 0..(20.0 * steps_per_contact) as usize {
+        v += 0.5 * dt * a;
+        s += dt * v;
+        let f = law.force(s, s_max);
+        s_max = s_max.max(s);
+        a = -f / mass;
+        v += 0.5 * dt * a;
+        if s <= 0.0 && v < 0.0 {
+            break;
+        }
+    }
+    -v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn branches_meet_at_s_max() {
+        let law = ContactLaw::from_spec(&BallLaw {
+            kind: BallLawKind::PowerLaw,
+            ..BallLaw::default()
+        });
+        let s_max = 0.01;
+        let below = law.force(s_max * (1.0 - 1e-12), s_max);
+        assert!((below / law.force(s_max, s_max) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn implicit_solve_satisfies_its_equation() {
+        let law = ContactLaw::from_spec(&BallLaw::default());
+        let (f, s) = law.solve_implicit(0.01, 1e-8, 0.012, 0.0);
+        assert!((s + 1e-8 * f - 0.01).abs() < 1e-15);
+        assert!((law.force(s, 0.012) - f).abs() < 1e-9 * f);
+    }
+}

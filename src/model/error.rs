@@ -1,0 +1,54 @@
+//! Errors of the physics layer. Each carries the offending numbers so that a study's
+//! error report can say exactly what to change.
+
+use thiserror::Error;
+
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ModelError {
+    /// A parameter outside its physical range. `path` is the dotted spec path.
+    #[error("{path} = {value} is outside the allowed range {allowed}")]
+    OutOfRange {
+        path: String,
+        value: f64,
+        allowed: String,
+    },
+    /// A shell wall that would leave no hollow (or a negative inner radius).
+    #[error(
+        "bat.shell.thickness: shell thickness {thickness} m exceeds the outer radius {radius} m at z = {z} m"
+    )]
+    ShellTooThick { thickness: f64, radius: f64, z: f64 },
+    /// A malformed profile (knots not increasing, radius not positive, ...).
+    #[error("bat.profile: {0}")]
+    Profile(String),
+    /// A CSV profile must be loaded into knots by the study layer before it reaches the model.
+    #[error("bat.profile: CSV profile {0:?} was not loaded into knots before simulation (the study layer must resolve it)")]
+    UnresolvedCsvProfile(String),
+    /// `bat.length` shorter than the profile.
+    #[error("bat.length = {length} m is shorter than the profile ({profile_length} m); only extension is supported")]
+    BatShorterThanProfile { length: f64, profile_length: f64 },
+    /// A time step above the chosen integrator's stability (or resolution) limit.
+    #[error("numerics.dt = {dt} s exceeds the {integrator} integrator's limit of {limit} s for this collision")]
+    TimeStepTooLarge {
+        dt: f64,
+        limit: f64,
+        integrator: &'static str,
+    },
+    /// The ball never reaches the bat (non-positive approach speed at the impact point).
+    #[error("approach speed at the impact point is {approach_speed} m/s (ball.speed − swing.omega·(impact.z − z_cm)); it must be > 0 for a collision")]
+    NoApproach { approach_speed: f64 },
+    /// The ball was still in contact when the bounded simulation time ran out.
+    #[error("ball still in contact after {t} s (simulation bound); the bat may be too soft for this ball")]
+    NoSeparation { t: f64 },
+    /// A feature not available (yet).
+    #[error("unsupported: {0}")]
+    Unsupported(&'static str),
+}
+
+/// Shorthand for an out-of-range error.
+pub(crate) fn out_of_range(path: &str, value: f64, allowed: &str) -> ModelError {
+    ModelError::OutOfRange {
+        path: path.to_string(),
+        value,
+        allowed: allowed.to_string(),
+    }
+}

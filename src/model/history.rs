@@ -1,0 +1,108 @@
+//! Sampling time histories on the request's grid t = k·interval from integrator steps,
+//! by linear interpolation between the states at the ends of each step.
+
+use super::outcome::{History, HistoryField, HistoryRequest};
+
+/// The recordable quantities at one instant.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Sample {
+    pub force: f64,
+    pub compression: f64,
+    pub ball_velocity: f64,
+    pub hoop_displacement: f64,
+    pub rigid_translation: f64,
+    pub rigid_rotation: f64,
+    /// Bat displacement at the requested z (NaN beyond the bat).
+    pub displacement: Vec<f64>,
+}
+
+/// Collects samples as the integrator advances.
+pub(crate) struct Recorder<'r> {
+    request: &'r HistoryRequest,
+    next: usize,
+    previous: Option<(f64, Sample)>,
+    history: History,
+    pub wants_displacement: bool,
+    pub wants_rigid: bool,
+}
+
+impl<'r> Recorder<'r> {
+    pub fn new(request: &'r HistoryRequest) -> Self {
+        let has = |f: HistoryField| request.fields.contains(&f);
+        Self {
+            request,
+            next: 0,
+            previous: None,
+            history: History::default(),
+            wants_displacement: has(HistoryField::Displacement),
+            wants_rigid: has(HistoryField::RigidMotion),
+        }
+    }
+
+    pub fn request(&self) -> &'r HistoryRequest {
+        self.request
+    }
+
+    pub fn done(&self) -> bool {
+        self.next >= self.request.n_samples
+    }
+
+    /// Record the state at time `t` (non-decreasing); emits every sample time up to `t`.
+    pub fn push(&mut self, t: f64, sample: Sample) {
+        while !self.done() {
+            let ts = self.next as f64 * self.request.interval;
+            if ts > t * (1.0 + 1e-12) {
+                break;
+            }
+            let interpolated = match &self.previous {
+                Some((t0, s0)) if t > *t0 => {
+                    let w = ((ts - t0) / (t - t0)).clamp(0.0, 1.0);
+                    lerp(s0, &sample, w)
+                }
+                _ => sample.clone(),
+            };
+            self.emit(&interpolated);
+            self.next += 1;
+        }
+        self.previous = Some((t, sample));
+    }
+
+    fn emit(&mut self, s: &Sample) {
+        let h = &mut self.history;
+        for field in &self.request.fields {
+            match field {
+                HistoryField::Force => h.force.push(s.force),
+                HistoryField::Compression => h.compression.push(s.compression),
+                HistoryField::BallVelocity => h.ball_velocity.push(s.ball_velocity),
+                HistoryField::Displacement => h.displacement.extend_from_slice(&s.displacement),
+                HistoryField::RigidMotion => {
+                    h.rigid_translation.push(s.rigid_translation);
+                    h.rigid_rotation.push(s.rigid_rotation);
+                }
+                HistoryField::HoopDisplacement => h.hoop_displacement.push(s.hoop_displacement),
+            }
+        }
+    }
+
+    pub fn finish(self) -> History {
+        self.history
+    }
+}
+
+fn lerp(a: &Sample, b: &Sample, w: f64) -> Sample {
+    let l = |x: f64, y: f64| x + w * (y - x);
+    Sample {
+        force: l(a.force, b.force),
+        compression: l(a.compression, b.compression),
+        ball_velocity: l(a.ball_velocity, b.ball_velocity),
+        hoop_displacement: l(a.hoop_displacement, b.hoop_displacement),
+        rigid_translation: l(a.rigid_translation, b.rigid_translation),
+        rigid_rotation: l(a.rigid_rotation, b.rigid_rotation),
+        displacement: a
+            .displacement
+            .iter()
+            .zip(&b.displacement)
+            .map(|(x, y)| l(*x, *y))
+            .collect(),
+    }
+}

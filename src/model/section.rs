@@ -1,0 +1,240 @@
+//! A bat resolved to numbers: outer and inner radius, material and fill along z, and the
+//! cross-section properties (A, I, mass per length) with exact-enough integrals over z.
+
+use super::error::{out_of_range, ModelError};
+use super::profile::{handle_factor, Profile};
+use super::spec::{BatPreset, BatSpec, HandleSpec, ProfileSpec};
+
+/// Wood (R161, Nathan 2000).
+pub const WOOD_DENSITY: f64 = 649.0;
+pub const WOOD_YOUNGS_MODULUS: f64 = 1.814e10;
+/// Aluminum (the paper).
+pub const ALUMINUM_DENSITY: f64 = 2700.0;
+pub const ALUMINUM_YOUNGS_MODULUS: f64 = 6.9e10;
+pub const ALUMINUM_SHELL: f64 = 0.003;
+/// Corked bat (the paper): 1 cm shell from z = 0.55 m, cork 240 kg/m³.
+pub const CORKED_SHELL: f64 = 0.01;
+pub const CORKED_SHELL_FROM: f64 = 0.55;
+pub const CORK_DENSITY: f64 = 240.0;
+
+/// Solid circular section: area πR².
+pub fn solid_area(r: f64) -> f64 {
+    std::f64::consts::PI * r * r
+}
+
+/// Hollow section (outer R, inner r): area π(R² − r²).
+pub fn hollow_area(outer: f64, inner: f64) -> f64 {
+    std::f64::consts::PI * (outer * outer - inner * inner)
+}
+
+/// Hollow section second moment of area π(R⁴ − r⁴)/4 (r = 0: solid).
+pub fn hollow_second_moment(outer: f64, inner: f64) -> f64 {
+    std::f64::consts::PI * (outer.powi(4) - inner.powi(4)) / 4.0
+}
+
+/// Every number of a bat's geometry and material, presets and overrides applied.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatGeometry {
+    pub profile: Profile,
+    pub handle: HandleSpec,
+    /// Overall length, m (≥ the profile's; beyond it the barrel continues at its end radius).
+    pub length: f64,
+    pub density: f64,
+    pub youngs_modulus: f64,
+    /// (wall thickness, start z) of the hollow part, if any.
+    pub shell: Option<(f64, f64)>,
+    /// Density of the filling of the hollow part, kg/m³ (0: empty).
+    pub fill_density: f64,
+}
+
+impl BatGeometry {
+    /// Apply the preset, then the spec's overrides, and check the result.
+    pub fn resolve(bat: &BatSpec) -> Result<Self, ModelError> {
+        let profile = match &bat.profile {
+            None => Profile::r161(),
+            Some(ProfileSpec::Knots(k)) => Profile::from_knots(k)?,
+            Some(ProfileSpec::Csv(path)) => {
+                return Err(ModelError::UnresolvedCsvProfile(path.clone()))
+            }
+        };
+        let (density, youngs, shell, fill) = match bat.preset {
+            BatPreset::R161 => (WOOD_DENSITY, WOOD_YOUNGS_MODULUS, None, 0.0),
+            BatPreset::Aluminum => (
+                ALUMINUM_DENSITY,
+                ALUMINUM_YOUNGS_MODULUS,
+                Some((ALUMINUM_SHELL, 0.0)),
+                0.0,
+            ),
+            BatPreset::Corked => (
+                WOOD_DENSITY,
+                WOOD_YOUNGS_MODULUS,
+                Some((CORKED_SHELL, CORKED_SHELL_FROM)),
+                CORK_DENSITY,
+            ),
+        };
+        let length = bat.length.unwrap_or(profile.length());
+        if !(length > 0.0 && length.is_finite()) {
+            return Err(out_of_range("bat.length", length, "(0, ∞) m"));
+        }
+        if length < profile.length() * (1.0 - 1e-12) {
+            return Err(ModelError::BatShorterThanProfile {
+                length,
+                profile_length: profile.length(),
+            });
+        }
+        let geometry = Self {
+            profile,
+            handle: bat.handle.clone(),
+            length,
+            density: bat.material.density.unwrap_or(density),
+            youngs_modulus: bat.material.youngs_modulus.unwrap_or(youngs),
+            shell: bat.shell.as_ref().map(|s| (s.thickness, s.from)).or(shell),
+            fill_density: bat.fill.as_ref().map(|f| f.density).unwrap_or(fill),
+        };
+        geometry.check()?;
+        Ok(geometry)
+    }
+
+    fn check(&self) -> Result<(), ModelError> {
+        let positive = |path: &str, v: f64| {
+            if v > 0.0 && v.is_finite() {
+                Ok(())
+            } else {
+                Err(out_of_range(path, v, "(0, ∞)"))
+            }
+        };
+        positive("bat.material.density", self.density)?;
+        positive("bat.material.youngs_modulus", self.youngs_modulus)?;
+        positive("bat.handle.radius_scale", self.handle.radius_scale)?;
+        if !(self.handle.end >= 0.0 && self.handle.end.is_finite()) {
+            return Err(out_of_range("bat.handle.end", self.handle.end, "[0, ∞) m"));
+        }
+        if !(self.handle.blend >= 0.0 && self.handle.blend.is_finite()) {
+            return Err(out_of_range(
+                "bat.handle.blend",
+                self.handle.blend,
+                "[0, ∞) m",
+            ));
+        }
+        if !(self.fill_density >= 0.0 && self.fill_density.is_finite()) {
+            return Err(out_of_range(
+                "bat.fill.density",
+                self.fill_density,
+                "[0, ∞) kg/m³ (0: no fill)",
+            ));
+        }
+        if let Some((thickness, from)) = self.shell {
+            positive("bat.shell.thickness", thickness)?;
+            if !(from >= 0.0 && from < self.length) {
+                return Err(out_of_range(
+                    "bat.shell.from",
+                    from,
+                    &format!("[0, {}) m (the bat's length)", self.length),
+                ));
+            }
+            // R is piecewise linear between breakpoints, so its minimum over the hollow
+            // part sits at one of them.
+            for z in self.breakpoints() {
+                if z >= from {
+                    let r = self.outer_radius(z);
+                    if thickness >= r {
+                        return Err(ModelError::ShellTooThick {
+                            thickness,
+                            radius: r,
+                            z,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Outer radius R(z), m.
+    pub fn outer_radius(&self, z: f64) -> f64 {
+        self.profile.radius(z) * handle_factor(&self.handle, z)
+    }
+
+    /// Inner radius r(z) (0 where solid), m.
+    pub fn inner_radius(&self, z: f64) -> f64 {
+        match self.shell {
+            Some((thickness, from)) if z >= from => (self.outer_radius(z) - thickness).max(0.0),
+            _ => 0.0,
+        }
+    }
+
+    /// Mass per unit length ρ·A + ρ_fill·π r², kg/m.
+    pub fn mass_per_length(&self, z: f64) -> f64 {
+        let (outer, inner) = (self.outer_radius(z), self.inner_radius(z));
+        self.density * hollow_area(outer, inner) + self.fill_density * solid_area(inner)
+    }
+
+    /// Second moment of area of the load-bearing wall (the fill adds no stiffness), m⁴.
+    pub fn second_moment(&self, z: f64) -> f64 {
+        hollow_second_moment(self.outer_radius(z), self.inner_radius(z))
+    }
+
+    /// Positions where the integrands' pieces change (profile knots, handle blend, shell
+    /// start, ends), sorted, inside [0, L].
+    pub fn breakpoints(&self) -> Vec<f64> {
+        let mut b: Vec<f64> = self.profile.knots_z().to_vec();
+        b.push(self.handle.end);
+        b.push(self.handle.end + self.handle.blend);
+        if let Some((_, from)) = self.shell {
+            b.push(from);
+        }
+        b.push(0.0);
+        b.push(self.length);
+        b.retain(|&z| (0.0..=self.length).contains(&z));
+        b.sort_by(f64::total_cmp);
+        b.dedup_by(|a, c| (*a - *c).abs() < 1e-12);
+        b
+    }
+
+    /// ∫ₐᵇ f(z) dz by 3-point Gauss–Legendre on every piece between breakpoints (exact for
+    /// the polynomial pieces of A(z) and nearly so for I(z)).
+    pub fn integrate(&self, a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
+        let mut cuts = vec![a];
+        cuts.extend(self.breakpoints().into_iter().filter(|&z| z > a && z < b));
+        cuts.push(b);
+        let x = (0.6f64).sqrt();
+        let mut sum = 0.0;
+        for w in cuts.windows(2) {
+            let (lo, hi) = (w[0], w[1]);
+            let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+            // the shell start is a jump: nudge evaluation points off it
+            sum += half
+                * (5.0 / 9.0 * f(mid - half * x)
+                    + 8.0 / 9.0 * f(mid)
+                    + 5.0 / 9.0 * f(mid + half * x));
+        }
+        sum
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hollow_reduces_to_solid() {
+        let r = 0.03;
+        assert_eq!(hollow_area(r, 0.0), solid_area(r));
+        assert!(
+            (hollow_second_moment(r, 0.0) - std::f64::consts::PI * r.powi(4) / 4.0).abs() < 1e-20
+        );
+    }
+
+    #[test]
+    fn shell_thicker_than_handle_is_an_error() {
+        let bat = BatSpec {
+            shell: Some(crate::model::spec::ShellSpec {
+                thickness: 0.02,
+                from: 0.0,
+            }),
+            ..BatSpec::default()
+        };
+        let err = BatGeometry::resolve(&bat).unwrap_err();
+        assert!(matches!(err, ModelError::ShellTooThick { .. }), "{err}");
+    }
+}
