@@ -7,7 +7,8 @@
 
 use crate::model::outcome::HistoryPrecision;
 use crate::results::StudyInfo;
-use crate::run::{self, RunOptions, RunReport, Shard, Simulator, Sink};
+use crate::run::{self, ModelSimulator, RunOptions, RunReport, Shard, Simulator, Sink, StoreSink};
+use crate::store;
 use crate::study::checks::bat_length;
 use crate::study::output::{check_output, Existing};
 use crate::study::{self, LoadOptions, Study, StudyError, DEFAULT_MAX_POINTS};
@@ -198,14 +199,16 @@ pub fn run_command(cmd: Command) -> i32 {
             print!("{}", study::schema_json());
             EXIT_OK
         }
-        Command::Inspect { file } => {
-            // TODO(integration): call the store's inspect (study, counts by status, sweet spots).
-            eprintln!(
-                "error: `inspect {}`: this build has no HDF5 store yet (integration pending)",
-                file.display()
-            );
-            EXIT_RUN_FAILED
-        }
+        Command::Inspect { file } => match store::inspect(&file) {
+            Ok(text) => {
+                print!("{text}");
+                EXIT_OK
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                EXIT_BAD_INPUT
+            }
+        },
     }
 }
 
@@ -384,14 +387,29 @@ fn cmd_run(a: &RunArgs) -> i32 {
             eprintln!("\ninterrupt: finishing the points in flight…");
         });
     }
-    // TODO(integration): the real physics and store:
-    //   run_with(&settings, &model::Simulator, |path, info| store::open(path, info, opts), &stop)
-    let _ = &settings;
-    eprintln!(
-        "error: this build has no simulator/HDF5 store yet (integration pending); the study is valid: {} points",
-        settings.study.plan.n_points()
-    );
-    EXIT_RUN_FAILED
+    let store_options = |existing: Existing| store::StoreOptions {
+        resume: existing == Existing::Resume,
+        force: existing == Existing::Overwrite,
+        run_meta: store::RunMeta {
+            threads: settings.options.jobs,
+            shard: settings
+                .options
+                .shard
+                .map(|s| format!("{}/{}", s.index, s.count)),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    run_with(
+        &settings,
+        &ModelSimulator,
+        |path, info, existing| {
+            store::open(path, info, &store_options(existing))
+                .map(StoreSink::new)
+                .map_err(|e| e.to_string())
+        },
+        &stop,
+    )
 }
 
 /// The run itself, against any simulator and sink (`open` creates the sink for the

@@ -20,8 +20,11 @@ pub struct SweetSpot {
 /// Find the sweet spot of samples `exit_speed[i]` at increasing positions `z[i]`.
 /// Non-finite samples (failed points) are skipped. The maximum is refined by the parabola
 /// through the best sample and its two neighbours; the zone edges by linear interpolation.
-/// Returns None with fewer than one finite sample.
+/// Returns None without a finite sample, or when `z` does not increase or the lengths differ.
 pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
+    if z.len() != exit_speed.len() || z.windows(2).any(|w| w[1] <= w[0]) {
+        return None;
+    }
     let (z, v): (Vec<f64>, Vec<f64>) = z
         .iter()
         .zip(exit_speed)
@@ -111,5 +114,48 @@ mod tests {
         // Left edge interpolated between 0.5 (20) and 0.7 (24): 23.5 at 0.675.
         assert!((s.width - (0.8 - 0.675)).abs() < 1e-12);
         assert!(find_sweet_spot(&[0.5], &[f64::NAN]).is_none());
+    }
+    fn grid(a: f64, b: f64, n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+            .collect()
+    }
+
+    #[test]
+    fn width_of_a_tent_is_exact() {
+        // v = 25 − 10 |z − 0.7| sampled with a node at the peak: width 2 × 0.1 (analytic).
+        let z = grid(0.5, 0.9, 41);
+        let v: Vec<f64> = z.iter().map(|z| 25.0 - 10.0 * (z - 0.7).abs()).collect();
+        let s = find_sweet_spot(&z, &v).unwrap();
+        assert!((s.position - 0.7).abs() < 1e-9 && (s.exit_speed - 25.0).abs() < 1e-9);
+        assert!((s.width - 0.2).abs() < 1e-9, "{s:?}");
+    }
+
+    #[test]
+    fn gaussian_peak_converges() {
+        // v = 20 + 5 exp(−((z − 0.68)/0.1)²): the zone ends where exp(…) = 0.8 (analytic).
+        let z = grid(0.4, 0.85, 400);
+        let v: Vec<f64> = z
+            .iter()
+            .map(|z| 20.0 + 5.0 * (-((z - 0.68) / 0.1f64).powi(2)).exp())
+            .collect();
+        let s = find_sweet_spot(&z, &v).unwrap();
+        let exact_width = 2.0 * 0.1 * (-(0.8f64).ln()).sqrt();
+        assert!((s.position - 0.68).abs() < 1e-5, "{s:?}");
+        assert!((s.exit_speed - 25.0).abs() < 1e-6, "{s:?}");
+        assert!((s.width - exact_width).abs() < 1e-5, "{s:?}");
+    }
+
+    #[test]
+    fn monotone_flat_and_bad_input() {
+        let z = [0.1, 0.2, 0.3];
+        let s = find_sweet_spot(&z, &[1.0, 2.0, 3.0]).unwrap();
+        assert_eq!((s.position, s.exit_speed), (0.3, 3.0));
+        assert!((s.width - 0.1).abs() < 1e-12);
+        let flat = find_sweet_spot(&z, &[2.0, 2.0, 2.0]).unwrap();
+        assert!((flat.width - 0.2).abs() < 1e-12);
+        assert_eq!(find_sweet_spot(&[], &[]), None);
+        assert_eq!(find_sweet_spot(&z, &[1.0, 2.0]), None);
+        assert_eq!(find_sweet_spot(&[0.2, 0.1], &[1.0, 2.0]), None);
     }
 }

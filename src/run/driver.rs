@@ -17,6 +17,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
+/// How long the writer waits for a point before letting the sink flush what it holds.
+const IDLE_FLUSH: std::time::Duration = std::time::Duration::from_millis(50);
+
 /// How to run.
 #[derive(Debug, Clone)]
 pub struct RunOptions {
@@ -224,7 +227,18 @@ pub fn run_plan<S: Simulator, K: Sink>(
             .name("batstudy-writer".into())
             .spawn_scoped(scope, move || -> Result<Tally, String> {
                 let (mut ok, mut failed, mut failures) = (0usize, 0usize, Vec::new());
-                for rec in rx {
+                loop {
+                    let rec = match rx.recv_timeout(IDLE_FLUSH) {
+                        Ok(rec) => rec,
+                        Err(crossbeam_channel::RecvTimeoutError::Timeout) => {
+                            writer_sink
+                                .lock()
+                                .unwrap_or_else(|p| p.into_inner())
+                                .idle()?;
+                            continue;
+                        }
+                        Err(crossbeam_channel::RecvTimeoutError::Disconnected) => break,
+                    };
                     match &rec.result {
                         Ok(_) => ok += 1,
                         Err(e) => {

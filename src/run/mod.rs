@@ -1,10 +1,12 @@
 //! The driver: rayon over a plan's points, one writer thread owning the sink, failure
 //! isolation, resume (skip done ids), sharding, Ctrl-C.
 
+pub mod adapters;
 pub mod driver;
 pub mod shard;
 pub mod traits;
 
+pub use adapters::{ModelSimulator, StoreSink};
 pub use driver::{
     build_pool, check_finite, prepare_bats, run_plan, PreparedBats, RunError, RunOptions, RunReport,
 };

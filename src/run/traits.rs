@@ -32,6 +32,11 @@ pub trait Sink: Send {
     fn is_done(&self, id: PointId) -> bool;
     /// Store one finished point (at `rec.index`; arrival order is arbitrary).
     fn write(&mut self, rec: PointRecord) -> Result<(), String>;
+    /// Called when no point has arrived for a while: a chance to flush what is buffered,
+    /// so that a run killed during a long point loses nothing already finished.
+    fn idle(&mut self) -> Result<(), String> {
+        Ok(())
+    }
     /// Flush and close. Called once, after the last `write`.
     fn finish(&mut self) -> Result<(), String>;
 }

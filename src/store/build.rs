@@ -5,9 +5,9 @@ use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, 
 use super::error::{H5Ctx, StoreError};
 use super::journal::{JournalReader, RecordLoc, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
-use super::sweet_spot::sweet_spot;
 use super::{RunMeta, Summary};
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
+use crate::model::sweet::find_sweet_spot;
 use crate::results::{CoordValues, Dim, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
@@ -359,10 +359,10 @@ pub fn write_file(
                         vv.push(v);
                     }
                 }
-                if let Some((p, e, w)) = sweet_spot(&zz, &vv) {
-                    res[0][slot] = p;
-                    res[1][slot] = e;
-                    res[2][slot] = w;
+                if let Some(s) = find_sweet_spot(&zz, &vv) {
+                    res[0][slot] = s.position;
+                    res[1][slot] = s.exit_speed;
+                    res[2][slot] = s.width;
                 }
             }
             let rs: Vec<usize> = start

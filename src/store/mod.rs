@@ -19,7 +19,6 @@ pub mod error;
 pub mod journal;
 pub mod layout;
 pub mod read;
-pub mod sweet_spot;
 
 pub use error::StoreError;
 pub use read::{inspect, read_results, ReadBack};

@@ -1,0 +1,68 @@
+//! The real implementations of the driver's two seams: the physics (`model`) as a
+//! `Simulator`, and a results file (`store::Session`) as a `Sink`.
+
+use super::traits::{Simulator, Sink};
+use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
+use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
+use crate::model::{prepare_bat, simulate, PreparedBat};
+use crate::results::{PointId, PointRecord};
+use crate::store::Session;
+
+/// The collision models of `crate::model`.
+pub struct ModelSimulator;
+
+impl Simulator for ModelSimulator {
+    type Bat = PreparedBat;
+
+    fn prepare(
+        &self,
+        bat: &BatSpec,
+        numerics: &NumericsSpec,
+    ) -> Result<(BatProperties, PreparedBat), String> {
+        let prepared = prepare_bat(bat, numerics).map_err(|e| e.to_string())?;
+        Ok((prepared.properties().clone(), prepared))
+    }
+
+    fn simulate(
+        &self,
+        bat: &PreparedBat,
+        spec: &CollisionSpec,
+        history: Option<&HistoryRequest>,
+    ) -> Result<Outcome, String> {
+        // The rigid model has no time histories.
+        let history = history.filter(|_| spec.model == crate::model::spec::ModelKind::Wave);
+        simulate(spec, bat, history).map_err(|e| e.to_string())
+    }
+}
+
+/// A results file being written. `finish` consumes the session, so it is held in an Option.
+pub struct StoreSink(Option<Session>);
+
+impl StoreSink {
+    pub fn new(session: Session) -> Self {
+        StoreSink(Some(session))
+    }
+    fn session(&mut self) -> Result<&mut Session, String> {
+        self.0
+            .as_mut()
+            .ok_or_else(|| "the results file was already finished".to_string())
+    }
+}
+
+impl Sink for StoreSink {
+    fn is_done(&self, id: PointId) -> bool {
+        self.0.as_ref().is_some_and(|s| s.is_done(id))
+    }
+    fn write(&mut self, rec: PointRecord) -> Result<(), String> {
+        self.session()?.write(rec).map_err(|e| e.to_string())
+    }
+    fn idle(&mut self) -> Result<(), String> {
+        self.session()?.idle().map_err(|e| e.to_string())
+    }
+    fn finish(&mut self) -> Result<(), String> {
+        match self.0.take() {
+            Some(s) => s.finish().map(|_| ()).map_err(|e| e.to_string()),
+            None => Ok(()),
+        }
+    }
+}
