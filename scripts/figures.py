@@ -49,7 +49,7 @@ COLORS = plt.rcParams["axes.prop_cycle"].by_key()["color"]
 HANDLE_Z = 0.10  # Fig. 4b: motion 10 cm from the knob
 IMPACT_Z = 0.60  # Figs. 4 and 14: impact 60 cm from the knob
 SNAPSHOTS = (1.05e-3, 1.10e-3)  # Fig. 14 times (s)
-MAX_FRAMES = 60
+MAX_FRAMES = 40  # the GIF: at most this many frames (the brief: <= 60)
 # Parameters that come with a bat preset (free to differ when selecting corked/aluminum).
 PRESET_PARAMS = {"bat_preset", "bat_shell_thickness", "bat_fill_density", "bat_material_density",
                  "bat_material_youngs_modulus"}  # fmt: skip
@@ -314,6 +314,8 @@ def anim(res, path):
     ax.set_xlim(float(found[0][2]["z"].min()), float(found[0][2]["z"].max()))
     stamp = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
     ax.legend(fontsize=8, loc="lower right")
+    fig.canvas.draw()
+    fig.set_layout_engine("none")  # lay out once, not on every frame
 
     def draw(k):
         for line, (_, _, flex) in zip(lines, found):
@@ -326,30 +328,57 @@ def anim(res, path):
     plt.close(fig)
 
 
+def _profiles(bat):
+    """[(labels, z, outer, inner)] per distinct profile of /bat (bats sharing one are merged)."""
+    out = []
+    for i in range(bat.sizes["bat"]):
+        b = bat.isel(bat=i)
+        z, outer = b["profile_z"].values, b["outer_radius"].values
+        inner = b["inner_radius"].values if "inner_radius" in b else np.zeros_like(outer)
+        for labels, z0, o0, i0 in out:
+            if z0.shape == z.shape and np.allclose(o0, outer, equal_nan=True) and np.allclose(i0, inner, equal_nan=True):
+                labels.append(str(b["bat"].item()))
+                break
+        else:
+            out.append(([str(b["bat"].item())], z, outer, inner))
+    return out
+
+
 def bat_profiles(res, path):
     bat = res.bat
     if bat is None or "outer_radius" not in bat:
         raise Skip("no /bat profiles")
-    fig, ax = new_axes("Bat profiles (outer radius solid, inner dashed) with mode nodes",
-                       "z (m from the knob)", "radius (mm)", res)  # fmt: skip
+    bat = bat.load()
+    fig, (top, low) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 3.2 + 0.25 * bat.sizes["bat"]),
+                                   height_ratios=[2, 1.2], layout="constrained")  # fmt: skip
+    top.set_title(f"Bat profiles (outer radius solid, inner dashed) and mode nodes\n(study: {res.name})", fontsize=10)
+    for k, (labels, z, outer, inner) in enumerate(_profiles(bat)):
+        color = COLORS[k % len(COLORS)]
+        names = ", ".join(labels) if len(labels) <= 4 else ", ".join(labels[:3]) + f" (+{len(labels) - 3})"
+        top.plot(z, outer * 1e3, color=color, lw=1.5, label=names)
+        if np.nanmax(inner) > 0:
+            top.plot(z, inner * 1e3, color=color, ls="--", lw=1)
+    top.set_ylabel("radius (mm)")
+    top.grid(alpha=0.3)
+    top.legend(fontsize=7)
     markers = ["v", "^", "s", "D", "P"]
+    n_modes = min(3, bat.sizes.get("mode", 0)) if "mode_nodes" in bat else 0
+    ticks = []
     for i in range(bat.sizes["bat"]):
-        b = bat.isel(bat=i).load()
-        color = COLORS[i % len(COLORS)]
-        f1 = b["mode_frequency"].values[0] if "mode_frequency" in b else math.nan
-        ax.plot(b["profile_z"], b["outer_radius"] * 1e3, color=color, lw=1.5,
-                label=f"{b['bat'].item()}: {float(b['mass']):.3f} kg, z_cm {float(b['z_cm']):.3f} m, "
-                      f"f1 {f1:.0f} Hz")  # fmt: skip
-        if "inner_radius" in b and np.nanmax(b["inner_radius"].values) > 0:
-            ax.plot(b["profile_z"], b["inner_radius"] * 1e3, color=color, ls="--", lw=1)
-        for m in range(b.sizes.get("mode", 0) if "mode_nodes" in b else 0):
+        b = bat.isel(bat=i)
+        freqs = b["mode_frequency"].values[:n_modes] if "mode_frequency" in b else []
+        ticks.append(f"{b['bat'].item()}: {float(b['mass']):.3f} kg, f = {', '.join(f'{f:.0f}' for f in freqs)} Hz")
+        for m in range(n_modes):
             nodes = b["mode_nodes"].isel(mode=m).values
             nodes = nodes[np.isfinite(nodes)]
-            ax.plot(nodes, np.full(nodes.shape, -1.5 * (m + 1)), markers[m % len(markers)], color=color, ms=5)
-    handles, _ = ax.get_legend_handles_labels()
-    handles += [Line2D([], [], color="gray", ls="", marker=markers[m], label=f"nodes of mode {m + 1}")
-                for m in range(min(3, bat.sizes.get("mode", 0)))]  # fmt: skip
-    ax.legend(handles=handles, fontsize=7, ncol=2)
+            low.plot(nodes, np.full(nodes.shape, i), markers[m], color=COLORS[m], ms=5,
+                     label=f"nodes of mode {m + 1}" if i == 0 else None)  # fmt: skip
+        low.plot([float(b["z_cm"])], [i], "|", color="black", ms=10, label="centre of mass" if i == 0 else None)
+    low.set_yticks(range(len(ticks)), ticks, fontsize=7)
+    low.invert_yaxis()
+    low.set_xlabel("z (m from the knob)")
+    low.grid(alpha=0.3)
+    fig.legend(*low.get_legend_handles_labels(), fontsize=7, ncol=4, loc="outside lower center")
     save(fig, path)
 
 

@@ -135,7 +135,9 @@ def history_fields(p, bat, z_imp, t, zs):
     speed = 1250.0 if p["bat_preset"] != "aluminum" else 2500.0
     front = np.abs(zs[None, :] - z_imp) - speed * t[:, None]
     amp = 2.0e-3 * (1.0 if p["bat_preset"] != "aluminum" else 0.6)
-    flex = -amp * np.exp(-((front / 0.05) ** 2)) * np.minimum(t[:, None] / contact, 1)
+    pulse = np.exp(-((front / 0.05) ** 2)) * np.minimum(t[:, None] / contact, 1)
+    dent = np.exp(-(((zs[None, :] - z_imp) / 0.08) ** 2)) * np.sin(np.pi * np.minimum(t[:, None] / contact, 1))
+    flex = -amp * (pulse + dent)
     displacement = translation[:, None] + rotation[:, None] * (zs[None, :] - bat["z_cm"]) + flex
     return dict(
         force=force, compression=force / 7e5, ball_velocity=ball_v, displacement=displacement,
