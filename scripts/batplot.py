@@ -235,9 +235,15 @@ class Results:
         return f"{pretty} = {value:.4g}{unit}"
 
     def label(self, curve: Curve, base: Curve | None = None) -> str:
-        """The curve's ``case_label`` if it has one, else its parameters differing from base."""
+        """The curve's ``case_label`` if it has one, else its parameters differing from
+        ``base`` (default: the base curve of its model)."""
         if curve.label:
             return curve.label
+        if base is None:
+            try:
+                base = self.base(curve.params[MODEL])
+            except Skip:
+                base = None
         if base is None or curve == base or not differing(curve, base):
             return "base case"
         return ", ".join(self.format_param(k, curve.params.get(k)) for k in differing(curve, base))

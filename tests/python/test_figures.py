@@ -30,10 +30,10 @@ import synthetic_results  # noqa: E402
 MIN_BYTES = 5_000
 
 
-def assert_all_figures(outdir: Path):
+def assert_all_figures(outdir: Path, log: str = ""):
     for name in figures.FIGURES:
         path = outdir / figures.file_name(name)
-        assert path.exists(), f"{path.name} not written"
+        assert path.exists(), f"{path.name} not written; figures.py said:\n{log}"
         assert path.stat().st_size > MIN_BYTES, f"{path.name} is only {path.stat().st_size} bytes"
         with Image.open(path) as im:
             im.verify()
@@ -48,18 +48,24 @@ def synthetic(tmp_path_factory):
     return synthetic_results.write(tmp_path_factory.mktemp("synthetic") / "synthetic.h5")
 
 
-def test_smoke_study_figures(tmp_path):
+def run_all(path, outdir, capsys):
+    status = figures.main([str(path), "-o", str(outdir)])
+    out = capsys.readouterr()
+    log = out.out + out.err
+    assert status == 0, f"a figure failed:\n{log}"
+    assert_all_figures(outdir, log)
+
+
+def test_smoke_study_figures(tmp_path, capsys):
     smoke = os.environ.get("SMOKE_H5")
     if not smoke:
         pytest.skip("SMOKE_H5 is not set (scripts/test.sh sets it to the smoke study's output)")
     assert Path(smoke).exists(), f"SMOKE_H5={smoke} does not exist"
-    assert figures.main([smoke, "-o", str(tmp_path)]) == 0
-    assert_all_figures(tmp_path)
+    run_all(smoke, tmp_path, capsys)
 
 
-def test_synthetic_figures(synthetic, tmp_path):
-    assert figures.main([synthetic, "-o", str(tmp_path)]) == 0
-    assert_all_figures(tmp_path)
+def test_synthetic_figures(synthetic, tmp_path, capsys):
+    run_all(synthetic, tmp_path, capsys)
 
 
 def test_only_selects_figures(synthetic, tmp_path):
@@ -75,7 +81,8 @@ def test_missing_data_is_skipped(tmp_path, capsys):
     omega = np.array([0.0, -20.0, -40.0])
     speed = 20 + 10 * np.exp(-(((z[None, :] - 0.7) / 0.1) ** 2)) - 0.1 * omega[:, None]
     ds = xr.Dataset({"exit_speed": (("swing_omega", "impact_z"), speed, {"units": "m/s"})},
-                    coords={"swing_omega": omega, "impact_z": z})  # fmt: skip
+                    coords={"swing_omega": ("swing_omega", omega, {"units": "rad/s"}),
+                            "impact_z": ("impact_z", z, {"units": "m"})})  # fmt: skip
     path = tmp_path / "grid.h5"
     ds.to_netcdf(path, engine="h5netcdf", group="summary")
     out = tmp_path / "out"
@@ -84,6 +91,9 @@ def test_missing_data_is_skipped(tmp_path, capsys):
     assert (out / "fig06_exit_speed_vs_omega.png").exists()
     assert (out / "fig08_optimal_position_vs_omega.png").exists()
     assert "skip  fig13b_aluminum" in text and "skip  fig14_displacement_along_bat" in text
+    with batplot.Results(path) as res:
+        labels = [res.label(c) for c in res.curves]
+    assert labels == ["base case", "ω = -20 rad/s", "ω = -40 rad/s"]
 
 
 def _curve(i, **params):
