@@ -166,13 +166,16 @@ def fig04b(res, path):
                        f"impact at z = {z_imp:.2f} m", "time since first contact (ms)", "displacement y (mm)",
                        res)  # fmt: skip
     t_ms = disp["time"] * 1e3
-    ax.plot(t_ms, disp.isel(z=k) * 1e3, color="black", lw=1.8, label="displacement y(z, t)")
+    lines = ax.plot(t_ms, disp.isel(z=k) * 1e3, color="black", lw=1.8, label="displacement y(z, t) (left axis)")
     try:
         _, flex = res.flex_displacement(curve, z_imp)
-        ax.plot(t_ms, flex.isel(z=k) * 1e3, color=COLORS[0], ls="--", label="rigid motion removed")
+        right = ax.twinx()  # the flexible part is much smaller than the rigid recoil
+        right.set_ylabel("y − rigid motion (mm)", color=COLORS[0])
+        lines += right.plot(t_ms, flex.isel(z=k) * 1e3, color=COLORS[0], ls="--",
+                            label="rigid motion removed (right axis)")  # fmt: skip
     except Skip:
         pass
-    ax.legend(fontsize=8)
+    ax.legend(handles=lines, fontsize=8, loc="lower right")
     save(fig, path)
 
 
@@ -206,7 +209,7 @@ def fig06(res, path):
 
 def _excess_figure(res, path, title, elastic):
     curves = _omega_curves(res, elastic)
-    curve_figure(res, path, title, curves, value=excess_speed,
+    curve_figure(res, path, title, curves, res.base(), value=excess_speed,
                  ylabel="exit speed − approach speed (m/s)\napproach = v_ball − ω (z − z_cm)")  # fmt: skip
 
 
