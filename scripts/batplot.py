@@ -270,15 +270,28 @@ class Results:
             raise Skip("the summary has no impact_z dim")
         return self.summary[var].isel(curve.index).load()
 
-    def z_cm(self, curve: Curve) -> float:
-        """Centre of mass (m from the knob) of the curve's bat, from /bat via bat_index."""
+    def bat_of(self, curve: Curve) -> xr.Dataset:
+        """The curve's entry of /bat (via /summary/bat_index)."""
         if self.bat is None or self.summary is None or "bat_index" not in self.summary:
             raise Skip("no /bat group or bat_index")
         idx = np.asarray(self.summary["bat_index"].isel(curve.index).values).ravel()
         idx = idx[idx >= 0]
         if idx.size == 0:
             raise Skip("bat of the curve not known (no computed point)")
-        return float(self.bat["z_cm"].isel(bat=int(idx[0])).values)
+        return self.bat.isel(bat=int(idx[0]))
+
+    def z_cm(self, curve: Curve) -> float:
+        """Centre of mass (m from the knob) of the curve's bat, from /bat."""
+        return float(self.bat_of(curve)["z_cm"].values)
+
+    def area(self, curve: Curve, z) -> np.ndarray:
+        """Cross-section area of the curve's bat at ``z`` (from the /bat profile; 0 outside)."""
+        b = self.bat_of(curve)
+        pz, outer = b["profile_z"].values, b["outer_radius"].values
+        inner = b["inner_radius"].values if "inner_radius" in b else np.zeros_like(outer)
+        ok = np.isfinite(pz) & np.isfinite(outer)
+        a = np.pi * (outer[ok] ** 2 - np.nan_to_num(inner[ok]) ** 2)
+        return np.interp(z, pz[ok], a, left=0.0, right=0.0)
 
     def sweet(self, curve: Curve) -> tuple[float, float]:
         """(position, exit speed) of the curve's maximum: /sweet_spot if present, else the
@@ -326,11 +339,13 @@ class Results:
         if found is None:
             return None
         z_imp, disp = found
+        z = disp["z"].values
         trans = self.history_of(curve, "rigid_translation", z_imp)
         rot = self.history_of(curve, "rigid_rotation", z_imp)
-        if trans is None or rot is None:
-            raise Skip("no rigid_translation/rigid_rotation histories to remove rigid motion")
-        flex = remove_rigid(disp.values, disp["z"].values, trans[1].values, rot[1].values, self.z_cm(curve))
+        if trans is not None and rot is not None:
+            flex = remove_rigid(disp.values, z, trans[1].values, rot[1].values, self.z_cm(curve))
+        else:  # not recorded: project the sampled field on rigid motion instead
+            flex = remove_rigid(disp.values, z, *rigid_projection(disp.values, z, self.area(curve, z)))
         return z_imp, disp.copy(data=flex)
 
 
@@ -341,6 +356,25 @@ def remove_rigid(displacement, z, translation, rotation, z_cm):
         np.asarray(z, float)[None, :] - z_cm
     )
     return displacement - rigid
+
+
+def rigid_projection(displacement, z, weight):
+    """``(translation, rotation, z_c)`` of the rigid motion carrying the same linear and angular
+    momentum as ``displacement`` (time, z) sampled at ``z`` with mass weights ``weight`` (e.g.
+    the cross-section area, for a uniform density), about the weighted centroid ``z_c``.
+
+    A fallback for files without rigid_translation/rigid_rotation histories: it is exact for
+    pure rigid motion and approximate otherwise (coarse z sampling, non-uniform density)."""
+    y = np.asarray(displacement, dtype=float)
+    w = np.asarray(weight, dtype=float)
+    z = np.asarray(z, dtype=float)
+    if not w.sum() > 0:
+        raise Skip("no bat cross-section at the sampled z to project out rigid motion")
+    z_c = float((w * z).sum() / w.sum())
+    arm = z - z_c
+    translation = (y * w).sum(axis=1) / w.sum()
+    rotation = (y * w * arm).sum(axis=1) / (w * arm**2).sum()
+    return translation, rotation, z_c
 
 
 def excess_speed(res: Results, curve: Curve) -> xr.DataArray:

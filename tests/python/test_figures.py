@@ -140,6 +140,16 @@ def test_remove_rigid_motion_of_pure_rigid_motion_is_zero():
     np.testing.assert_allclose(flex, np.broadcast_to(bump, flex.shape), atol=1e-15)
 
 
+def test_rigid_projection_recovers_rigid_motion():
+    t = np.linspace(0, 1e-3, 20)
+    z = np.linspace(0, 0.84, 43)
+    area = np.pi * (0.012 + 0.02 * (z > 0.45)) ** 2
+    disp = (2e-3 * t)[:, None] + (-0.5 * t)[:, None] * (z[None, :] - 0.61)
+    trans, rot, z_c = batplot.rigid_projection(disp, z, area)
+    assert np.abs(batplot.remove_rigid(disp, z, trans, rot, z_c)).max() < 1e-15
+    np.testing.assert_allclose(rot, -0.5 * t, atol=1e-15)
+
+
 def test_results_reads_synthetic_file(synthetic):
     with batplot.Results(synthetic) as res:
         base = res.base()
