@@ -344,9 +344,13 @@ class Results:
         rot = self.history_of(curve, "rigid_rotation", z_imp)
         if trans is not None and rot is not None:
             flex = remove_rigid(disp.values, z, trans[1].values, rot[1].values, self.z_cm(curve))
+            how = "recorded rigid motion removed"
         else:  # not recorded: project the sampled field on rigid motion instead
             flex = remove_rigid(disp.values, z, *rigid_projection(disp.values, z, self.area(curve, z)))
-        return z_imp, disp.copy(data=flex)
+            how = "rigid motion projected out (not recorded)"
+        out = disp.copy(data=flex)
+        out.attrs["rigid_removal"] = how
+        return z_imp, out
 
 
 def remove_rigid(displacement, z, translation, rotation, z_cm):

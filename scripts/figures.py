@@ -292,7 +292,8 @@ def _flex_histories(res):
 
 def fig14(res, path):
     found = _flex_histories(res)
-    fig, ax = new_axes("Fig. 14: displacement along the bat, rigid motion removed — wood (solid) vs aluminum (dashed)",
+    how = found[0][2].attrs["rigid_removal"]
+    fig, ax = new_axes(f"Fig. 14: displacement along the bat ({how}) — wood (solid) vs aluminum (dashed)",
                        "z (m from the knob)", "displacement − rigid motion (mm)", res)  # fmt: skip
     for (name, z_imp, flex), style in zip(found, ("-", "--")):
         for t, color in zip(SNAPSHOTS, COLORS):
@@ -309,7 +310,7 @@ def anim(res, path):
     time = found[0][2]["time"].values
     frames = np.unique(np.linspace(0, len(time) - 1, min(MAX_FRAMES, len(time))).round().astype(int))
     ymax = max(float(np.nanmax(np.abs(f.values))) for _, _, f in found) * 1e3 or 1.0
-    fig, ax = new_axes("Bat displacement during the collision, rigid motion removed",
+    fig, ax = new_axes(f"Bat displacement during the collision ({found[0][2].attrs['rigid_removal']})",
                        "z (m from the knob)", "displacement − rigid motion (mm)", res)  # fmt: skip
     ax.set_ylim(-1.1 * ymax, 1.1 * ymax)
     lines = [ax.plot([], [], ls=s, color="black" if s == "-" else COLORS[0], lw=1.8,
