@@ -26,7 +26,6 @@ anim   as fig14                                 bat_profiles  /bat profile and m
 from __future__ import annotations
 
 import argparse
-import math
 import re
 import sys
 from pathlib import Path
