@@ -1,0 +1,458 @@
+"""Turn a batstudy results file into the figures of the paper's section 4.
+
+    python scripts/figures.py RESULTS.h5 [-o OUTDIR] [--only fig6,fig14,...]
+
+Writes one PNG per figure, named after the paper's figures (see ``FIGURES`` below), plus
+``anim_displacement.gif`` and ``bat_profiles.png``.  A figure whose data the file does not hold
+(for instance a study without aluminum cases) is skipped with a one-line message.  The script
+reads only the HDF5 file.  Exit status: 0 if every figure was written or skipped, 1 if one
+failed.
+
+Data each figure needs (curves are exit speed vs ``impact_z``; "varying F" means the curves
+that equal the base curve on every parameter but F, from a ``case`` block or a grid axis F):
+
+fig02  rigid model, base curve                  fig10  varying bat_material_density
+fig04a /history/force, wave, impact near 0.60   fig11a varying bat_material_youngs_modulus
+fig04b /history/displacement at z near 0.10     fig11b varying bat_handle_radius_scale
+fig05a bat_ends_barrel == fixed vs base         fig12  varying ball_speed
+fig05b bat_length ≈ 1.10 vs base                fig13a bat_preset == corked vs base
+fig06  varying swing_omega, wave and rigid      fig13b bat_preset == aluminum vs base
+fig07a varying swing_omega, approach_speed      fig14  displacement + rigid motion histories,
+fig07b the same with ball_law_kind == elastic          base and aluminum, impact near 0.60
+fig08  /sweet_spot/position, varying omega      fig15  hoop_frequency > 0 and the no-hoop bat
+anim   as fig14                                 bat_profiles  /bat profile and mode nodes
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from batplot import IMPACT, MODEL, Results, Skip, excess_speed, one_factor, select  # noqa: E402
+
+EXIT = "exit speed (m/s, bat-CM frame)"
+IMPACT_LABEL = "impact position z (m from the knob)"
+STYLES = ["--", ":", "-.", (0, (5, 1, 1, 1)), (0, (1, 3)), (0, (8, 2))]
+COLORS = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+HANDLE_Z = 0.10  # Fig. 4b: motion 10 cm from the knob
+IMPACT_Z = 0.60  # Figs. 4 and 14: impact 60 cm from the knob
+SNAPSHOTS = (1.05e-3, 1.10e-3)  # Fig. 14 times (s)
+MAX_FRAMES = 40  # the GIF: at most this many frames (the brief: <= 60)
+# Parameters that come with a bat preset (free to differ when selecting corked/aluminum).
+PRESET_PARAMS = {"bat_preset", "bat_shell_thickness", "bat_fill_density", "bat_material_density",
+                 "bat_material_youngs_modulus"}  # fmt: skip
+
+
+# --------------------------------------------------------------------------- drawing helpers
+
+
+def new_axes(title: str, xlabel: str, ylabel: str, res: Results):
+    fig, ax = plt.subplots(figsize=(7.5, 4.8), layout="constrained")
+    ax.set_title(f"{title}\n(study: {res.name})", fontsize=10)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    return fig, ax
+
+
+def save(fig, path: Path):
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def require(curves, what: str):
+    if not curves:
+        raise Skip(f"no {what} in this file")
+    return curves
+
+
+def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, twins=False):
+    """One line per curve of ``value(res, curve)`` (default exit speed) vs impact position.
+
+    ``base`` (if given and among the curves) is drawn black and solid, the others in colour
+    with distinct line styles.  With ``twins`` every (wave) curve is solid in its own colour,
+    its rigid-model twin dashed in the same colour and the rigid maximum a dot (Fig. 6)."""
+    value = value or (lambda r, c: r.values(c, "exit_speed"))
+    fig, ax = new_axes(title, IMPACT_LABEL, ylabel, res)
+    others = 0
+    for i, c in enumerate(curves):
+        y = value(res, c)
+        label = res.label(c, base)
+        if c == base and not twins:
+            ax.plot(y[IMPACT], y, color="black", lw=2, label=label)
+            continue
+        color, style = COLORS[i % len(COLORS)], "-" if twins else STYLES[others % len(STYLES)]
+        others += 1
+        ax.plot(y[IMPACT], y, color=color, ls=style, lw=1.6, label=label)
+        rigid = res.partner(c, "rigid") if twins else None
+        if rigid is not None:
+            yr = value(res, rigid)
+            ax.plot(yr[IMPACT], yr, color=color, ls="--", lw=1.2)
+            z_max, v_max = res.sweet(rigid)
+            ax.plot([z_max], [v_max], "o", color=color, ms=6)
+    handles, _ = ax.get_legend_handles_labels()
+    if twins:
+        handles += [Line2D([], [], color="gray", ls="-", label="wave model"),
+                    Line2D([], [], color="gray", ls="--", label="rigid model"),
+                    Line2D([], [], color="gray", ls="", marker="o", label="rigid-model maximum")]  # fmt: skip
+    ax.legend(handles=handles, fontsize=8)
+    save(fig, path)
+
+
+def factor_figure(res, path, title, factor=None, where=None, free=(), extra=()):
+    """Base curve and the curves that differ from it only in ``factor`` (or that satisfy
+    ``where``, differing also in ``free``), main model; ``extra`` curves are added."""
+    model = res.main_model()
+    base = res.base(model)
+    if factor is not None:
+        chosen = one_factor(res.curves, base, factor)
+    else:
+        chosen = [base] + select(res.curves, base, free=free, where=where)
+    chosen = list(dict.fromkeys(list(chosen) + list(extra)))
+    require([c for c in chosen if c != base], f"curves for {title.split(':')[0]}")
+    curve_figure(res, path, f"{title} — {model} model", chosen, base)
+
+
+# --------------------------------------------------------------------------- figures
+
+
+def fig02(res, path):
+    base = res.base("rigid") if "rigid" in res.models() else None
+    if base is None:
+        raise Skip("no rigid-model curves")
+    y = res.values(base)
+    z_cm = res.z_cm(base)
+    fig, ax = new_axes("Fig. 2: rigid-body (Brody) model, exit speed vs distance from the CM — base case",
+                       "l = z − z_cm (m)", EXIT, res)  # fmt: skip
+    ax.plot(y[IMPACT] - z_cm, y, color="black", lw=2, label=f"rigid model, {res.label(base)}")
+    ax.axvline(0, color="gray", ls=":", label=f"centre of mass (z_cm = {z_cm:.3f} m)")
+    ax.legend(fontsize=8)
+    save(fig, path)
+
+
+def _wave_candidates(res):
+    """The base wave curve first, then every other wave curve (for recorded histories)."""
+    model = res.main_model()
+    base = res.base(model)
+    return [base] + [c for c in res.curves if c.params[MODEL] == model and c != base]
+
+
+def fig04a(res, path):
+    curve, z_imp, force = res.first_history(_wave_candidates(res), "force", IMPACT_Z)
+    fig, ax = new_axes(f"Fig. 4a: contact force vs time — {res.label(curve)}, impact at z = {z_imp:.2f} m",
+                       "time since first contact (ms)", "force (N)", res)  # fmt: skip
+    ax.plot(force["time"] * 1e3, force, color="black", lw=1.8, label=f"{curve.params[MODEL]} model")
+    ax.legend(fontsize=8)
+    save(fig, path)
+
+
+def fig04b(res, path):
+    curve, z_imp, disp = res.first_history(_wave_candidates(res), "displacement", IMPACT_Z)
+    k = int(np.argmin(np.abs(disp["z"].values - HANDLE_Z)))
+    z_at = float(disp["z"].values[k])
+    fig, ax = new_axes(f"Fig. 4b: bat motion at z = {z_at:.2f} m from the knob — {res.label(curve)}, "
+                       f"impact at z = {z_imp:.2f} m", "time since first contact (ms)", "displacement y (mm)",
+                       res)  # fmt: skip
+    t_ms = disp["time"] * 1e3
+    lines = ax.plot(t_ms, disp.isel(z=k) * 1e3, color="black", lw=1.8, label="displacement y(z, t) (left axis)")
+    try:
+        _, flex = res.flex_displacement(curve, z_imp)
+        right = ax.twinx()  # the flexible part is much smaller than the rigid recoil
+        right.set_ylabel("y − rigid motion (mm)", color=COLORS[0])
+        lines += right.plot(t_ms, flex.isel(z=k) * 1e3, color=COLORS[0], ls="--",
+                            label="rigid motion removed (right axis)")  # fmt: skip
+    except Skip:
+        pass
+    ax.legend(handles=lines, fontsize=8, loc="lower right")
+    save(fig, path)
+
+
+def fig05a(res, path):
+    factor_figure(res, path, "Fig. 5a: free vs fixed barrel end (knob free)", where={"bat_ends_barrel": "fixed"})
+
+
+def fig05b(res, path):
+    factor_figure(res, path, "Fig. 5b: a 110 cm bat vs the base bat",
+                  where={"bat_length": lambda v: abs(v - 1.10) < 0.005}, free={"bat_ends_barrel"})  # fmt: skip
+
+
+def _omega_curves(res, elastic=False):
+    """Wave curves varying swing_omega (with the base ball law, or elastic ones)."""
+    base = res.base(res.main_model())
+    if elastic:
+        curves = select(res.curves, base, free={"swing_omega"}, where={"ball_law_kind": "elastic"})
+        curves.sort(key=lambda c: c.params.get("swing_omega", 0.0))
+    else:
+        curves = one_factor(res.curves, base, "swing_omega")
+    if len(curves) < 2:
+        raise Skip("no swing_omega variation" + (" with an elastic ball" if elastic else ""))
+    return curves
+
+
+def fig06(res, path):
+    curves = _omega_curves(res)
+    curve_figure(res, path, "Fig. 6: exit speed vs impact position at several swing speeds ω",
+                 curves, twins=True)  # fmt: skip
+
+
+def _excess_figure(res, path, title, elastic):
+    curves = _omega_curves(res, elastic)
+    curve_figure(res, path, title, curves, res.base(), value=excess_speed,
+                 ylabel="exit speed − approach speed (m/s)\napproach = v_ball − ω (z − z_cm)")  # fmt: skip
+
+
+def fig07a(res, path):
+    _excess_figure(res, path, "Fig. 7a: excess exit speed vs impact position at several ω (with hysteresis)", False)
+
+
+def fig07b(res, path):
+    _excess_figure(res, path, "Fig. 7b: excess exit speed vs impact position at several ω (elastic ball)", True)
+
+
+def fig08(res, path):
+    curves = _omega_curves(res)
+    omega = [c.params["swing_omega"] for c in curves]
+    fig, ax = new_axes("Fig. 8: optimal impact position vs swing speed ω",
+                       "ω (rad/s; negative = barrel toward the ball)", "sweet-spot position (m from the knob)",
+                       res)  # fmt: skip
+    ax.plot(omega, [res.sweet(c)[0] for c in curves], "o", color="black", label="wave model")
+    rigid = [res.partner(c, "rigid") for c in curves]
+    if all(r is not None for r in rigid):
+        ax.plot(omega, [res.sweet(r)[0] for r in rigid], "-", color=COLORS[0], label="rigid model")
+    ax.legend(fontsize=8)
+    save(fig, path)
+
+
+def fig10(res, path):
+    factor_figure(res, path, "Fig. 10: varying the wood density", "bat_material_density")
+
+
+def fig11a(res, path):
+    factor_figure(res, path, "Fig. 11a: varying Young's modulus", "bat_material_youngs_modulus")
+
+
+def fig11b(res, path):
+    factor_figure(res, path, "Fig. 11b: varying the handle profile", "bat_handle_radius_scale")
+
+
+def fig12(res, path):
+    factor_figure(res, path, "Fig. 12: varying the ball speed", "ball_speed")
+
+
+def fig13a(res, path):
+    factor_figure(res, path, "Fig. 13a: corked vs wood bat", where={"bat_preset": "corked"}, free=PRESET_PARAMS)
+
+
+def fig13b(res, path):
+    factor_figure(res, path, "Fig. 13b: aluminum vs wood bat", where={"bat_preset": "aluminum"}, free=PRESET_PARAMS)
+
+
+def fig15(res, path):
+    model = res.main_model()
+    hooped = [c for c in res.curves if c.params[MODEL] == model and c.params.get("hoop_frequency", 0) > 0]
+    first = require(hooped, "curves with a hoop mode (hoop_frequency > 0)")[0]
+    chosen = select(res.curves, first, free={"hoop_frequency", "hoop_mass"})  # same bat, with and without hoop
+    chosen.sort(key=lambda c: c.params.get("hoop_frequency") if c.params.get("hoop_frequency", 0) > 0 else -1.0)
+    no_hoop = [c for c in chosen if not c.params.get("hoop_frequency", 0) > 0]
+    base = no_hoop[0] if no_hoop else first
+    wood = res.base(model)
+    curves = ([wood] if wood not in chosen else []) + chosen
+    curve_figure(res, path, f"Fig. 15: hoop-mode frequencies (reference: {res.label(base)}) — {model} model",
+                 curves, base)  # fmt: skip
+
+
+def _wood_and_aluminum(res):
+    """[(name, curve)] for the base (wood) bat and the first aluminum curve, main model."""
+    base = res.base(res.main_model())
+    alu = select(res.curves, base, free=PRESET_PARAMS, where={"bat_preset": "aluminum"})
+    return [("wood (base)", base)] + [("aluminum", c) for c in alu[:1]]
+
+
+def _flex_histories(res):
+    """[(name, impact_z, flex DataArray (time, z))] for wood and aluminum, where recorded."""
+    found = []
+    for name, curve in _wood_and_aluminum(res):
+        got = res.flex_displacement(curve, IMPACT_Z)
+        if got is not None:
+            found.append((name, *got))
+    return require(found, "displacement histories of the base or aluminum bat")
+
+
+def fig14(res, path):
+    found = _flex_histories(res)
+    how = found[0][2].attrs["rigid_removal"]
+    fig, ax = new_axes(f"Fig. 14: displacement along the bat ({how}) — wood (solid) vs aluminum (dashed)",
+                       "z (m from the knob)", "displacement − rigid motion (mm)", res)  # fmt: skip
+    for (name, z_imp, flex), style in zip(found, ("-", "--")):
+        for t, color in zip(SNAPSHOTS, COLORS):
+            k = int(np.argmin(np.abs(flex["time"].values - t)))
+            t_at = float(flex["time"].values[k]) * 1e3
+            ax.plot(flex["z"], flex.isel(time=k) * 1e3, ls=style, color=color,
+                    label=f"{name}, t = {t_at:.2f} ms (impact at {z_imp:.2f} m)")  # fmt: skip
+    ax.legend(fontsize=8)
+    save(fig, path)
+
+
+def anim(res, path):
+    found = _flex_histories(res)
+    time = found[0][2]["time"].values
+    frames = np.unique(np.linspace(0, len(time) - 1, min(MAX_FRAMES, len(time))).round().astype(int))
+    ymax = max(float(np.nanmax(np.abs(f.values))) for _, _, f in found) * 1e3 or 1.0
+    fig, ax = new_axes(f"Bat displacement during the collision ({found[0][2].attrs['rigid_removal']})",
+                       "z (m from the knob)", "displacement − rigid motion (mm)", res)  # fmt: skip
+    ax.set_ylim(-1.1 * ymax, 1.1 * ymax)
+    lines = [ax.plot([], [], ls=s, color="black" if s == "-" else COLORS[0], lw=1.8,
+                     label=f"{name} (impact at {z:.2f} m)")[0] for (name, z, _), s in zip(found, ("-", "--"))]  # fmt: skip
+    ax.set_xlim(float(found[0][2]["z"].min()), float(found[0][2]["z"].max()))
+    stamp = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
+    ax.legend(fontsize=8, loc="lower right")
+    fig.canvas.draw()
+    fig.set_layout_engine("none")  # lay out once, not on every frame
+
+    def draw(k):
+        for line, (_, _, flex) in zip(lines, found):
+            kk = min(k, flex.sizes["time"] - 1)
+            line.set_data(flex["z"].values, flex.isel(time=kk).values * 1e3)
+        stamp.set_text(f"t = {time[k] * 1e3:.2f} ms")
+        return [*lines, stamp]
+
+    FuncAnimation(fig, draw, frames=frames, blit=False).save(path, writer=PillowWriter(fps=12), dpi=70)
+    plt.close(fig)
+
+
+def _profiles(bat):
+    """[(labels, z, outer, inner)] per distinct profile of /bat (bats sharing one are merged)."""
+    out = []
+    for i in range(bat.sizes["bat"]):
+        b = bat.isel(bat=i)
+        z, outer = b["profile_z"].values, b["outer_radius"].values
+        inner = b["inner_radius"].values if "inner_radius" in b else np.zeros_like(outer)
+        for labels, z0, o0, i0 in out:
+            if z0.shape == z.shape and np.allclose(o0, outer, equal_nan=True) and np.allclose(i0, inner, equal_nan=True):
+                labels.append(str(b["bat"].item()))
+                break
+        else:
+            out.append(([str(b["bat"].item())], z, outer, inner))
+    return out
+
+
+def bat_profiles(res, path):
+    bat = res.bat
+    if bat is None or "outer_radius" not in bat:
+        raise Skip("no /bat profiles")
+    bat = bat.load()
+    fig, (top, low) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 3.2 + 0.25 * bat.sizes["bat"]),
+                                   height_ratios=[2, 1.2], layout="constrained")  # fmt: skip
+    top.set_title(f"Bat profiles (outer radius solid, inner dashed) and mode nodes\n(study: {res.name})", fontsize=10)
+    for k, (labels, z, outer, inner) in enumerate(_profiles(bat)):
+        color = COLORS[k % len(COLORS)]
+        names = ", ".join(labels) if len(labels) <= 4 else ", ".join(labels[:3]) + f" (+{len(labels) - 3})"
+        top.plot(z, outer * 1e3, color=color, lw=1.5, label=names)
+        if np.nanmax(inner) > 0:
+            top.plot(z, inner * 1e3, color=color, ls="--", lw=1)
+    top.set_ylabel("radius (mm)")
+    top.grid(alpha=0.3)
+    top.legend(fontsize=7)
+    markers = ["v", "^", "s", "D", "P"]
+    n_modes = min(3, bat.sizes.get("mode", 0)) if "mode_nodes" in bat else 0
+    ticks = []
+    for i in range(bat.sizes["bat"]):
+        b = bat.isel(bat=i)
+        freqs = b["mode_frequency"].values[:n_modes] if "mode_frequency" in b else []
+        ticks.append(f"{b['bat'].item()}: {float(b['mass']):.3f} kg, f = {', '.join(f'{f:.0f}' for f in freqs)} Hz")
+        for m in range(n_modes):
+            nodes = b["mode_nodes"].isel(mode=m).values
+            nodes = nodes[np.isfinite(nodes)]
+            low.plot(nodes, np.full(nodes.shape, i), markers[m], color=COLORS[m], ms=5,
+                     label=f"nodes of mode {m + 1}" if i == 0 else None)  # fmt: skip
+        low.plot([float(b["z_cm"])], [i], "|", color="black", ms=10, label="centre of mass" if i == 0 else None)
+    low.set_yticks(range(len(ticks)), ticks, fontsize=7)
+    low.invert_yaxis()
+    low.set_xlabel("z (m from the knob)")
+    low.grid(alpha=0.3)
+    fig.legend(*low.get_legend_handles_labels(), fontsize=7, ncol=4, loc="outside lower center")
+    save(fig, path)
+
+
+# Output name -> drawing function.
+FIGURES = {
+    "fig02_rigid_model": fig02,
+    "fig04a_force": fig04a,
+    "fig04b_handle_motion": fig04b,
+    "fig05a_fixed_vs_free": fig05a,
+    "fig05b_110cm_bat": fig05b,
+    "fig06_exit_speed_vs_omega": fig06,
+    "fig07a_excess_exit_speed": fig07a,
+    "fig07b_excess_no_hysteresis": fig07b,
+    "fig08_optimal_position_vs_omega": fig08,
+    "fig10_density": fig10,
+    "fig11a_modulus": fig11a,
+    "fig11b_handle": fig11b,
+    "fig12_ball_speed": fig12,
+    "fig13a_corked": fig13a,
+    "fig13b_aluminum": fig13b,
+    "fig14_displacement_along_bat": fig14,
+    "fig15_hoop_frequencies": fig15,
+    "bat_profiles": bat_profiles,
+    "anim_displacement": anim,
+}
+
+
+def file_name(name: str) -> str:
+    return name + (".gif" if name.startswith("anim") else ".png")
+
+
+def short(name: str) -> str:
+    """``fig06_exit_speed_vs_omega`` -> ``fig6``; other names unchanged (``anim``, ``bat``...)."""
+    m = re.match(r"fig0*(\d+[a-z]?)", name)
+    return "fig" + m.group(1) if m else name.split("_")[0]
+
+
+def wanted(only: str | None) -> list[str]:
+    """Figure names selected by ``--only`` (short or full names, comma separated)."""
+    if not only:
+        return list(FIGURES)
+    tokens = {t.strip() for t in only.split(",") if t.strip()}
+    names = [n for n in FIGURES if n in tokens or short(n) in {short(t) for t in tokens}]
+    unknown = {t for t in tokens if not any(t == n or short(t) == short(n) for n in FIGURES)}
+    if unknown:
+        raise SystemExit(f"unknown figure(s): {', '.join(sorted(unknown))}; known: {', '.join(FIGURES)}")
+    return names
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("results", help="batstudy results file (HDF5)")
+    ap.add_argument("-o", "--outdir", default="figures", help="output directory (default: figures)")
+    ap.add_argument("--only", help="comma-separated figures, e.g. fig6,fig14,anim,bat_profiles")
+    args = ap.parse_args(argv)
+    out = Path(args.outdir)
+    out.mkdir(parents=True, exist_ok=True)
+    failed = 0
+    with Results(args.results) as res:
+        for name in wanted(args.only):
+            path = out / file_name(name)
+            try:
+                FIGURES[name](res, path)
+                print(f"wrote {path}")
+            except Skip as why:
+                print(f"skip  {name}: {why}")
+            except Exception as err:  # one broken figure must not stop the others
+                failed += 1
+                print(f"FAIL  {name}: {type(err).__name__}: {err}", file=sys.stderr)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
