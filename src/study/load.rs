@@ -550,42 +550,41 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             origin: DimOrigin::Zip { group: g },
         });
     }
-    if let Some(points) = &file.points {
-        let at = keys(&["points"]);
+    if let Some(block) = &file.points {
+        let points = block.sets();
+        let at = keys(&block.sets_key());
         if points.is_empty() {
             return Err(cx
                 .err(&at, "`points` is empty")
                 .field("points")
                 .allowed("at least one parameter set"));
         }
-        let paths: Vec<String> = points[0].keys().cloned().collect();
+        // The union of the paths the sets name, in order of first appearance; a set that
+        // leaves a path out keeps the base value there (marked `UNSET`).
+        let mut paths: Vec<String> = Vec::new();
         for (i, set) in points.iter().enumerate() {
-            let mut p = at.clone();
-            p.push(Seg::Index(i));
-            let these: Vec<String> = set.keys().cloned().collect();
-            let mut a = these.clone();
-            a.sort();
-            let mut b = paths.clone();
-            b.sort();
-            if a != b {
-                return Err(cx
-                    .err(&p, "every entry of `points` must set the same parameters")
-                    .field(format!("points[{i}]"))
-                    .value(these.join(", "))
-                    .allowed(paths.join(", ")));
-            }
-            for k in &these {
-                let mut q = p.clone();
+            for k in set.keys() {
+                let mut q = at.clone();
+                q.push(Seg::Index(i));
                 q.push(Seg::Key(k.clone()));
                 check_path(cx, k, &q)?;
+                if !paths.contains(k) {
+                    paths.push(k.clone());
+                }
             }
         }
         let params = paths
             .iter()
-            .map(|k| (k.clone(), points.iter().map(|s| s[k].clone()).collect()))
+            .map(|k| {
+                let values = points
+                    .iter()
+                    .map(|s| s.get(k).cloned().unwrap_or_else(super::plan::unset))
+                    .collect();
+                (k.clone(), values)
+            })
             .collect();
         dims.push(PlanDim {
-            name: next_name(None),
+            name: next_name(block.name()),
             size: points.len(),
             params,
             origin: DimOrigin::Points,
@@ -657,8 +656,9 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             .field("grid")
             .allowed("at least one point"));
     }
+    let defaults = with_defaults(&base);
     let shape = ResultShape {
-        dims: dims.iter().map(dim_to_shape).collect(),
+        dims: dims.iter().map(|d| dim_to_shape(d, &defaults)).collect(),
     };
 
     // Profiles: from base and from any block value.
@@ -821,4 +821,18 @@ impl Study {
     pub fn position_of(&self, key: &str) -> Option<Pos> {
         SourceMap::build(&self.text).get(&keys(&[key]))
     }
+}
+
+/// The base tree with every defaulted field filled in (as far as the base deserializes
+/// with a placeholder impact), so that coordinates show the values points really use.
+fn with_defaults(base: &Value) -> Value {
+    let mut v = base.clone();
+    if super::paths::get_path(&v, "impact.z").is_none() {
+        let _ = set_path(&mut v, "impact.z", Value::from(0.0));
+    }
+    serde_json::to_value(&v)
+        .ok()
+        .and_then(|j| serde_json::from_value::<crate::model::spec::CollisionSpec>(j).ok())
+        .and_then(|spec| serde_yaml_ng::to_value(spec).ok())
+        .unwrap_or_else(|| base.clone())
 }

@@ -139,6 +139,19 @@ pub(crate) fn is_bat_path(p: &str) -> bool {
 }
 
 /// A value as short text (flow YAML-ish JSON).
+/// The value a `points` set gives a parameter it leaves out: "keep the base value".
+pub fn unset() -> Value {
+    Value::Tagged(Box::new(serde_yaml_ng::value::TaggedValue {
+        tag: serde_yaml_ng::value::Tag::new("unset"),
+        value: Value::Null,
+    }))
+}
+
+/// Is this the `unset` marker?
+pub fn is_unset(v: &Value) -> bool {
+    matches!(v, Value::Tagged(t) if t.tag == "unset")
+}
+
 pub fn value_text(v: &Value) -> String {
     match v {
         Value::String(s) => s.clone(),
@@ -171,6 +184,9 @@ impl Plan {
         let mut v = self.base.clone();
         for (d, &i) in self.dims.iter().zip(multi) {
             for (path, vals) in &d.params {
+                if is_unset(&vals[i]) {
+                    continue;
+                }
                 // Paths were checked at load time.
                 let _ = super::paths::set_path(&mut v, path, vals[i].clone());
             }
@@ -252,7 +268,7 @@ impl Plan {
         let multi = self.shape.unravel(flat);
         let mut parts = Vec::new();
         for (d, &i) in self.dims.iter().zip(&multi) {
-            for (path, vals) in &d.params {
+            for (path, vals) in d.params.iter().filter(|(_, vals)| !is_unset(&vals[i])) {
                 parts.push(format!("{path}={}", value_text(&vals[i])));
             }
         }
@@ -280,15 +296,41 @@ pub(crate) fn path_string(p: &serde_path_to_error::Path) -> String {
 }
 
 /// Build the shape's coordinate variables of a dimension.
-pub(crate) fn dim_to_shape(d: &PlanDim) -> Dim {
+/// A `points` set's `unset` value shows the base value, or NaN / "" where the base has none.
+pub(crate) fn dim_to_shape(d: &PlanDim, base: &Value) -> Dim {
     let coords = d
         .params
         .iter()
         .map(|(path, vals)| {
-            let nums: Option<Vec<f64>> = vals.iter().map(|v| v.as_f64()).collect();
+            let base_value = super::paths::get_path(base, path).cloned();
+            let vals: Vec<Value> = vals
+                .iter()
+                .map(|v| match (is_unset(v), &base_value) {
+                    (false, _) => v.clone(),
+                    (true, Some(b)) => b.clone(),
+                    (true, None) => Value::Null,
+                })
+                .collect();
+            let numeric = vals.iter().all(|v| v.is_null() || v.as_f64().is_some())
+                && vals.iter().any(|v| v.as_f64().is_some());
+            let nums: Option<Vec<f64>> = numeric.then(|| {
+                vals.iter()
+                    .map(|v| v.as_f64().unwrap_or(f64::NAN))
+                    .collect()
+            });
             let values = match nums {
                 Some(n) => CoordValues::Numbers(n),
-                None => CoordValues::Labels(vals.iter().map(value_text).collect()),
+                None => CoordValues::Labels(
+                    vals.iter()
+                        .map(|v| {
+                            if v.is_null() {
+                                String::new()
+                            } else {
+                                value_text(v)
+                            }
+                        })
+                        .collect(),
+                ),
             };
             let (units, long_name) = super::paths::units(path);
             let units = if matches!(values, CoordValues::Labels(_)) {
