@@ -291,7 +291,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
                             let result = match &bats.handles[p.bat as usize] {
                                 Err(e) => Err(e.clone()),
                                 Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
-                                    sim.simulate(bat, &p.spec, history)
+                                    sim.simulate(bat, &p.spec, history.filter(|_| p.record_history))
                                 })) {
                                     Ok(Ok(o)) => check_finite(&o).map(|_| o),
                                     Ok(Err(e)) => Err(e),

@@ -62,7 +62,14 @@ const TOP_KEYS: &[&str] = &[
     "history",
     "output",
 ];
-const HISTORY_KEYS: &[&str] = &["fields", "interval", "duration", "precision", "z_step"];
+const HISTORY_KEYS: &[&str] = &[
+    "fields",
+    "interval",
+    "duration",
+    "precision",
+    "z_step",
+    "only",
+];
 
 /// Read and validate a study file.
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Study, StudyError> {
@@ -312,6 +319,9 @@ fn validate_history(cx: &Ctx, f: &StudyFile) -> Result<(), StudyError> {
     }
     if !(h.z_step > 0.0 && h.z_step <= 1.0) {
         return bad("z_step", h.z_step, "0 < z_step <= 1 m".into());
+    }
+    for path in h.only.keys() {
+        check_path(cx, path, &keys(&["history", "only", path]))?;
     }
     Ok(())
 }
@@ -696,8 +706,14 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
     let bat_dims: Vec<usize> = (0..dims.len())
         .filter(|&d| dims[d].params.iter().any(|(p, _)| is_bat_path(p)))
         .collect();
+    let history_only = file
+        .history
+        .as_ref()
+        .map(|h| h.only.iter().map(|(k, v)| (k.clone(), v.clone())).collect())
+        .unwrap_or_default();
     let mut plan = Plan {
         base,
+        history_only,
         dims,
         shape,
         profiles,

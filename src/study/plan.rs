@@ -50,6 +50,8 @@ pub struct Point {
     pub spec: CollisionSpec,
     /// Index of the point's bat in `Plan::bats()`.
     pub bat: u32,
+    /// Whether the study records this point's time histories (`history.only`).
+    pub record_history: bool,
 }
 
 impl Point {
@@ -99,6 +101,8 @@ impl std::fmt::Display for ResolveError {
 #[derive(Debug, Clone)]
 pub struct Plan {
     pub(crate) base: Value,
+    /// `history.only`: record histories only where every listed path takes a listed value.
+    pub(crate) history_only: Vec<(String, Vec<Value>)>,
     pub(crate) dims: Vec<PlanDim>,
     pub(crate) shape: ResultShape,
     /// Profile CSV paths as written → knots.
@@ -136,6 +140,15 @@ pub(crate) fn related(a: &str, b: &str) -> bool {
 
 pub(crate) fn is_bat_path(p: &str) -> bool {
     related(p, "bat") && !p.is_empty() || related(p, "numerics") && !p.is_empty()
+}
+
+/// Equal parameter values: numbers within 1e-9 relative (a value typed as `0.6` matches a
+/// grid value computed as 0.4 + 20·0.01), anything else exactly.
+fn same_value(a: &Value, b: &Value) -> bool {
+    match (a.as_f64(), b.as_f64()) {
+        (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-300),
+        _ => a == b,
+    }
 }
 
 /// A value as short text (flow YAML-ish JSON).
@@ -252,6 +265,7 @@ impl Plan {
             Ok(spec) => Ok(Point {
                 index: flat,
                 id: point_id(&spec),
+                record_history: self.records_history(&spec),
                 spec,
                 bat: self.bat_index(&multi),
             }),
@@ -261,6 +275,20 @@ impl Plan {
                 message: e.to_string(),
             }),
         }
+    }
+
+    /// Does `history.only` select this collision?
+    pub fn records_history(&self, spec: &CollisionSpec) -> bool {
+        if self.history_only.is_empty() {
+            return true;
+        }
+        let Ok(tree) = serde_yaml_ng::to_value(spec) else {
+            return false;
+        };
+        self.history_only.iter().all(|(path, wanted)| {
+            super::paths::get_path(&tree, path)
+                .is_some_and(|have| wanted.iter().any(|w| same_value(have, w)))
+        })
     }
 
     /// A short description of the point's coordinates, e.g. `impact_z=0.7, swing_omega=-30`.

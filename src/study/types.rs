@@ -378,6 +378,13 @@ pub struct HistorySpec {
     /// Default 0.01.
     #[serde(default = "default_z_step")]
     pub z_step: f64,
+    /// Record histories only at points whose parameters take one of the listed values:
+    /// dotted path → list (e.g. `{impact.z: [0.60], model: [wave]}`); every condition must
+    /// hold. Other points store NaN (and cost no disk: unwritten chunks are not allocated).
+    /// Default: every point. The rigid model never has histories.
+    #[serde(default)]
+    #[schemars(with = "IndexMap<String, Vec<serde_json::Value>>")]
+    pub only: IndexMap<String, Vec<Value>>,
 }
 
 fn default_precision() -> HistoryPrecision {
