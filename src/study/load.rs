@@ -769,7 +769,7 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             let mut label = format!("{:?}", spec.bat.preset).to_lowercase();
             for &d in &plan.bat_dims {
                 for (p, vals) in &plan.dims[d].params {
-                    if is_bat_path(p) {
+                    if is_bat_path(p) && !super::plan::is_unset(&vals[m[d]]) {
                         label.push_str(&format!(", {p}={}", value_text(&vals[m[d]])));
                     }
                 }
