@@ -373,9 +373,8 @@ pub fn write_file(
                     res[1][slot] = s.exit_speed;
                     res[2][slot] = s.width;
                 }
-                let along = |k: usize| -> Vec<f64> {
-                    (0..nz).map(|q| fv[k][base + q * stride]).collect()
-                };
+                let along =
+                    |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
                 let zc = &z[start[*iz]..start[*iz] + nz];
                 let v = vibration_sweet_spot(
                     zc,
@@ -702,10 +701,17 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
         (&l::BAT_BBCOR_MAX_POS, |m| m.bbcor_max_position),
     ];
     for (def, get) in per_bat {
-        var(def, vec![nb], p.iter().map(|p| get(&p.metrics)).collect(), &[&bat])?;
+        var(
+            def,
+            vec![nb],
+            p.iter().map(|p| get(&p.metrics)).collect(),
+            &[&bat],
+        )?;
     }
     let (bz, n_bb) = padded(
-        &p.iter().map(|p| p.metrics.bbcor_z.clone()).collect::<Vec<_>>(),
+        &p.iter()
+            .map(|p| p.metrics.bbcor_z.clone())
+            .collect::<Vec<_>>(),
         f64::NAN,
     );
     let (bb, _) = padded(
@@ -715,8 +721,8 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
         f64::NAN,
     );
     let bb_idx: Vec<i64> = (0..n_bb as i64).collect();
-    let bb_dim = h5u::scale_coord(&g, l::BBCOR_DIM.name, &bb_idx, &l::BBCOR_DIM)
-        .ctx(out, &e("bbcor"))?;
+    let bb_dim =
+        h5u::scale_coord(&g, l::BBCOR_DIM.name, &bb_idx, &l::BBCOR_DIM).ctx(out, &e("bbcor"))?;
     var(&l::BAT_BBCOR_Z, vec![nb, n_bb], bz, &[&bat, &bb_dim])?;
     var(&l::BAT_BBCOR, vec![nb, n_bb], bb, &[&bat, &bb_dim])?;
     let spec: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.spec_json)).collect();

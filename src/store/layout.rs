@@ -343,7 +343,11 @@ pub const BAT_BBCOR_MAX_POS: VarDef = v(
     "impact position of maximum BBCOR, from the knob",
 );
 pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR scan point number");
-pub const BAT_BBCOR_Z: VarDef = v("bbcor_z", "m", "impact position of the BBCOR scan, from the knob");
+pub const BAT_BBCOR_Z: VarDef = v(
+    "bbcor_z",
+    "m",
+    "impact position of the BBCOR scan, from the knob",
+);
 pub const BAT_BBCOR: VarDef = v(
     "bbcor",
     "1",
