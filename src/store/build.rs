@@ -691,7 +691,8 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
         if n_prof == 0 { vec![] } else { ri },
         &[&bat, &prof],
     )?;
-    let per_bat: [(&VarDef, fn(&BatMetrics) -> f64); 7] = [
+    type Getter = fn(&BatMetrics) -> f64;
+    let per_bat: [(&VarDef, Getter); 7] = [
         (&l::BAT_PIVOT, |m| m.pivot),
         (&l::BAT_COP, |m| m.centre_of_percussion),
         (&l::BAT_NODE1, |m| m.node1_barrel),
