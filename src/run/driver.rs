@@ -174,6 +174,7 @@ pub fn check_finite(o: &Outcome) -> Result<(), String> {
         ("energy.bat_rigid", e.bat_rigid),
         ("energy.bat_vibration", e.bat_vibration),
         ("energy.hoop", e.hoop),
+        ("energy.bat_damping", e.bat_damping),
     ];
     match fields.iter().find(|(_, v)| !v.is_finite()) {
         Some((n, v)) => Err(format!("non-finite {n} ({v})")),

@@ -32,7 +32,7 @@ const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> 
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 14;
+pub const N_SUMMARY_FLOATS: usize = 15;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -74,6 +74,11 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
     ),
     v("energy_bat_vibration", "J", "energy left in bat vibration"),
     v("energy_hoop", "J", "energy left in the hoop mode"),
+    v(
+        "energy_bat_damping",
+        "J",
+        "energy dissipated by the bat's material damping",
+    ),
 ];
 
 /// The f64 summary values of an outcome, in [`SUMMARY_FLOATS`] order.
@@ -93,6 +98,7 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.energy.bat_rigid,
         o.energy.bat_vibration,
         o.energy.hoop,
+        o.energy.bat_damping,
     ]
 }
 
@@ -115,6 +121,7 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
     o.energy.bat_rigid = f[11];
     o.energy.bat_vibration = f[12];
     o.energy.hoop = f[13];
+    o.energy.bat_damping = f[14];
     o
 }
 

@@ -173,11 +173,25 @@ pub fn check_spec(spec: &CollisionSpec) -> Vec<Violation> {
     c.positive("ball.law.alpha", ball.law.alpha);
     c.finite("swing.omega", spec.swing.omega);
     c.finite("swing.cm_speed", spec.swing.cm_speed);
-    if let Some(hoop) = &spec.hoop {
+    if let Some(hoop) = spec.hoop.as_ref().filter(|h| !h.from_geometry) {
         let (lo, hi) = HOOP_FREQUENCY_RANGE;
-        c.within("hoop.frequency", hoop.frequency, lo, hi, "Hz");
+        match hoop.frequency {
+            Some(f) => c.within("hoop.frequency", f, lo, hi, "Hz"),
+            None => c.fail(
+                "hoop.frequency",
+                f64::NAN,
+                "this field is required (missing field `frequency`; unless hoop.from_geometry: true)",
+            ),
+        }
         let (lo, hi) = HOOP_MASS_RANGE;
-        c.within("hoop.mass", hoop.mass, lo, hi, "kg");
+        match hoop.mass {
+            Some(m) => c.within("hoop.mass", m, lo, hi, "kg"),
+            None => c.fail(
+                "hoop.mass",
+                f64::NAN,
+                "this field is required (missing field `mass`; unless hoop.from_geometry: true)",
+            ),
+        }
     }
     let z = spec.impact.z;
     if !(0.0..=len).contains(&z) {
