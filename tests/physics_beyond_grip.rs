@@ -23,6 +23,7 @@ fn pinned(z: f64) -> Option<GripSpec> {
         z,
         kind: GripKind::Pinned,
         stiffness: None,
+        damping: 0.0,
     })
 }
 
@@ -125,6 +126,7 @@ fn spring_grip_closes_the_energy_balance() {
         z: 0.15,
         kind: GripKind::Spring,
         stiffness: Some(5e4),
+        damping: 0.0,
     });
     let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
     let (o, d) = simulate_with_diagnostics(&spec, &bat, None).unwrap();
@@ -163,4 +165,53 @@ fn hands_do_not_matter_for_barrel_impacts() {
     eprintln!("worst |Δe_A| {worst:.2e}");
     assert!(worst < 0.01, "pivot changes barrel e_A by {worst:.2e}");
     assert!(worst > 0.0);
+}
+
+#[test]
+fn spring_damper_grip_balances_energy_and_tends_to_the_pin() {
+    // Energy: the damper's loss is reported (energy.grip_damping) and the partition closes;
+    // angular momentum about the grip is still conserved (the grip force acts at the grip).
+    // Limit: a very stiff damper holds the grip point still during the collision, like the
+    // pinned pivot (exit speeds compared).
+    let (zg, z) = (0.15, 0.70);
+    for omega in [0.0, -40.0] {
+        let mut spec = common::base_spec(z);
+        spec.swing.omega = omega;
+        spec.bat.grip = Some(GripSpec {
+            z: zg,
+            kind: GripKind::Spring,
+            stiffness: Some(2e4),
+            damping: 50.0,
+        });
+        let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
+        let (o, d) = simulate_with_diagnostics(&spec, &bat, None).unwrap();
+        let de = d.energy_final / o.energy.initial - 1.0;
+        eprintln!(
+            "omega {omega}: grip damper loss {:.4} J, partition error {de:.1e}",
+            o.energy.grip_damping
+        );
+        assert!(o.energy.grip_damping > 0.0);
+        assert!(de.abs() < 1e-4, "energy error {de:e}");
+        let dl = (d.angular_momentum_final - d.angular_momentum_initial)
+            / (spec.ball.mass * spec.ball.speed * 0.55);
+        assert!(dl.abs() < 1e-12, "ΔL/L {dl:e}");
+
+        spec.bat.grip = Some(GripSpec {
+            z: zg,
+            kind: GripKind::Spring,
+            stiffness: Some(1.0),
+            damping: 1e7,
+        });
+        let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
+        let stiff = simulate(&spec, &bat, None).unwrap();
+        spec.bat.grip = pinned(zg);
+        let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
+        let pin = simulate(&spec, &bat, None).unwrap();
+        let rel = stiff.exit_speed / pin.exit_speed - 1.0;
+        eprintln!(
+            "omega {omega}: damper-held {:.5} vs pinned {:.5}",
+            stiff.exit_speed, pin.exit_speed
+        );
+        assert!(rel.abs() < 1e-3, "{rel:e}");
+    }
 }

@@ -37,6 +37,8 @@ pub struct PreparedBat {
     pub(crate) inertia_cm: f64,
     /// Modal damping ratio of the flexible modes (0: undamped).
     pub(crate) damping_ratio: f64,
+    /// Grip damper, N·s/m (0: none).
+    pub(crate) grip_damping: f64,
     properties: BatProperties,
 }
 
@@ -94,6 +96,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
     }
     Ok(PreparedBat {
         damping_ratio: geometry.damping_ratio,
+        grip_damping: bat.grip.as_ref().map_or(0.0, |g| g.damping),
         geometry,
         beam,
         modes,
@@ -111,6 +114,15 @@ fn check_grip(g: &GripSpec, length: f64) -> Result<(), ModelError> {
             "bat.grip.z",
             g.z,
             &format!("[0, {length}] m (on the bat)"),
+        ));
+    }
+    if !(g.damping >= 0.0 && g.damping.is_finite())
+        || (g.kind == GripKind::Pinned && g.damping != 0.0)
+    {
+        return Err(out_of_range(
+            "bat.grip.damping",
+            g.damping,
+            "[0, ∞) N·s/m (0 for a pinned grip)",
         ));
     }
     match (g.kind, g.stiffness) {

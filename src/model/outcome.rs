@@ -91,6 +91,8 @@ pub struct EnergyPartition {
     pub hoop: f64,
     /// Dissipated by the bat's material damping (`bat.material.quality_factor`; 0 without).
     pub bat_damping: f64,
+    /// Dissipated by the grip's damper (`bat.grip.damping`; 0 without).
+    pub grip_damping: f64,
 }
 
 /// The result of one collision.

@@ -74,6 +74,7 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
             bat_vibration: 0.0,
             hoop: 0.0,
             bat_damping: 0.0,
+            grip_damping: 0.0,
         },
         recontact: false,
         history: None,

@@ -137,6 +137,9 @@ pub struct GripSpec {
     /// Spring stiffness in N/m (`spring` only; required there).
     #[serde(default)]
     pub stiffness: Option<f64>,
+    /// Damper in parallel with the spring, N·s/m (`spring` only). Default 0.
+    #[serde(default)]
+    pub damping: f64,
 }
 
 impl Default for GripSpec {
@@ -145,6 +148,7 @@ impl Default for GripSpec {
             z: default_grip_z(),
             kind: GripKind::default(),
             stiffness: None,
+            damping: 0.0,
         }
     }
 }

@@ -312,6 +312,8 @@ struct FinalState {
     bat_rigid_energy: f64,
     /// Dissipated by material damping.
     bat_damping: f64,
+    /// Dissipated by the grip damper.
+    grip_loss: f64,
     bat_momentum: f64,
     bat_angular_momentum: f64,
     hoop_energy: f64,
@@ -338,7 +340,7 @@ pub fn simulate_wave(
                 "a pinned grip needs the modal integrator",
             ));
         }
-        if bat.damping_ratio > 0.0 {
+        if bat.damping_ratio > 0.0 || bat.grip_damping > 0.0 {
             return Err(ModelError::Unsupported(
                 "material damping needs the modal integrator",
             ));
@@ -401,6 +403,7 @@ pub fn simulate_wave(
         bat_vibration: fin.bat_energy - bat_rigid,
         hoop: fin.hoop_energy,
         bat_damping: fin.bat_damping,
+        grip_damping: fin.grip_loss,
     };
     let outcome = Outcome {
         exit_speed,
@@ -439,7 +442,8 @@ pub fn simulate_wave(
             + energy.bat_rigid
             + energy.bat_vibration
             + energy.hoop
-            + energy.bat_damping,
+            + energy.bat_damping
+            + energy.grip_damping,
         dt,
         steps: fin.steps,
         segments: bat.beam.len(),
@@ -579,7 +583,9 @@ fn run_modal(
     let initial_is_rigid = c.omega == 0.0
         || bat.modes.n_rigid == 2
         || (bat.beam.grip_z.is_some() && bat.modes.n_rigid == 1);
-    let n = if initial_is_rigid {
+    // a grip damper couples the modes (non-proportional damping): step them all
+    let grip_damping = bat.grip_damping;
+    let n = if initial_is_rigid && grip_damping == 0.0 {
         modes
             .omega
             .partition_point(|&w| w <= c.mode_cutoff)
@@ -609,6 +615,28 @@ fn run_modal(
             .sum()
     };
     let mut bat_damping = 0.0;
+    // grip damper: force d = −c v_grip at the grip point, linear over the step like the
+    // contact force and solved implicitly with it (d₁ is affine in the bat's end force p₁)
+    let grip_psi: Vec<f64> = bat.beam.grip_z.map_or(vec![0.0; n], |zg| {
+        let (kg, ag) = bat.beam.interpolation(zg);
+        (0..n)
+            .map(|j| (1.0 - ag) * shapes[(kg, j)] + ag * shapes[(kg + 1, j)])
+            .collect()
+    });
+    let damper = grip_damping > 0.0;
+    let st_g = ModalStep::new(&modes.omega[..n], zeta, &grip_psi, h);
+    let half_g = ModalStep::new(&modes.omega[..n], zeta, &grip_psi, 0.5 * h);
+    let half_p = ModalStep::new(&modes.omega[..n], zeta, phi, 0.5 * h);
+    let dot_n = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    // contact displacement per unit grip force (start/end of the step), grip velocity per
+    // unit contact / grip end force
+    let c_start = dot_n(phi, &st_g.q_start);
+    let c_end = dot_n(phi, &st_g.q_end);
+    let b_gp = dot_n(&grip_psi, &st.v_end);
+    let b_gg = dot_n(&grip_psi, &st_g.v_end);
+    let beta_d = -grip_damping * b_gp / (1.0 + grip_damping * b_gg);
+    let mut d_force = 0.0;
+    let mut grip_loss = 0.0;
     // contact-point compliance to the start/end force over one step (high modes: static)
     let g_start: f64 = st.q_start.iter().zip(phi).map(|(x, p)| x * p).sum();
     let g_end: f64 = st.q_end.iter().zip(phi).map(|(x, p)| x * p).sum::<f64>() + g_static;
@@ -702,6 +730,26 @@ fn run_modal(
             .zip(q.iter().zip(&qd))
             .map(|(((p, c), so), (qj, qdj))| p * (c * qj + so * qdj))
             .sum();
+        let p_start = if c.hoop.is_some() { hoop_force } else { force };
+        let (y_free, g_end, alpha_d) = if damper {
+            let a_g: f64 = (0..n)
+                .map(|j| {
+                    grip_psi[j]
+                        * (st.minus_omega_sin[j] * q[j]
+                            + st.a22[j] * qd[j]
+                            + st.v_start[j] * p_start
+                            + st_g.v_start[j] * d_force)
+                })
+                .sum();
+            let alpha_d = -grip_damping * a_g / (1.0 + grip_damping * b_gg);
+            (
+                y_free + c_start * d_force + c_end * alpha_d,
+                g_end + c_end * beta_d,
+                alpha_d,
+            )
+        } else {
+            (y_free, g_end, 0.0)
+        };
         let w_free = w + h * v - h2 * force / (3.0 * m);
         let (new_force, new_hoop_force, new_s);
         match c.hoop {
@@ -757,11 +805,52 @@ fn run_modal(
                 .sum();
             bat_damping += h / 6.0 * (damping_rate(&qd) + 4.0 * mid);
         }
+        let (d0, d1) = (d_force, alpha_d + beta_d * p1);
+        if damper {
+            // damper power c v² by Simpson's rule (mid-step velocity from an exact half step)
+            let (pm, dm) = (0.5 * (p0 + p1), 0.5 * (d0 + d1));
+            let vg0 = dot_n(&grip_psi, &qd);
+            let vgm: f64 = (0..n)
+                .map(|j| {
+                    grip_psi[j]
+                        * (half_p.minus_omega_sin[j] * q[j]
+                            + half_p.a22[j] * qd[j]
+                            + half_p.v_start[j] * p0
+                            + half_p.v_end[j] * pm
+                            + half_g.v_start[j] * d0
+                            + half_g.v_end[j] * dm)
+                })
+                .sum();
+            grip_loss += h / 6.0 * grip_damping * (vg0 * vg0 + 4.0 * vgm * vgm);
+            if let Some(hs) = &half {
+                // material damping's mid-step rate with the grip force included
+                let mid_extra: f64 = (0..n)
+                    .map(|j| {
+                        let base = hs.minus_omega_sin[j] * q[j]
+                            + hs.a22[j] * qd[j]
+                            + hs.v_start[j] * p0
+                            + hs.v_end[j] * pm;
+                        let vm = base + half_g.v_start[j] * d0 + half_g.v_end[j] * dm;
+                        2.0 * zeta * modes.omega[j] * (vm * vm - base * base)
+                    })
+                    .sum();
+                bat_damping += h / 6.0 * 4.0 * mid_extra;
+            }
+        }
         for (j, (qj, qdj)) in q.iter_mut().zip(qd.iter_mut()).enumerate().take(n) {
             let (x, xd) = (*qj, *qdj);
             *qj = st.cos[j] * x + st.sin_over_omega[j] * xd + st.q_start[j] * p0 + st.q_end[j] * p1;
             *qdj =
                 st.minus_omega_sin[j] * x + st.a22[j] * xd + st.v_start[j] * p0 + st.v_end[j] * p1;
+            if damper {
+                *qj += st_g.q_start[j] * d0 + st_g.q_end[j] * d1;
+                *qdj += st_g.v_start[j] * d0 + st_g.v_end[j] * d1;
+            }
+        }
+        if damper {
+            let vg1 = dot_n(&grip_psi, &qd);
+            grip_loss += h / 6.0 * grip_damping * vg1 * vg1;
+            d_force = d1;
         }
         if half.is_some() {
             bat_damping += h / 6.0 * damping_rate(&qd);
@@ -813,6 +902,7 @@ fn run_modal(
         bat_energy,
         bat_rigid_energy,
         bat_damping,
+        grip_loss,
         bat_momentum: dot(&bat.momentum_weight),
         bat_angular_momentum: dot(&bat.angular_weight),
         hoop_energy,
@@ -970,6 +1060,7 @@ fn run_verlet(
         bat_energy,
         bat_rigid_energy,
         bat_damping: 0.0,
+        grip_loss: 0.0,
         bat_momentum: momentum,
         bat_angular_momentum: angular,
         hoop_energy,

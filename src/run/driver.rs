@@ -175,6 +175,7 @@ pub fn check_finite(o: &Outcome) -> Result<(), String> {
         ("energy.bat_vibration", e.bat_vibration),
         ("energy.hoop", e.hoop),
         ("energy.bat_damping", e.bat_damping),
+        ("energy.grip_damping", e.grip_damping),
     ];
     match fields.iter().find(|(_, v)| !v.is_finite()) {
         Some((n, v)) => Err(format!("non-finite {n} ({v})")),

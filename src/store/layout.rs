@@ -32,7 +32,7 @@ const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> 
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 15;
+pub const N_SUMMARY_FLOATS: usize = 16;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -79,6 +79,11 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "J",
         "energy dissipated by the bat's material damping",
     ),
+    v(
+        "energy_grip_damping",
+        "J",
+        "energy dissipated by the grip's damper (the hands)",
+    ),
 ];
 
 /// The f64 summary values of an outcome, in [`SUMMARY_FLOATS`] order.
@@ -99,6 +104,7 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.energy.bat_vibration,
         o.energy.hoop,
         o.energy.bat_damping,
+        o.energy.grip_damping,
     ]
 }
 
@@ -122,6 +128,7 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
     o.energy.bat_vibration = f[12];
     o.energy.hoop = f[13];
     o.energy.bat_damping = f[14];
+    o.energy.grip_damping = f[15];
     o
 }
 
