@@ -19,6 +19,7 @@ fn uniform_free_free_beam_nodes_match_blevins() {
         material: MaterialSpec {
             density: Some(649.0),
             youngs_modulus: Some(1.814e10),
+            ..MaterialSpec::default()
         },
         ..BatSpec::default()
     };

@@ -19,6 +19,7 @@ fn uniform_rod() -> BatSpec {
         material: MaterialSpec {
             density: Some(649.0),
             youngs_modulus: Some(1.814e10),
+            ..MaterialSpec::default()
         },
         ..BatSpec::default()
     }

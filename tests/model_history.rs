@@ -12,8 +12,9 @@ fn every_requested_field_is_sampled_on_the_common_axis() {
         let mut spec = common::base_spec(0.7);
         spec.numerics.integrator = integrator;
         spec.hoop = Some(HoopSpec {
-            frequency: 1500.0,
-            mass: 0.02,
+            frequency: Some(1500.0),
+            mass: Some(0.02),
+            ..HoopSpec::default()
         });
         let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
         let request = HistoryRequest {

@@ -29,8 +29,9 @@ fn bad_values_name_their_field_and_range() {
 
     let mut s = common::base_spec(0.7);
     s.hoop = Some(HoopSpec {
-        frequency: 2e5,
-        mass: 0.01,
+        frequency: Some(2e5),
+        mass: Some(0.01),
+        ..HoopSpec::default()
     });
     assert!(message(&s).contains("hoop.frequency"));
 

@@ -38,8 +38,9 @@ const FINE_DT: f64 = 5e-7;
 
 fn hoop() -> Option<HoopSpec> {
     Some(HoopSpec {
-        frequency: 1500.0,
-        mass: 0.02,
+        frequency: Some(1500.0),
+        mass: Some(0.02),
+        ..HoopSpec::default()
     })
 }
 

@@ -20,6 +20,7 @@ fn uniform_bat(segments: Option<usize>, ends: EndsSpec) -> PreparedBat {
         material: MaterialSpec {
             density: Some(DENSITY),
             youngs_modulus: Some(YOUNGS),
+            ..MaterialSpec::default()
         },
         ends,
         ..BatSpec::default()

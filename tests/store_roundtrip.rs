@@ -174,6 +174,8 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
             bat_rigid: 60.0,
             bat_vibration: 15.0 + index as f64 / 7.0,
             hoop: 0.0,
+            bat_damping: 0.5 + index as f64 / 11.0,
+            grip_damping: 0.25 + index as f64 / 13.0,
         },
         recontact: index % 5 == 0,
         grip_vibration_amplitude: 1e-4 * (1.0 + (z - 0.7).abs()),

@@ -69,7 +69,7 @@ fn zip_and_points_dimensions() {
     assert_eq!(zip.coords[0].units, "Hz");
     let pt = p.point(p.n_points() - 1).unwrap();
     let hoop = pt.spec.hoop.unwrap();
-    assert_eq!((hoop.frequency, hoop.mass), (1500.0, 0.02));
+    assert_eq!((hoop.frequency, hoop.mass), (Some(1500.0), Some(0.02)));
     assert_eq!((pt.spec.ball.speed, pt.spec.ball.mass), (50.0, 0.16));
 }
 

@@ -7,7 +7,7 @@ use super::error::{out_of_range, ModelError};
 use super::modal::ModalBasis;
 use super::outcome::BatProperties;
 use super::section::BatGeometry;
-use super::spec::{BatSpec, EndsSpec, NumericsSpec};
+use super::spec::{BatSpec, EndsSpec, GripKind, GripSpec, NumericsSpec};
 
 /// Default segment length, m: the largest that keeps the exit speed within 0.1 % of the
 /// halved-segment value and the uniform-beam modes 1–5 within 0.1 % (see tests).
@@ -31,9 +31,14 @@ pub struct PreparedBat {
     pub(crate) momentum_weight: Vec<f64>,
     /// Σ_i m_i (z_i − z_cm) φ_n,i: the angular momentum about the CM per unit modal velocity.
     pub(crate) angular_weight: Vec<f64>,
-    /// CM and moment of inertia of the lumped masses (consistent with the integrator).
+    /// CM and moment of inertia of the lumped masses (+ rotary inertias; consistent with
+    /// the integrator).
     pub(crate) z_cm: f64,
     pub(crate) inertia_cm: f64,
+    /// Modal damping ratio of the flexible modes (0: undamped).
+    pub(crate) damping_ratio: f64,
+    /// Grip damper, N·s/m (0: none).
+    pub(crate) grip_damping: f64,
     properties: BatProperties,
 }
 
@@ -51,14 +56,17 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         Some(n) => n,
         None => default_segments(geometry.length),
     };
-    let beam = Beam::new(&geometry, segments, bat.ends);
+    if let Some(g) = &bat.grip {
+        check_grip(g, geometry.length)?;
+    }
+    let beam = Beam::build(&geometry, segments, bat.ends, bat.beam, bat.grip.as_ref());
     let modes = ModalBasis::of(&beam);
-    // The reported modes are free–free whatever the ends of the collision.
+    // The reported modes are free–free (no grip) whatever the ends of the collision.
     let (free_beam, free_modes);
-    let (fb, fm) = if bat.ends == EndsSpec::default() {
+    let (fb, fm) = if bat.ends == EndsSpec::default() && bat.grip.is_none() {
         (&beam, &modes)
     } else {
-        free_beam = Beam::new(&geometry, segments, EndsSpec::default());
+        free_beam = Beam::build(&geometry, segments, EndsSpec::default(), bat.beam, None);
         free_modes = ModalBasis::of(&free_beam);
         (&free_beam, &free_modes)
     };
@@ -70,18 +78,25 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         .iter()
         .zip(&beam.z)
         .map(|(m, z)| m * (z - z_cm).powi(2))
-        .sum();
-    let n = beam.len();
+        .sum::<f64>()
+        + beam.total_rotary();
+    let nodes = beam.len();
+    let n = beam.dofs();
     let mut momentum_weight = vec![0.0; n];
     let mut angular_weight = vec![0.0; n];
     for k in 0..n {
         let col = modes.shapes.column(k);
-        for i in 0..n {
+        for i in 0..nodes {
             momentum_weight[k] += beam.mass[i] * col[i];
             angular_weight[k] += beam.mass[i] * (beam.z[i] - z_cm) * col[i];
         }
+        for (i, j) in beam.rotary.iter().enumerate() {
+            angular_weight[k] += j * col[nodes + i];
+        }
     }
     Ok(PreparedBat {
+        damping_ratio: geometry.damping_ratio,
+        grip_damping: bat.grip.as_ref().map_or(0.0, |g| g.damping),
         geometry,
         beam,
         modes,
@@ -91,6 +106,39 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         inertia_cm,
         properties,
     })
+}
+
+fn check_grip(g: &GripSpec, length: f64) -> Result<(), ModelError> {
+    if !(g.z >= 0.0 && g.z <= length) {
+        return Err(out_of_range(
+            "bat.grip.z",
+            g.z,
+            &format!("[0, {length}] m (on the bat)"),
+        ));
+    }
+    if !(g.damping >= 0.0 && g.damping.is_finite())
+        || (g.kind == GripKind::Pinned && g.damping != 0.0)
+    {
+        return Err(out_of_range(
+            "bat.grip.damping",
+            g.damping,
+            "[0, ∞) N·s/m (0 for a pinned grip)",
+        ));
+    }
+    match (g.kind, g.stiffness) {
+        (GripKind::Spring, Some(k)) if k > 0.0 && k.is_finite() => Ok(()),
+        (GripKind::Spring, k) => Err(out_of_range(
+            "bat.grip.stiffness",
+            k.unwrap_or(f64::NAN),
+            "(0, ∞) N/m (required for a spring grip)",
+        )),
+        (GripKind::Pinned, None) => Ok(()),
+        (GripKind::Pinned, Some(k)) => Err(out_of_range(
+            "bat.grip.stiffness",
+            k,
+            "null (a pinned grip has no stiffness)",
+        )),
+    }
 }
 
 /// Segments for a bat of length `length` at the default resolution.
@@ -156,5 +204,10 @@ impl PreparedBat {
     /// Moment of inertia of the lumped beam about its CM, kg·m².
     pub fn inertia_cm(&self) -> f64 {
         self.inertia_cm
+    }
+
+    /// Modal damping ratio ζ = 1/(2Q) of the flexible modes (0: undamped).
+    pub fn damping_ratio(&self) -> f64 {
+        self.damping_ratio
     }
 }

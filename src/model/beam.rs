@@ -13,14 +13,22 @@
 use nalgebra::DMatrix;
 
 use super::section::BatGeometry;
-use super::spec::{EndCondition, EndsSpec};
+use super::spec::{BeamTheory, EndCondition, EndsSpec, GripKind, GripSpec};
 
-/// One row of D: the curvature y_{c−1} − 2y_c + y_{c+1} at node `center` (ghost indices
-/// outside 0..N are zero), with bending stiffness `weight` = Y I_c / d³.
+/// One strain measure: Σ coef·u[dof] over up to four taps (dof −1 = a ghost held at zero),
+/// with stiffness `weight`; K = Σ weight · r rᵀ (symmetric positive semi-definite).
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct CurvatureRow {
-    center: isize,
+struct StrainRow {
+    taps: [(isize, f64); 4],
     weight: f64,
+}
+
+impl StrainRow {
+    fn new(taps: &[(isize, f64)], weight: f64) -> Self {
+        let mut t = [(-1isize, 0.0); 4];
+        t[..taps.len()].copy_from_slice(taps);
+        Self { taps: t, weight }
+    }
 }
 
 /// The lumped beam.
@@ -33,34 +41,122 @@ pub struct Beam {
     /// Lumped masses, kg (wall + fill of each segment, integrated exactly).
     pub mass: Vec<f64>,
     pub ends: EndsSpec,
-    rows: Vec<CurvatureRow>,
+    /// Lumped rotary inertias of the segments, kg·m² (Timoshenko: the rotations ψ_i are
+    /// degrees of freedom N..2N; empty for Euler–Bernoulli).
+    pub rotary: Vec<f64>,
+    /// Pinned pivot: (k, a) of its linear interpolation; (1 − a) y_k + a y_{k+1} = 0.
+    pub pin: Option<(usize, f64)>,
+    /// Position of the grip (pinned or spring), m.
+    pub grip_z: Option<f64>,
+    rows: Vec<StrainRow>,
 }
 
 impl Beam {
-    /// Discretise `geometry` into `segments` segments with the given ends.
+    /// Discretise `geometry` into `segments` segments with the given ends (Euler–Bernoulli,
+    /// free bat).
     pub fn new(geometry: &BatGeometry, segments: usize, ends: EndsSpec) -> Self {
+        Self::build(geometry, segments, ends, BeamTheory::EulerBernoulli, None)
+    }
+
+    /// Discretise with a beam theory and an optional grip.
+    ///
+    /// Timoshenko: degrees of freedom y_0..y_{N−1}, ψ_0..ψ_{N−1} (ψ = rotation of the
+    /// section). Between neighbouring nodes one element with bending strain
+    /// (ψ_{i+1} − ψ_i)/d and shear strain γ = (y_{i+1} − y_i)/d − (ψ_i + ψ_{i+1})/2 (one-point
+    /// rule: no shear locking), energies ½ (Y I_e/d)(Δψ)² + ½ κ G A_e d γ²; masses m_i and
+    /// rotary inertias ρ I_i d lumped at the nodes. Rigid translation and rotation
+    /// (y = θ z, ψ = θ) give zero strain exactly. A fixed end adds an element to a ghost
+    /// node (y = ψ = 0) one segment beyond the end node.
+    pub fn build(
+        geometry: &BatGeometry,
+        segments: usize,
+        ends: EndsSpec,
+        theory: BeamTheory,
+        grip: Option<&GripSpec>,
+    ) -> Self {
         let n = segments;
         let d = geometry.length / n as f64;
         let z: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) * d).collect();
+        let seg = |i: usize, f: &dyn Fn(f64) -> f64| {
+            geometry.integrate(i as f64 * d, (i + 1) as f64 * d, f)
+        };
         let mass: Vec<f64> = (0..n)
-            .map(|i| {
-                geometry.integrate(i as f64 * d, (i + 1) as f64 * d, |z| {
-                    geometry.mass_per_length(z)
-                })
-            })
+            .map(|i| seg(i, &|z| geometry.mass_per_length(z)))
             .collect();
-        // Segment-averaged stiffness: smooth in the profile, exact total bending compliance
-        // for a piecewise-constant I.
-        let bending: Vec<f64> = (0..n)
-            .map(|i| {
-                geometry.youngs_modulus
-                    * geometry.integrate(i as f64 * d, (i + 1) as f64 * d, |z| {
-                        geometry.second_moment(z)
+        let mut beam = match theory {
+            BeamTheory::EulerBernoulli => {
+                // Segment-averaged stiffness: smooth in the profile, exact total bending
+                // compliance for a piecewise-constant I.
+                let bending: Vec<f64> = (0..n)
+                    .map(|i| {
+                        geometry.youngs_modulus * seg(i, &|z| geometry.second_moment(z)) / d.powi(4)
                     })
-                    / d.powi(4)
-            })
-            .collect();
-        Self::from_parts(d, z, mass, &bending, ends)
+                    .collect();
+                Self::from_parts(d, z, mass, &bending, ends)
+            }
+            BeamTheory::Timoshenko => {
+                let rotary: Vec<f64> = (0..n)
+                    .map(|i| seg(i, &|z| geometry.rotary_inertia_per_length(z)))
+                    .collect();
+                let ni = n as isize;
+                // element between nodes i and i + 1 (i = −1 and N − 1: ghosts of fixed ends)
+                let element = |i: isize| -> Vec<StrainRow> {
+                    let (lo, hi) = ((i as f64 + 0.5) * d, (i as f64 + 1.5) * d);
+                    let (lo, hi) = (lo.max(0.0), hi.min(geometry.length));
+                    let span = hi - lo;
+                    let ei = geometry.youngs_modulus
+                        * geometry.integrate(lo, hi, |z| geometry.second_moment(z))
+                        / span;
+                    let ga = geometry.integrate(lo, hi, |z| geometry.shear_stiffness(z)) / span;
+                    let y = |j: isize| if (0..ni).contains(&j) { j } else { -1 };
+                    let psi = |j: isize| if (0..ni).contains(&j) { ni + j } else { -1 };
+                    vec![
+                        StrainRow::new(&[(psi(i + 1), 1.0), (psi(i), -1.0)], ei / d),
+                        StrainRow::new(
+                            &[
+                                (y(i + 1), 1.0 / d),
+                                (y(i), -1.0 / d),
+                                (psi(i), -0.5),
+                                (psi(i + 1), -0.5),
+                            ],
+                            ga * d,
+                        ),
+                    ]
+                };
+                let mut rows = Vec::new();
+                if ends.knob == EndCondition::Fixed {
+                    rows.extend(element(-1));
+                }
+                for i in 0..ni - 1 {
+                    rows.extend(element(i));
+                }
+                if ends.barrel == EndCondition::Fixed {
+                    rows.extend(element(ni - 1));
+                }
+                Self {
+                    d,
+                    z,
+                    mass,
+                    ends,
+                    rotary,
+                    pin: None,
+                    grip_z: None,
+                    rows,
+                }
+            }
+        };
+        if let Some(g) = grip {
+            let (k, a) = beam.interpolation(g.z);
+            beam.grip_z = Some(g.z);
+            match g.kind {
+                GripKind::Pinned => beam.pin = Some((k, a)),
+                GripKind::Spring => beam.rows.push(StrainRow::new(
+                    &[(k as isize, 1.0 - a), (k as isize + 1, a)],
+                    g.stiffness.unwrap_or(0.0),
+                )),
+            }
+        }
+        beam
     }
 
     /// A beam from per-segment masses and bending weights Y I_i / d³ (used by `new` and by
@@ -73,41 +169,51 @@ impl Beam {
         ends: EndsSpec,
     ) -> Self {
         let n = z.len() as isize;
+        let curvature = |c: isize, weight: f64| {
+            let dof = |i: isize| if (0..n).contains(&i) { i } else { -1 };
+            StrainRow::new(
+                &[(dof(c - 1), 1.0), (dof(c), -2.0), (dof(c + 1), 1.0)],
+                weight,
+            )
+        };
         let mut rows = Vec::new();
         if ends.knob == EndCondition::Fixed {
-            rows.push(CurvatureRow {
-                center: -1,
-                weight: bending[0],
-            });
-            rows.push(CurvatureRow {
-                center: 0,
-                weight: bending[0],
-            });
+            rows.push(curvature(-1, bending[0]));
+            rows.push(curvature(0, bending[0]));
         }
         for c in 1..n - 1 {
-            rows.push(CurvatureRow {
-                center: c,
-                weight: bending[c as usize],
-            });
+            rows.push(curvature(c, bending[c as usize]));
         }
         if ends.barrel == EndCondition::Fixed {
             let last = bending[(n - 1) as usize];
-            rows.push(CurvatureRow {
-                center: n - 1,
-                weight: last,
-            });
-            rows.push(CurvatureRow {
-                center: n,
-                weight: last,
-            });
+            rows.push(curvature(n - 1, last));
+            rows.push(curvature(n, last));
         }
         Self {
             d,
             z,
             mass,
             ends,
+            rotary: Vec::new(),
+            pin: None,
+            grip_z: None,
             rows,
         }
+    }
+
+    /// Degrees of freedom: N (Euler–Bernoulli) or 2N (Timoshenko: y then ψ).
+    pub fn dofs(&self) -> usize {
+        self.z.len() + self.rotary.len()
+    }
+
+    /// The diagonal mass matrix: masses, then rotary inertias.
+    pub fn dof_mass(&self) -> Vec<f64> {
+        self.mass.iter().chain(&self.rotary).copied().collect()
+    }
+
+    /// Total rotary inertia of the sections (0 for Euler–Bernoulli), kg·m².
+    pub fn total_rotary(&self) -> f64 {
+        self.rotary.iter().sum()
     }
 
     /// Number of nodes (= segments).
@@ -134,44 +240,31 @@ impl Beam {
             / self.total_mass()
     }
 
-    /// out = K y.
+    /// out = K u (u over all degrees of freedom).
     pub fn apply_stiffness(&self, y: &[f64], out: &mut [f64]) {
-        let n = y.len() as isize;
         out.iter_mut().for_each(|o| *o = 0.0);
-        let at = |i: isize| {
-            if (0..n).contains(&i) {
-                y[i as usize]
-            } else {
-                0.0
-            }
-        };
         for row in &self.rows {
-            let c = row.center;
-            let moment = row.weight * (at(c - 1) - 2.0 * at(c) + at(c + 1));
-            for (offset, coef) in [(-1isize, 1.0), (0, -2.0), (1, 1.0)] {
-                let i = c + offset;
-                if (0..n).contains(&i) {
-                    out[i as usize] += coef * moment;
-                }
+            let strain: f64 = row
+                .taps
+                .iter()
+                .filter(|t| t.0 >= 0)
+                .map(|&(i, c)| c * y[i as usize])
+                .sum();
+            let stress = row.weight * strain;
+            for &(i, c) in row.taps.iter().filter(|t| t.0 >= 0) {
+                out[i as usize] += c * stress;
             }
         }
     }
 
     /// K as a dense matrix (for the eigenproblem).
     pub fn stiffness_matrix(&self) -> DMatrix<f64> {
-        let n = self.len();
+        let n = self.dofs();
         let mut k = DMatrix::zeros(n, n);
         for row in &self.rows {
-            let taps: Vec<(usize, f64)> = [(-1isize, 1.0), (0, -2.0), (1, 1.0)]
-                .iter()
-                .filter_map(|&(o, c)| {
-                    let i = row.center + o;
-                    (0..n as isize).contains(&i).then_some((i as usize, c))
-                })
-                .collect();
-            for &(i, ci) in &taps {
-                for &(j, cj) in &taps {
-                    k[(i, j)] += row.weight * ci * cj;
+            for &(i, ci) in row.taps.iter().filter(|t| t.0 >= 0) {
+                for &(j, cj) in row.taps.iter().filter(|t| t.0 >= 0) {
+                    k[(i as usize, j as usize)] += row.weight * ci * cj;
                 }
             }
         }

@@ -12,6 +12,9 @@ pub enum ModelError {
         value: f64,
         allowed: String,
     },
+    /// A parameter that must be given in this combination is missing.
+    #[error("missing field `{}`: {allowed}", path.rsplit('.').next().unwrap_or(path))]
+    Missing { path: String, allowed: String },
     /// A shell wall that would leave no hollow (or a negative inner radius).
     #[error(
         "bat.shell.thickness: shell thickness {thickness} m exceeds the outer radius {radius} m at z = {z} m"
@@ -55,6 +58,9 @@ impl ModelError {
                 value,
                 allowed,
             } => (path.clone(), value.to_string(), allowed.clone()),
+            ModelError::Missing { path, allowed } => {
+                (path.clone(), "missing".into(), allowed.clone())
+            }
             ModelError::ShellTooThick {
                 thickness,
                 radius,

@@ -19,27 +19,57 @@ pub struct ModalBasis {
 }
 
 impl ModalBasis {
-    /// All N modes of the beam.
+    /// All modes of the beam (one per degree of freedom; with a pinned pivot the last one is
+    /// the constraint's and is inert: ω = 0 is never used for it, its shape is zero).
     pub fn of(beam: &Beam) -> Self {
-        let n = beam.len();
-        let inv_sqrt_m: Vec<f64> = beam.mass.iter().map(|m| 1.0 / m.sqrt()).collect();
+        let n = beam.dofs();
+        let nodes = beam.len();
+        let dof_mass = beam.dof_mass();
+        let inv_sqrt_m: Vec<f64> = dof_mass.iter().map(|m| 1.0 / m.sqrt()).collect();
         let mut a = beam.stiffness_matrix();
         for j in 0..n {
             for i in 0..n {
                 a[(i, j)] *= inv_sqrt_m[i] * inv_sqrt_m[j];
             }
         }
+        // A pinned pivot cᵀy = 0: with u = M^{-1/2}c/|·| and P = I − uuᵀ, the constrained
+        // modes are the eigenvectors of P A P orthogonal to u. Adding σ uuᵀ (σ above the
+        // spectrum) makes u an exact eigenvector at the top, so the constrained modes are
+        // all the others, exactly.
+        let pin_vector = beam.pin.map(|(k, al)| {
+            let mut u = nalgebra::DVector::zeros(n);
+            u[k] = (1.0 - al) * inv_sqrt_m[k];
+            u[k + 1] = al * inv_sqrt_m[k + 1];
+            let norm = u.norm();
+            u / norm
+        });
+        if let Some(u) = &pin_vector {
+            let bound = (0..n)
+                .map(|i| a.row(i).iter().map(|x| x.abs()).sum::<f64>())
+                .fold(0.0, f64::max);
+            let au = &a * u;
+            let uau = u.dot(&au);
+            // P A P = A − u (Au)ᵀ − (Au) uᵀ + (uᵀAu) u uᵀ
+            let sigma = 4.0 * bound.max(1.0);
+            for j in 0..n {
+                for i in 0..n {
+                    a[(i, j)] += -u[i] * au[j] - au[i] * u[j] + (uau + sigma) * u[i] * u[j];
+                }
+            }
+        }
         let eigen = SymmetricEigen::new(a);
         let mut order: Vec<usize> = (0..n).collect();
         order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
         // Rigid modes come out as round-off-sized eigenvalues; make them exactly zero so
-        // that the integrator treats them as free flight. Only a free–free beam has them
-        // (translation and rotation); a threshold on λ would misclassify the lowest
-        // clamped mode of a fine beam (λ₁/λ_max ~ (βd/2)⁴).
-        let n_rigid_expected = if beam.ends == EndsSpec::default() {
-            2
-        } else {
-            0
+        // that the integrator treats them as free flight. A free–free beam has two
+        // (translation and rotation), a free–free beam held at a grip point one (rotation
+        // about the grip); a threshold on λ would misclassify the lowest clamped mode of a
+        // fine beam (λ₁/λ_max ~ (βd/2)⁴).
+        let free = beam.ends == EndsSpec::default();
+        let n_rigid_expected = match (free, beam.grip_z.is_some()) {
+            (true, false) => 2,
+            (true, true) => 1,
+            _ => 0,
         };
         let mut omega = Vec::with_capacity(n);
         let mut shapes = DMatrix::zeros(n, n);
@@ -52,34 +82,48 @@ impl ModalBasis {
             } else {
                 omega.push(lambda.max(0.0).sqrt());
             }
+            if pin_vector.is_some() && col == n - 1 {
+                continue; // the constraint's mode: inert, zero shape
+            }
             let v = eigen.eigenvectors.column(k);
             // sign convention: positive at the barrel end
-            let sign = if v[n - 1] < 0.0 { -1.0 } else { 1.0 };
+            let sign = if v[nodes - 1] < 0.0 { -1.0 } else { 1.0 };
             for i in 0..n {
                 shapes[(i, col)] = sign * v[i] * inv_sqrt_m[i];
             }
         }
-        if n_rigid == 2 {
-            // Replace the solver's rigid pair (exact only to ~ε·λ_max) by the exact
-            // translation and rotation, and M-orthogonalise the flexible shapes against them,
-            // so that the modal integrator conserves momentum and angular momentum to
-            // round-off (completeness: Σ_n (1ᵀMφ_n) φ_n(z) = 1).
+        if n_rigid > 0 {
+            // Replace the solver's rigid modes (exact only to ~ε·λ_max) by the exact
+            // translation and rotation (about the CM, or the grip), and M-orthogonalise the
+            // flexible shapes against them, so that the modal integrator conserves momentum
+            // and angular momentum to round-off (completeness: Σ_n (1ᵀMφ_n) φ_n(z) = 1).
             let mass = &beam.mass;
             let total: f64 = mass.iter().sum();
             let z_cm = mass.iter().zip(&beam.z).map(|(m, z)| m * z).sum::<f64>() / total;
+            let centre = beam.grip_z.unwrap_or(z_cm);
             let inertia: f64 = mass
                 .iter()
                 .zip(&beam.z)
-                .map(|(m, z)| m * (z - z_cm).powi(2))
-                .sum();
-            for i in 0..n {
-                shapes[(i, 0)] = 1.0 / total.sqrt();
-                shapes[(i, 1)] = (beam.z[i] - z_cm) / inertia.sqrt();
+                .map(|(m, z)| m * (z - centre).powi(2))
+                .sum::<f64>()
+                + beam.total_rotary();
+            let rotation_col = n_rigid - 1;
+            for i in 0..nodes {
+                if n_rigid == 2 {
+                    shapes[(i, 0)] = 1.0 / total.sqrt();
+                }
+                shapes[(i, rotation_col)] = (beam.z[i] - centre) / inertia.sqrt();
             }
-            for col in 2..n {
-                for r in 0..2 {
+            for i in nodes..n {
+                if n_rigid == 2 {
+                    shapes[(i, 0)] = 0.0;
+                }
+                shapes[(i, rotation_col)] = 1.0 / inertia.sqrt();
+            }
+            for col in n_rigid..n {
+                for r in 0..n_rigid {
                     let overlap: f64 = (0..n)
-                        .map(|i| mass[i] * shapes[(i, r)] * shapes[(i, col)])
+                        .map(|i| dof_mass[i] * shapes[(i, r)] * shapes[(i, col)])
                         .sum();
                     for i in 0..n {
                         shapes[(i, col)] -= overlap * shapes[(i, r)];

@@ -72,8 +72,9 @@ pub struct History {
     pub hoop_displacement: Vec<f64>,
 }
 
-/// Where the collision's energy went, J (CM frame). `initial` = sum of the rest
-/// (up to the integrator's accuracy).
+/// Where the collision's energy went, J (bat-CM frame; with a grip, the frame of the
+/// hands, where the grip does no work). `initial` = sum of the rest (up to the
+/// integrator's accuracy).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct EnergyPartition {
     /// Kinetic energy of ball + bat before contact.
@@ -88,6 +89,10 @@ pub struct EnergyPartition {
     pub bat_vibration: f64,
     /// Left in the hoop mode.
     pub hoop: f64,
+    /// Dissipated by the bat's material damping (`bat.material.quality_factor`; 0 without).
+    pub bat_damping: f64,
+    /// Dissipated by the grip's damper (`bat.grip.damping`; 0 without).
+    pub grip_damping: f64,
 }
 
 /// The result of one collision.

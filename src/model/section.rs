@@ -16,6 +16,19 @@ pub const ALUMINUM_SHELL: f64 = 0.003;
 pub const CORKED_SHELL: f64 = 0.01;
 pub const CORKED_SHELL_FROM: f64 = 0.55;
 pub const CORK_DENSITY: f64 = 240.0;
+/// Poisson's ratios: wood ν_LR of white ash (USDA Wood Handbook, table 5-2: 0.371);
+/// aluminum 6061-T6 (ASM: 0.33).
+pub const WOOD_POISSON: f64 = 0.37;
+pub const ALUMINUM_POISSON: f64 = 0.33;
+/// Shear modulus of the R161 wood, N/m² (Nathan 2000's Timoshenko calculation).
+pub const WOOD_SHEAR_MODULUS: f64 = 1.05e9;
+
+/// Cowper's (1966) shear coefficient of a hollow circular section (m = r/R; m = 0 solid).
+pub fn cowper_shear_coefficient(poisson: f64, m: f64) -> f64 {
+    let m2 = m * m;
+    let a = (1.0 + m2).powi(2);
+    6.0 * (1.0 + poisson) * a / ((7.0 + 6.0 * poisson) * a + (20.0 + 12.0 * poisson) * m2)
+}
 
 /// Solid circular section: area πR².
 pub fn solid_area(r: f64) -> f64 {
@@ -41,6 +54,14 @@ pub struct BatGeometry {
     pub length: f64,
     pub density: f64,
     pub youngs_modulus: f64,
+    /// Poisson's ratio.
+    pub poisson_ratio: f64,
+    /// Shear modulus G, N/m².
+    pub shear_modulus: f64,
+    /// Shear coefficient κ (None: Cowper's at each section).
+    pub shear_coefficient: Option<f64>,
+    /// Modal damping ratio ζ = 1/(2Q) of the flexible modes (0: undamped).
+    pub damping_ratio: f64,
     /// (wall thickness, start z) of the hollow part, if any.
     pub shell: Option<(f64, f64)>,
     /// Density of the filling of the hollow part, kg/m³ (0: empty).
@@ -72,6 +93,30 @@ impl BatGeometry {
                 CORK_DENSITY,
             ),
         };
+        let is_wood = bat.preset != BatPreset::Aluminum;
+        let material = &bat.material;
+        let poisson_ratio = material.poisson_ratio.unwrap_or(if is_wood {
+            WOOD_POISSON
+        } else {
+            ALUMINUM_POISSON
+        });
+        let youngs_modulus = material.youngs_modulus.unwrap_or(youngs);
+        let shear_modulus = material.shear_modulus.unwrap_or(if is_wood {
+            WOOD_SHEAR_MODULUS
+        } else {
+            youngs_modulus / (2.0 * (1.0 + poisson_ratio))
+        });
+        let damping_ratio = match material.quality_factor {
+            None => 0.0,
+            Some(q) if q > 0.5 && q.is_finite() => 0.5 / q,
+            Some(q) => {
+                return Err(out_of_range(
+                    "bat.material.quality_factor",
+                    q,
+                    "(0.5, ∞) (underdamped modes)",
+                ))
+            }
+        };
         let length = bat.length.unwrap_or(profile.length());
         if !(length > 0.0 && length.is_finite()) {
             return Err(out_of_range("bat.length", length, "a finite number > 0 m"));
@@ -87,7 +132,11 @@ impl BatGeometry {
             handle: bat.handle.clone(),
             length,
             density: bat.material.density.unwrap_or(density),
-            youngs_modulus: bat.material.youngs_modulus.unwrap_or(youngs),
+            youngs_modulus,
+            poisson_ratio,
+            shear_modulus,
+            shear_coefficient: material.shear_coefficient,
+            damping_ratio,
             shell: match (&bat.shell, shell) {
                 (None, preset) => preset,
                 (Some(s), preset) => {
@@ -118,6 +167,19 @@ impl BatGeometry {
         positive("bat.material.density", self.density)?;
         positive("bat.material.youngs_modulus", self.youngs_modulus)?;
         positive("bat.handle.radius_scale", self.handle.radius_scale)?;
+        positive("bat.material.shear_modulus", self.shear_modulus)?;
+        if !(self.poisson_ratio > -1.0 && self.poisson_ratio < 0.5) {
+            return Err(out_of_range(
+                "bat.material.poisson_ratio",
+                self.poisson_ratio,
+                "(-1, 0.5)",
+            ));
+        }
+        if let Some(k) = self.shear_coefficient {
+            if !(k > 0.0 && k <= 1.0) {
+                return Err(out_of_range("bat.material.shear_coefficient", k, "(0, 1]"));
+            }
+        }
         if !(self.handle.end >= 0.0 && self.handle.end.is_finite()) {
             return Err(out_of_range("bat.handle.end", self.handle.end, "[0, ∞) m"));
         }
@@ -184,6 +246,26 @@ impl BatGeometry {
     /// Second moment of area of the load-bearing wall (the fill adds no stiffness), m⁴.
     pub fn second_moment(&self, z: f64) -> f64 {
         hollow_second_moment(self.outer_radius(z), self.inner_radius(z))
+    }
+
+    /// Cross-section area of the load-bearing wall, m².
+    pub fn wall_area(&self, z: f64) -> f64 {
+        hollow_area(self.outer_radius(z), self.inner_radius(z))
+    }
+
+    /// Rotary inertia per unit length ρ I_wall + ρ_fill π r⁴/4, kg·m.
+    pub fn rotary_inertia_per_length(&self, z: f64) -> f64 {
+        let inner = self.inner_radius(z);
+        self.density * self.second_moment(z) + self.fill_density * hollow_second_moment(inner, 0.0)
+    }
+
+    /// Shear stiffness κ G A of the wall, N.
+    pub fn shear_stiffness(&self, z: f64) -> f64 {
+        let (outer, inner) = (self.outer_radius(z), self.inner_radius(z));
+        let kappa = self
+            .shear_coefficient
+            .unwrap_or_else(|| cowper_shear_coefficient(self.poisson_ratio, inner / outer));
+        kappa * self.shear_modulus * hollow_area(outer, inner)
     }
 
     /// Positions where the integrands' pieces change (profile knots, handle blend, shell

@@ -73,6 +73,8 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
             bat_rigid: r.energy_bat_final,
             bat_vibration: 0.0,
             hoop: 0.0,
+            bat_damping: 0.0,
+            grip_damping: 0.0,
         },
         recontact: false,
         grip_vibration_amplitude: 0.0,

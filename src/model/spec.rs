@@ -90,6 +90,67 @@ pub struct BatSpec {
     /// Boundary condition at each end.
     #[serde(default)]
     pub ends: EndsSpec,
+    /// The batter's hands: a pinned pivot or a spring grip at a chosen z. Default `null`
+    /// (a free bat, the paper's assumption).
+    #[serde(default)]
+    pub grip: Option<GripSpec>,
+    /// Beam theory of the wave model. Default `euler_bernoulli` (the paper's).
+    #[serde(default)]
+    pub beam: BeamTheory,
+}
+
+/// Beam theory of the wave model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BeamTheory {
+    /// Euler–Bernoulli: bending only (the paper's section 3).
+    #[default]
+    EulerBernoulli,
+    /// Timoshenko: bending + shear deformation + rotary inertia (Van Zandt; Nathan 2000).
+    /// Uses `bat.material.shear_modulus` and `bat.material.shear_coefficient`.
+    Timoshenko,
+}
+
+/// Kinds of grip.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum GripKind {
+    /// The bat's displacement at `z` is held (it can still rotate about it): Nathan's pivot.
+    #[default]
+    Pinned,
+    /// A transverse spring of stiffness `stiffness` between the hands and the bat at `z`.
+    Spring,
+}
+
+/// The hands. They move uniformly during the collision with the velocity that their point
+/// of the bat has initially (ω (z − z_cm) in the bat-CM frame), i.e. the collision is
+/// solved in the frame of the hands; `swing.cm_speed` then gives exact lab-frame speeds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GripSpec {
+    /// Position of the pivot / grip in m from the knob. Default 0.15 (Nathan 2000's pivot).
+    #[serde(default = "default_grip_z")]
+    pub z: f64,
+    /// `pinned` or `spring`. Default `pinned`.
+    #[serde(default)]
+    pub kind: GripKind,
+    /// Spring stiffness in N/m (`spring` only; required there).
+    #[serde(default)]
+    pub stiffness: Option<f64>,
+    /// Damper in parallel with the spring, N·s/m (`spring` only). Default 0.
+    #[serde(default)]
+    pub damping: f64,
+}
+
+impl Default for GripSpec {
+    fn default() -> Self {
+        Self {
+            z: default_grip_z(),
+            kind: GripKind::default(),
+            stiffness: None,
+            damping: 0.0,
+        }
+    }
 }
 
 /// A user-supplied outer-radius profile R(z), z in m from the knob, linear between knots.
@@ -113,6 +174,24 @@ pub struct MaterialSpec {
     /// Young's modulus in N/m² (Pa). Default: the preset's (1.814e10 wood, 6.9e10 aluminum).
     #[serde(default)]
     pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio (hoop modes from geometry, Cowper's shear coefficient). Default: the
+    /// preset's (0.33 aluminum, ASM 6061-T6; 0.37 wood, ν_LR of white ash, USDA Wood
+    /// Handbook table 5-2).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+    /// Shear modulus G in N/m² (Timoshenko beam). Default: 1.05e9 for wood (Nathan 2000),
+    /// Y / (2 (1 + ν)) for aluminum (isotropic).
+    #[serde(default)]
+    pub shear_modulus: Option<f64>,
+    /// Timoshenko shear coefficient κ. Default: Cowper (1966) for a hollow circle at each
+    /// section, κ = 6(1+ν)(1+m²)² / ((7+6ν)(1+m²)² + (20+12ν)m²), m = r/R: ≈ 0.88 solid,
+    /// → 2(1+ν)/(4+3ν) ≈ 0.53 for a thin tube.
+    #[serde(default)]
+    pub shear_coefficient: Option<f64>,
+    /// Material damping: quality factor Q of every flexible mode (modal damping ratio
+    /// ζ = 1/(2Q), applied exactly by the modal integrator). Default `null`: undamped.
+    #[serde(default)]
+    pub quality_factor: Option<f64>,
 }
 
 /// A hollow shell: the wall of thickness `thickness` for z ≥ `from`; solid before.
@@ -276,14 +355,28 @@ pub struct SwingSpec {
     pub cm_speed: f64,
 }
 
-/// A hoop mode: mass `mass` on a spring of frequency `frequency` between ball and bat.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+/// A hoop mode: mass `mass` on a spring of frequency `frequency` between ball and bat;
+/// either given (`frequency` and `mass`) or derived from the shell (`from_geometry`).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HoopSpec {
-    /// Hoop-mode frequency in Hz (spring k_h = m_h (2π f)²).
-    pub frequency: f64,
-    /// Effective hoop mass in kg (the paper gives none; results depend on it).
-    pub mass: f64,
+    /// Hoop-mode frequency in Hz (spring k_h = m_h (2π f)²). Required unless `from_geometry`.
+    #[serde(default)]
+    pub frequency: Option<f64>,
+    /// Effective hoop mass in kg (the paper gives none; results depend on it). Required
+    /// unless `from_geometry`.
+    #[serde(default)]
+    pub mass: Option<f64>,
+    /// Derive frequency and mass of the lowest (n = 2, ovalling) shell mode from the wall at
+    /// the impact point (thickness h, mid-surface radius, Y, ρ, ν): the ring formula
+    /// ω² = Y h² / (12 ρ (1 − ν²) a⁴) · n²(n² − 1)²/(n² + 1). Default false.
+    #[serde(default)]
+    pub from_geometry: bool,
+    /// Axial length in m of the shell that moves in the hoop mode (`from_geometry`):
+    /// mass = (1 + 1/n²) π ρ h a · length. Default: twice the decay length of an n = 2
+    /// deformation, a (12(1 − ν²))^¼ √(a/h) / (n √(n² − 1)) (semi-membrane estimate).
+    #[serde(default)]
+    pub length: Option<f64>,
 }
 
 /// Where the ball hits.
@@ -320,6 +413,9 @@ pub struct NumericsSpec {
     pub integrator: Integrator,
 }
 
+fn default_grip_z() -> f64 {
+    0.15
+}
 fn one() -> f64 {
     1.0
 }

@@ -63,21 +63,48 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     )?;
     check("swing.omega", spec.swing.omega, true, "finite rad/s")?;
     check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
-    if let Some(hoop) = &spec.hoop {
+    if let Some(hoop) = spec.hoop.as_ref().filter(|h| !h.from_geometry) {
+        for (path, v) in [("hoop.frequency", hoop.frequency), ("hoop.mass", hoop.mass)] {
+            if v.is_none() {
+                return Err(ModelError::Missing {
+                    path: path.into(),
+                    allowed: "this field is required (hoop.frequency and hoop.mass are both needed unless hoop.from_geometry: true)".into(),
+                });
+            }
+        }
         let (lo, hi) = HOOP_FREQUENCY_RANGE;
+        let f = hoop.frequency.unwrap_or(f64::NAN);
         check(
             "hoop.frequency",
-            hoop.frequency,
-            hoop.frequency >= lo && hoop.frequency <= hi,
-            &format!("{lo} to {hi} Hz"),
+            f,
+            f >= lo && f <= hi,
+            &format!("{lo} to {hi} Hz (required unless hoop.from_geometry)"),
         )?;
         let max_mass = HOOP_MASS_MAX_BALL_MASSES * ball.mass;
+        let m = hoop.mass.unwrap_or(f64::NAN);
         check(
             "hoop.mass",
-            hoop.mass,
-            hoop.mass > 0.0 && hoop.mass < max_mass,
-            &format!("> 0 and < {max_mass} kg (10 ball masses)"),
+            m,
+            m > 0.0 && m < max_mass,
+            &format!(
+                "> 0 and < {max_mass} kg (10 ball masses; required unless hoop.from_geometry)"
+            ),
         )?;
+    }
+    if let Some(hoop) = spec.hoop.as_ref().filter(|h| h.from_geometry) {
+        for (path, v) in [("hoop.frequency", hoop.frequency), ("hoop.mass", hoop.mass)] {
+            if let Some(v) = v {
+                check(path, v, false, "unset (hoop.from_geometry derives it)")?;
+            }
+        }
+        if let Some(l) = hoop.length {
+            check("hoop.length", l, l > 0.0, "(0, ∞) m")?;
+        }
+    }
+    if spec.model == super::spec::ModelKind::Rigid && spec.bat.grip.is_some() {
+        return Err(ModelError::Unsupported(
+            "bat.grip with the rigid model (it is a free bat)",
+        ));
     }
     let length = geometry.length;
     check(

@@ -21,7 +21,7 @@ use super::error::{out_of_range, ModelError};
 use super::history::{Recorder, Sample};
 use super::metrics::{grip_recoil_speed, grip_vibration_amplitude, modal_coordinates, KNOB6};
 use super::outcome::{EnergyPartition, HistoryRequest, Outcome};
-use super::spec::{CollisionSpec, Integrator};
+use super::spec::{BeamTheory, CollisionSpec, Integrator};
 
 /// Time simulated after the last separation to catch a re-contact, s.
 pub const COAST_TIME: f64 = 0.5e-3;
@@ -41,7 +41,10 @@ const MIN_MODES: usize = 12;
 /// Default Verlet step as a fraction of its stability limit.
 pub const VERLET_STEP_FRACTION: f64 = 0.9;
 
-/// Conservation checks of one run (for tests and benchmarks), CM frame, about z_cm.
+/// Conservation checks of one run (for tests and benchmarks). Without a grip: bat-CM frame,
+/// angular momentum about z_cm. With a grip: the frame of the hands, angular momentum about
+/// the grip point (conserved: the grip force has no moment about it), and linear momentum
+/// is not conserved (the hands push).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Diagnostics {
     pub momentum_initial: f64,
@@ -59,17 +62,102 @@ pub struct Diagnostics {
 
 /// The hoop mode: mass and spring constant.
 #[derive(Debug, Clone, Copy)]
-struct Hoop {
-    mass: f64,
-    stiffness: f64,
+pub struct Hoop {
+    /// Effective mass, kg.
+    pub mass: f64,
+    /// Spring constant, N/m.
+    pub stiffness: f64,
+}
+
+impl Hoop {
+    /// Frequency, Hz.
+    pub fn frequency(&self) -> f64 {
+        (self.stiffness / self.mass).sqrt() / (2.0 * std::f64::consts::PI)
+    }
+}
+
+/// Circumferential wave number of the hoop mode derived from geometry (ovalling).
+pub const HOOP_WAVE_NUMBER: f64 = 2.0;
+
+/// The hoop mode of a collision: given, or derived from the shell at the impact point.
+///
+/// Geometry (Love/Rayleigh inextensional ring, Graff 1975 §4.x; Soedel, "Vibrations of
+/// shells and plates", ring modes): a shell of wall h, mid-surface radius a, in the
+/// n-th ovalling mode w = W cos nθ, v = −(W/n) sin nθ, has
+/// ω² = Y h² / (12 ρ (1 − ν²) a⁴) · n²(n² − 1)²/(n² + 1) — the free ring per unit length
+/// with the plate modulus Y/(1 − ν²). This is also the lowest mode of a cylinder with free
+/// ends (Rayleigh's inextensional mode); a held or capped end only raises it. Its kinetic
+/// energy ½ ρ h a ℓ Ẇ² π (1 + 1/n²) gives the mass referred to the radial displacement at
+/// the impact point, m = (1 + 1/n²) π ρ h a ℓ, over an axial length ℓ (`hoop.length`).
+pub fn resolve_hoop(spec: &CollisionSpec, bat: &PreparedBat) -> Result<Option<Hoop>, ModelError> {
+    let Some(h) = &spec.hoop else {
+        return Ok(None);
+    };
+    let two_pi = 2.0 * std::f64::consts::PI;
+    if !h.from_geometry {
+        let (Some(f), Some(m)) = (h.frequency, h.mass) else {
+            return Err(ModelError::Unsupported(
+                "hoop needs frequency and mass, or from_geometry: true",
+            ));
+        };
+        return Ok(Some(Hoop {
+            mass: m,
+            stiffness: m * (two_pi * f).powi(2),
+        }));
+    }
+    if h.frequency.is_some() || h.mass.is_some() {
+        return Err(ModelError::Unsupported(
+            "hoop.from_geometry derives frequency and mass: leave them unset",
+        ));
+    }
+    let g = &bat.geometry;
+    let z = spec.impact.z;
+    let (outer, inner) = (g.outer_radius(z), g.inner_radius(z));
+    let wall = outer - inner;
+    if inner <= 0.0 {
+        return Err(out_of_range(
+            "impact.z",
+            z,
+            "on the hollow part of the bat (hoop.from_geometry needs a shell there)",
+        ));
+    }
+    let a = outer - 0.5 * wall;
+    let nu = g.poisson_ratio;
+    let n = HOOP_WAVE_NUMBER;
+    let n2 = n * n;
+    let omega2 = g.youngs_modulus * wall * wall / (12.0 * g.density * (1.0 - nu * nu) * a.powi(4))
+        * n2
+        * (n2 - 1.0).powi(2)
+        / (n2 + 1.0);
+    let length = match h.length {
+        Some(l) => l,
+        None => default_hoop_length(a, wall, nu),
+    };
+    let mass = (1.0 + 1.0 / n2) * std::f64::consts::PI * g.density * wall * a * length;
+    Ok(Some(Hoop {
+        mass,
+        stiffness: mass * omega2,
+    }))
+}
+
+/// Default axial length of the hoop mode, m: twice the decay length of an n = 2 load on a
+/// long shell in semi-membrane theory, a (12(1 − ν²))^¼ √(a/h) / (n √(n² − 1)) (an
+/// order-of-magnitude estimate; the mass it gives is a modelling choice, stored with the
+/// results as `hoop.length` may be swept).
+pub fn default_hoop_length(a: f64, wall: f64, nu: f64) -> f64 {
+    let n = HOOP_WAVE_NUMBER;
+    2.0 * a * (12.0 * (1.0 - nu * nu)).powf(0.25) * (a / wall).sqrt() / (n * (n * n - 1.0).sqrt())
 }
 
 /// Everything of one collision that both integrators need.
 struct Collision {
     law: ContactLaw,
     ball_mass: f64,
+    /// Ball velocity toward the bat in the collision's frame (the hands' with a grip).
     ball_speed: f64,
     omega: f64,
+    /// Velocity of the frame (the hands) in the bat-CM frame: ω (z_grip − z_cm), or 0.
+    frame_velocity: f64,
     hoop: Option<Hoop>,
     /// Impact point: node pair k, k+1 and weight a of node k+1; lever arm z − z_cm.
     k: usize,
@@ -81,12 +169,11 @@ struct Collision {
 }
 
 /// The contact's angular frequency scale: the stiffest ball tangent on the ball (and hoop).
-fn contact_omega(spec: &CollisionSpec, law: &ContactLaw, approach: f64) -> f64 {
+fn contact_omega(spec: &CollisionSpec, hoop: Option<Hoop>, law: &ContactLaw, approach: f64) -> f64 {
     let kt = law.max_tangent(spec.ball.mass, approach);
     let mut w2 = kt / spec.ball.mass;
-    if let Some(h) = &spec.hoop {
-        let kh = h.mass * (2.0 * std::f64::consts::PI * h.frequency).powi(2);
-        w2 += kt / h.mass + kh / h.mass;
+    if let Some(h) = hoop {
+        w2 += kt / h.mass + h.stiffness / h.mass;
     }
     w2.sqrt()
 }
@@ -97,7 +184,8 @@ fn contact_omega(spec: &CollisionSpec, law: &ContactLaw, approach: f64) -> f64 {
 pub fn stability_limit(spec: &CollisionSpec, bat: &PreparedBat) -> f64 {
     let law = ContactLaw::from_spec(&spec.ball.law);
     let approach = approach_speed(spec, bat);
-    let wc = contact_omega(spec, &law, approach.abs());
+    let hoop = resolve_hoop(spec, bat).ok().flatten();
+    let wc = contact_omega(spec, hoop, &law, approach.abs());
     match spec.numerics.integrator {
         // The scheme is stable up to ω_c·dt = 2√3 (linear-acceleration method), but steps
         // that coarse silently give wrong exit speeds (10 % off at 1/3 of it): refuse
@@ -111,10 +199,13 @@ pub fn stability_limit(spec: &CollisionSpec, bat: &PreparedBat) -> f64 {
             let kt = law.max_tangent(spec.ball.mass, approach.abs());
             let w_beam = bat.modes.omega.last().copied().unwrap_or(0.0);
             let mut w2 = w_beam * w_beam;
-            match &spec.hoop {
+            if bat.beam.pin.is_some() {
+                return 0.0; // not supported by Verlet (refused in simulate_wave)
+            }
+            match hoop {
                 None => w2 += kt * (1.0 / spec.ball.mass + node),
                 Some(h) => {
-                    let kh = h.mass * (2.0 * std::f64::consts::PI * h.frequency).powi(2);
+                    let kh = h.stiffness;
                     w2 += kt * (1.0 / spec.ball.mass + 1.0 / h.mass) + kh * (1.0 / h.mass + node);
                 }
             }
@@ -218,6 +309,12 @@ impl Contact {
 struct FinalState {
     ball_velocity: f64,
     bat_energy: f64,
+    /// Energy of the rigid modes (rotation about the grip) with a grip; unused without.
+    bat_rigid_energy: f64,
+    /// Dissipated by material damping.
+    bat_damping: f64,
+    /// Dissipated by the grip damper.
+    grip_loss: f64,
     bat_momentum: f64,
     bat_angular_momentum: f64,
     hoop_energy: f64,
@@ -240,23 +337,43 @@ pub fn simulate_wave(
             approach_speed: approach,
         });
     }
+    if spec.numerics.integrator == Integrator::Verlet {
+        if bat.beam.pin.is_some() {
+            return Err(ModelError::Unsupported(
+                "a pinned grip needs the modal integrator",
+            ));
+        }
+        if bat.damping_ratio > 0.0 || bat.grip_damping > 0.0 {
+            return Err(ModelError::Unsupported(
+                "material damping needs the modal integrator",
+            ));
+        }
+        if spec.bat.beam == BeamTheory::Timoshenko {
+            return Err(ModelError::Unsupported(
+                "the Timoshenko beam needs the modal integrator",
+            ));
+        }
+    }
+    let hoop = resolve_hoop(spec, bat)?;
     let dt = time_step(spec, bat)?;
     let (k, a) = bat.beam.interpolation(spec.impact.z);
+    let frame_velocity = bat
+        .beam
+        .grip_z
+        .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
     let collision = Collision {
         law: ContactLaw::from_spec(&spec.ball.law),
         ball_mass: spec.ball.mass,
-        ball_speed: spec.ball.speed,
+        ball_speed: spec.ball.speed - frame_velocity,
         omega: spec.swing.omega,
-        hoop: spec.hoop.as_ref().map(|h| Hoop {
-            mass: h.mass,
-            stiffness: h.mass * (2.0 * std::f64::consts::PI * h.frequency).powi(2),
-        }),
+        frame_velocity,
+        hoop,
         k,
         a,
         lever: spec.impact.z - bat.z_cm,
         dt,
         mode_cutoff: MODE_CUTOFF_FACTOR
-            * contact_omega(spec, &ContactLaw::from_spec(&spec.ball.law), approach),
+            * contact_omega(spec, hoop, &ContactLaw::from_spec(&spec.ball.law), approach),
     };
     let mut recorder = history.map(Recorder::new);
     let mut contact = Contact::started();
@@ -266,20 +383,30 @@ pub fn simulate_wave(
     };
 
     let m = collision.ball_mass;
-    let exit_speed = -fin.ball_velocity;
-    let bat_rigid = 0.5 * fin.bat_momentum.powi(2) / bat.beam.total_mass()
-        + 0.5 * fin.bat_angular_momentum.powi(2) / bat.inertia_cm;
-    let hoop_initial_velocity = collision.omega * collision.lever;
+    let u = collision.frame_velocity;
+    // back to the bat-CM frame
+    let exit_speed = -(fin.ball_velocity + u);
+    let total_mass = bat.beam.total_mass();
+    let bat_rigid = if bat.beam.grip_z.is_some() {
+        fin.bat_rigid_energy
+    } else {
+        0.5 * fin.bat_momentum.powi(2) / total_mass
+            + 0.5 * fin.bat_angular_momentum.powi(2) / bat.inertia_cm
+    };
+    let hoop_initial_velocity = collision.omega * collision.lever - u;
     let hoop_mass = collision.hoop.map_or(0.0, |h| h.mass);
     let energy = EnergyPartition {
         initial: 0.5 * m * collision.ball_speed.powi(2)
             + 0.5 * collision.omega.powi(2) * bat.inertia_cm
+            + 0.5 * total_mass * u * u
             + 0.5 * hoop_mass * hoop_initial_velocity.powi(2),
         ball_final: 0.5 * m * fin.ball_velocity.powi(2),
         ball_loss: contact.ball_loss,
         bat_rigid,
         bat_vibration: fin.bat_energy - bat_rigid,
         hoop: fin.hoop_energy,
+        bat_damping: fin.bat_damping,
+        grip_damping: fin.grip_loss,
     };
     let outcome = Outcome {
         exit_speed,
@@ -305,20 +432,30 @@ pub fn simulate_wave(
         ),
         history: recorder.map(|r| r.finish()),
     };
-    let lever = collision.lever;
+    // about the grip (with one) or the CM; bat angular momentum about the CM → about centre
+    let centre = bat.beam.grip_z.unwrap_or(bat.z_cm);
+    let lever = spec.impact.z - centre;
+    let shift = bat.z_cm - centre;
+    let bat_momentum_initial = -total_mass * u;
     let diagnostics = Diagnostics {
-        momentum_initial: m * collision.ball_speed + hoop_mass * hoop_initial_velocity,
+        momentum_initial: m * collision.ball_speed
+            + hoop_mass * hoop_initial_velocity
+            + bat_momentum_initial,
         momentum_final: m * fin.ball_velocity + fin.bat_momentum + hoop_mass * fin.hoop_velocity,
         angular_momentum_initial: (m * collision.ball_speed + hoop_mass * hoop_initial_velocity)
             * lever
-            + collision.omega * bat.inertia_cm,
+            + collision.omega * bat.inertia_cm
+            + shift * bat_momentum_initial,
         angular_momentum_final: (m * fin.ball_velocity + hoop_mass * fin.hoop_velocity) * lever
-            + fin.bat_angular_momentum,
+            + fin.bat_angular_momentum
+            + shift * fin.bat_momentum,
         energy_final: energy.ball_final
             + energy.ball_loss
             + energy.bat_rigid
             + energy.bat_vibration
-            + energy.hoop,
+            + energy.hoop
+            + energy.bat_damping
+            + energy.grip_damping,
         dt,
         steps: fin.steps,
         segments: bat.beam.len(),
@@ -344,9 +481,11 @@ fn displacement_points(
 
 /// Per-mode constants of one exact step of length h under a force linear in time.
 struct ModalStep {
+    /// Free propagator [[cos, sin_over_omega], [minus_omega_sin, a22]] (damped if ζ > 0).
     cos: Vec<f64>,
     sin_over_omega: Vec<f64>,
     minus_omega_sin: Vec<f64>,
+    a22: Vec<f64>,
     /// Position and velocity responses to the start/end force, times φ_n(z_impact).
     q_start: Vec<f64>,
     q_end: Vec<f64>,
@@ -372,18 +511,50 @@ fn ramp_terms(omega: f64, h: f64) -> (f64, f64) {
 }
 
 impl ModalStep {
-    fn new(omega: &[f64], phi: &[f64], h: f64) -> Self {
+    /// Exact step of q̈ + 2ζωq̇ + ω²q = φ f(t), f linear over the step; ζ applies to the
+    /// flexible modes (ω > 0) only.
+    fn new(omega: &[f64], zeta: f64, phi: &[f64], h: f64) -> Self {
         let n = omega.len();
         let mut s = Self {
             cos: Vec::with_capacity(n),
             sin_over_omega: Vec::with_capacity(n),
             minus_omega_sin: Vec::with_capacity(n),
+            a22: Vec::with_capacity(n),
             q_start: Vec::with_capacity(n),
             q_end: Vec::with_capacity(n),
             v_start: Vec::with_capacity(n),
             v_end: Vec::with_capacity(n),
         };
         for (&w, &p) in omega.iter().zip(phi) {
+            if zeta > 0.0 && w > 0.0 {
+                // homogeneous: e^{−ζωt}(cos ω_d t, sin ω_d t); particular solution of the
+                // ramp f0 + (f1 − f0) t/h: q_p = f(t)/ω² − 2ζ (f1 − f0)/(h ω³)
+                let wd = w * (1.0 - zeta * zeta).sqrt();
+                let e = (-zeta * w * h).exp();
+                let (sn, cs) = (wd * h).sin_cos();
+                let r = zeta * w / wd;
+                let (a11, a12, a21, a22) = (
+                    e * (cs + r * sn),
+                    e * sn / wd,
+                    -e * w * w / wd * sn,
+                    e * (cs - r * sn),
+                );
+                let response = |qp0: f64, qph: f64, vp: f64| {
+                    (qph - a11 * qp0 - a12 * vp, vp - a21 * qp0 - a22 * vp)
+                };
+                let c = 2.0 * zeta / (h * w * w * w);
+                let (qs, vs) = response(1.0 / (w * w) + c, c, -1.0 / (h * w * w));
+                let (qe, ve) = response(-c, 1.0 / (w * w) - c, 1.0 / (h * w * w));
+                s.cos.push(a11);
+                s.sin_over_omega.push(a12);
+                s.minus_omega_sin.push(a21);
+                s.a22.push(a22);
+                s.q_start.push(qs * p);
+                s.q_end.push(qe * p);
+                s.v_start.push(vs * p);
+                s.v_end.push(ve * p);
+                continue;
+            }
             let x = w * h;
             let sin_over_omega = if x < 1e-2 {
                 let x2 = x * x;
@@ -393,6 +564,7 @@ impl ModalStep {
             };
             let (a, b) = ramp_terms(w, h);
             s.cos.push(x.cos());
+            s.a22.push(x.cos());
             s.sin_over_omega.push(sin_over_omega);
             s.minus_omega_sin.push(-w * x.sin());
             s.q_start.push((a - b) * p);
@@ -420,7 +592,12 @@ fn run_modal(
     // time stepping and add their static compliance at the contact point instead (the
     // mode-acceleration method). Dropping them is exact for the initial state only when they
     // carry none of it: always for a free–free bat (the rigid rotation is two rigid modes).
-    let n = if bat.modes.n_rigid == 2 || c.omega == 0.0 {
+    let initial_is_rigid = c.omega == 0.0
+        || bat.modes.n_rigid == 2
+        || (bat.beam.grip_z.is_some() && bat.modes.n_rigid == 1);
+    // a grip damper couples the modes (non-proportional damping): step them all
+    let grip_damping = bat.grip_damping;
+    let n = if initial_is_rigid && grip_damping == 0.0 {
         modes
             .omega
             .partition_point(|&w| w <= c.mode_cutoff)
@@ -438,19 +615,54 @@ fn run_modal(
         .sum();
     let phi = &phi_all[..n];
     let h = c.dt;
-    let st = ModalStep::new(&modes.omega[..n], phi, h);
+    let zeta = bat.damping_ratio;
+    let st = ModalStep::new(&modes.omega[..n], zeta, phi, h);
+    // material damping: dissipation rate Σ 2ζω q̇², integrated by Simpson's rule with the
+    // mid-step velocities from an exact half step
+    let half = (zeta > 0.0).then(|| ModalStep::new(&modes.omega[..n], zeta, phi, 0.5 * h));
+    let damping_rate = |qd: &[f64]| -> f64 {
+        qd.iter()
+            .zip(&modes.omega[..n])
+            .map(|(v, w)| 2.0 * zeta * w * v * v)
+            .sum()
+    };
+    let mut bat_damping = 0.0;
+    // grip damper: force d = −c v_grip at the grip point, linear over the step like the
+    // contact force and solved implicitly with it (d₁ is affine in the bat's end force p₁)
+    let grip_psi: Vec<f64> = bat.beam.grip_z.map_or(vec![0.0; n], |zg| {
+        let (kg, ag) = bat.beam.interpolation(zg);
+        (0..n)
+            .map(|j| (1.0 - ag) * shapes[(kg, j)] + ag * shapes[(kg + 1, j)])
+            .collect()
+    });
+    let damper = grip_damping > 0.0;
+    let st_g = ModalStep::new(&modes.omega[..n], zeta, &grip_psi, h);
+    let half_g = ModalStep::new(&modes.omega[..n], zeta, &grip_psi, 0.5 * h);
+    let half_p = ModalStep::new(&modes.omega[..n], zeta, phi, 0.5 * h);
+    let dot_n = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    // contact displacement per unit grip force (start/end of the step), grip velocity per
+    // unit contact / grip end force
+    let c_start = dot_n(phi, &st_g.q_start);
+    let c_end = dot_n(phi, &st_g.q_end);
+    let b_gp = dot_n(&grip_psi, &st.v_end);
+    let b_gg = dot_n(&grip_psi, &st_g.v_end);
+    let beta_d = -grip_damping * b_gp / (1.0 + grip_damping * b_gg);
+    let mut d_force = 0.0;
+    let mut grip_loss = 0.0;
     // contact-point compliance to the start/end force over one step (high modes: static)
     let g_start: f64 = st.q_start.iter().zip(phi).map(|(x, p)| x * p).sum();
     let g_end: f64 = st.q_end.iter().zip(phi).map(|(x, p)| x * p).sum::<f64>() + g_static;
 
     let mut q = vec![0.0; n];
+    // initial rigid rotation about the CM, seen from the collision's frame
     let mut qd: Vec<f64> = bat.angular_weight[..n]
         .iter()
-        .map(|l| c.omega * l)
+        .zip(&bat.momentum_weight[..n])
+        .map(|(l, p)| c.omega * l - c.frame_velocity * p)
         .collect();
     let m = c.ball_mass;
     let (mut w, mut v) = (0.0, c.ball_speed);
-    let v_contact0 = c.omega * c.lever;
+    let v_contact0 = c.omega * c.lever - c.frame_velocity;
     let (mut xh, mut vh) = (0.0, v_contact0);
     let (mut force, mut hoop_force) = (0.0, 0.0);
     let mut y_c;
@@ -530,6 +742,26 @@ fn run_modal(
             .zip(q.iter().zip(&qd))
             .map(|(((p, c), so), (qj, qdj))| p * (c * qj + so * qdj))
             .sum();
+        let p_start = if c.hoop.is_some() { hoop_force } else { force };
+        let (y_free, g_end, alpha_d) = if damper {
+            let a_g: f64 = (0..n)
+                .map(|j| {
+                    grip_psi[j]
+                        * (st.minus_omega_sin[j] * q[j]
+                            + st.a22[j] * qd[j]
+                            + st.v_start[j] * p_start
+                            + st_g.v_start[j] * d_force)
+                })
+                .sum();
+            let alpha_d = -grip_damping * a_g / (1.0 + grip_damping * b_gg);
+            (
+                y_free + c_start * d_force + c_end * alpha_d,
+                g_end + c_end * beta_d,
+                alpha_d,
+            )
+        } else {
+            (y_free, g_end, 0.0)
+        };
         let w_free = w + h * v - h2 * force / (3.0 * m);
         let (new_force, new_hoop_force, new_s);
         match c.hoop {
@@ -572,11 +804,68 @@ fn run_modal(
         } else {
             (force, new_force)
         };
+        if let Some(hs) = &half {
+            let pm = 0.5 * (p0 + p1);
+            let mid: f64 = (0..n)
+                .map(|j| {
+                    let vm = hs.minus_omega_sin[j] * q[j]
+                        + hs.a22[j] * qd[j]
+                        + hs.v_start[j] * p0
+                        + hs.v_end[j] * pm;
+                    2.0 * zeta * modes.omega[j] * vm * vm
+                })
+                .sum();
+            bat_damping += h / 6.0 * (damping_rate(&qd) + 4.0 * mid);
+        }
+        let (d0, d1) = (d_force, alpha_d + beta_d * p1);
+        if damper {
+            // damper power c v² by Simpson's rule (mid-step velocity from an exact half step)
+            let (pm, dm) = (0.5 * (p0 + p1), 0.5 * (d0 + d1));
+            let vg0 = dot_n(&grip_psi, &qd);
+            let vgm: f64 = (0..n)
+                .map(|j| {
+                    grip_psi[j]
+                        * (half_p.minus_omega_sin[j] * q[j]
+                            + half_p.a22[j] * qd[j]
+                            + half_p.v_start[j] * p0
+                            + half_p.v_end[j] * pm
+                            + half_g.v_start[j] * d0
+                            + half_g.v_end[j] * dm)
+                })
+                .sum();
+            grip_loss += h / 6.0 * grip_damping * (vg0 * vg0 + 4.0 * vgm * vgm);
+            if let Some(hs) = &half {
+                // material damping's mid-step rate with the grip force included
+                let mid_extra: f64 = (0..n)
+                    .map(|j| {
+                        let base = hs.minus_omega_sin[j] * q[j]
+                            + hs.a22[j] * qd[j]
+                            + hs.v_start[j] * p0
+                            + hs.v_end[j] * pm;
+                        let vm = base + half_g.v_start[j] * d0 + half_g.v_end[j] * dm;
+                        2.0 * zeta * modes.omega[j] * (vm * vm - base * base)
+                    })
+                    .sum();
+                bat_damping += h / 6.0 * 4.0 * mid_extra;
+            }
+        }
         for (j, (qj, qdj)) in q.iter_mut().zip(qd.iter_mut()).enumerate().take(n) {
             let (x, xd) = (*qj, *qdj);
             *qj = st.cos[j] * x + st.sin_over_omega[j] * xd + st.q_start[j] * p0 + st.q_end[j] * p1;
             *qdj =
-                st.minus_omega_sin[j] * x + st.cos[j] * xd + st.v_start[j] * p0 + st.v_end[j] * p1;
+                st.minus_omega_sin[j] * x + st.a22[j] * xd + st.v_start[j] * p0 + st.v_end[j] * p1;
+            if damper {
+                *qj += st_g.q_start[j] * d0 + st_g.q_end[j] * d1;
+                *qdj += st_g.v_start[j] * d0 + st_g.v_end[j] * d1;
+            }
+        }
+        if damper {
+            let vg1 = dot_n(&grip_psi, &qd);
+            grip_loss += h / 6.0 * grip_damping * vg1 * vg1;
+            d_force = d1;
+        }
+        if half.is_some() {
+            bat_damping += h / 6.0 * damping_rate(&qd);
         }
         y_c = y_free + g_start * p0 + g_end * p1;
         w = w_free - h2 * new_force / (6.0 * m);
@@ -619,9 +908,13 @@ fn run_modal(
     let hoop_energy = c.hoop.map_or(0.0, |hp| {
         0.5 * hp.mass * vh * vh + 0.5 * hp.stiffness * (xh - y_c).powi(2)
     });
+    let bat_rigid_energy = qd[..modes.n_rigid].iter().map(|x| 0.5 * x * x).sum();
     Ok(FinalState {
         ball_velocity: v,
         bat_energy,
+        bat_rigid_energy,
+        bat_damping,
+        grip_loss,
         bat_momentum: dot(&bat.momentum_weight),
         bat_angular_momentum: dot(&bat.angular_weight),
         hoop_energy,
@@ -648,11 +941,15 @@ fn run_verlet(
     let h = c.dt;
     let m = c.ball_mass;
     let mut y = vec![0.0; n];
-    let mut yd: Vec<f64> = beam.z.iter().map(|z| c.omega * (z - bat.z_cm)).collect();
+    let mut yd: Vec<f64> = beam
+        .z
+        .iter()
+        .map(|z| c.omega * (z - bat.z_cm) - c.frame_velocity)
+        .collect();
     let mut acc = vec![0.0; n];
     let mut ky = vec![0.0; n];
     let (mut w, mut v) = (0.0, c.ball_speed);
-    let (mut xh, mut vh) = (0.0, c.omega * c.lever);
+    let (mut xh, mut vh) = (0.0, c.omega * c.lever - c.frame_velocity);
     let (mut force, mut hoop_force);
     let (mut ball_acc, mut hoop_acc) = (0.0, 0.0);
     let mut s = 0.0;
@@ -762,9 +1059,21 @@ fn run_verlet(
     let hoop_energy = c.hoop.map_or(0.0, |hp| {
         0.5 * hp.mass * vh * vh + 0.5 * hp.stiffness * (xh - y_c).powi(2)
     });
+    // with a (spring) grip: the rotation about the grip point
+    let bat_rigid_energy = beam.grip_z.map_or(0.0, |zg| {
+        let (mut l, mut i) = (0.0, 0.0);
+        for ((m, z), v) in beam.mass.iter().zip(&beam.z).zip(&yd) {
+            l += m * (z - zg) * v;
+            i += m * (z - zg).powi(2);
+        }
+        0.5 * l * l / i
+    });
     Ok(FinalState {
         ball_velocity: v,
         bat_energy,
+        bat_rigid_energy,
+        bat_damping: 0.0,
+        grip_loss: 0.0,
         bat_momentum: momentum,
         bat_angular_momentum: angular,
         hoop_energy,

@@ -173,6 +173,8 @@ pub fn check_finite(o: &Outcome) -> Result<(), String> {
         ("energy.bat_rigid", e.bat_rigid),
         ("energy.bat_vibration", e.bat_vibration),
         ("energy.hoop", e.hoop),
+        ("energy.bat_damping", e.bat_damping),
+        ("energy.grip_damping", e.grip_damping),
     ];
     let timed = [
         ("contact_time", o.contact_time),

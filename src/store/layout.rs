@@ -32,7 +32,7 @@ const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> 
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 16;
+pub const N_SUMMARY_FLOATS: usize = 18;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -84,6 +84,16 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "m/s",
         "change of the grip point's rigid-body velocity caused by the collision, positive along the incoming ball",
     ),
+    v(
+        "energy_bat_damping",
+        "J",
+        "energy dissipated by the bat's material damping",
+    ),
+    v(
+        "energy_grip_damping",
+        "J",
+        "energy dissipated by the grip's damper (the hands)",
+    ),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
@@ -110,6 +120,8 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.energy.hoop,
         o.grip_vibration_amplitude,
         o.grip_recoil_speed,
+        o.energy.bat_damping,
+        o.energy.grip_damping,
     ]
 }
 
@@ -134,6 +146,8 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
     o.energy.bat_rigid = f[11];
     o.energy.bat_vibration = f[12];
     o.energy.hoop = f[13];
+    o.energy.bat_damping = f[16];
+    o.energy.grip_damping = f[17];
     o
 }
 

@@ -403,7 +403,14 @@ fn located(
         }
         ResolveError::Check(v) => (
             v.path.clone(),
-            format!("`{}` out of range", v.path),
+            if v.value == "missing" {
+                format!(
+                    "missing field `{}`",
+                    v.path.rsplit('.').next().unwrap_or(&v.path)
+                )
+            } else {
+                format!("`{}` out of range", v.path)
+            },
             Some(v.value),
             Some(v.allowed),
         ),
