@@ -21,6 +21,7 @@ fig07a varying swing_omega, approach_speed      fig14  displacement + rigid moti
 fig07b the same with ball_law_kind == elastic          base and aluminum, impact near 0.60
 fig08  /sweet_spot/position, varying omega      fig15  hoop_frequency > 0 and the no-hoop bat
 anim   as fig14                                 bat_profiles  /bat profile and mode nodes
+sweet_spot_definitions  /bat profiles with every sweet-spot definition (/bat, /sweet_spot)
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ from matplotlib.lines import Line2D  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from batplot import IMPACT, MODEL, Results, Skip, excess_speed, one_factor, select  # noqa: E402
+from sweet_defs_plot import sweet_spot_definitions  # noqa: E402
 
 EXIT = "exit speed (m/s, bat-CM frame)"
 IMPACT_LABEL = "impact position z (m from the knob)"
@@ -405,6 +407,7 @@ FIGURES = {
     "fig14_displacement_along_bat": fig14,
     "fig15_hoop_frequencies": fig15,
     "bat_profiles": bat_profiles,
+    "sweet_spot_definitions": sweet_spot_definitions,
     "anim_displacement": anim,
 }
 

@@ -11,3 +11,7 @@ study=studies/param_space.yaml
 if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then study=$1; shift; fi
 # --force: rerunning the main job recomputes it (use --resume to finish an interrupted run).
 ./target/release/batstudy run "$study" --force "$@"
+# The figures of the default study (scripts/figures.py reads only the HDF5 file).
+if [ "$study" = studies/param_space.yaml ] && [ $# -eq 0 ]; then
+  .venv/bin/python scripts/figures.py results/param_space.h5 -o figures/param_space
+fi

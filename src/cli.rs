@@ -314,16 +314,35 @@ fn cmd_validate(files: &[PathBuf], max_points: usize) -> i32 {
 }
 
 /// Rough cost model for `plan`: seconds per point and per bat preparation.
-fn cost_per_point(s: &Study) -> (f64, f64) {
-    let rigid = matches!(
-        s.plan.base().get("model").and_then(|m| m.as_str()),
-        Some("rigid")
-    );
-    if rigid {
-        (2e-6, 0.05)
-    } else {
-        (5e-3, 0.2)
+/// Seconds per point and per bat preparation, measured on a few points spread over the plan
+/// (the first run of a bat includes preparing it), and the share of points that record
+/// histories (from a larger sample: resolving a point is cheap).
+fn measured_costs(s: &Study) -> (f64, f64, f64) {
+    let plan = &s.plan;
+    let n = plan.n_points();
+    let spread = |k: usize| (0..k.min(n)).map(move |i| i * n / k.min(n));
+    let (mut simulate_secs, mut prepare_secs, mut timed) = (0.0, 0.0, 0usize);
+    for i in spread(8) {
+        let Ok(p) = plan.point(i) else { continue };
+        let start = std::time::Instant::now();
+        let Ok((_, bat)) = ModelSimulator.prepare(&p.spec.bat, &p.spec.numerics) else {
+            continue;
+        };
+        let prepared = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let history = s.history_request(bat_length(&p.spec.bat));
+        let _ =
+            ModelSimulator.simulate(&bat, &p.spec, history.as_ref().filter(|_| p.record_history));
+        simulate_secs += start.elapsed().as_secs_f64();
+        prepare_secs += prepared;
+        timed += 1;
     }
+    let sampled: Vec<bool> = spread(2000)
+        .filter_map(|i| plan.point(i).ok().map(|p| p.record_history))
+        .collect();
+    let history_share = sampled.iter().filter(|r| **r).count() as f64 / sampled.len().max(1) as f64;
+    let timed = timed.max(1) as f64;
+    (simulate_secs / timed, prepare_secs / timed, history_share)
 }
 
 fn human_bytes(b: f64) -> String {
@@ -392,12 +411,13 @@ fn cmd_plan(a: &PlanArgs) -> i32 {
         }
     }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let (per_point, per_bat) = cost_per_point(&s);
+    let (per_point, per_bat, history_share) = measured_costs(&s);
     let secs = (n as f64 * per_point + plan.bats().len() as f64 * per_bat) / cores as f64;
     println!(
-        "estimated run time: ~{} on {cores} cores (rough: {} per point)",
+        "estimated run time: ~{} on {cores} cores ({} per point, {} per bat, measured on a sample)",
         human_secs(secs),
-        human_secs(per_point)
+        human_secs(per_point),
+        human_secs(per_bat)
     );
     let max_len = plan
         .bats()
@@ -420,7 +440,7 @@ fn cmd_plan(a: &PlanArgs) -> i32 {
                 _ => 1.0,
             })
             .sum();
-        bytes_per_point += series * req.n_samples as f64 * width;
+        bytes_per_point += history_share * series * req.n_samples as f64 * width;
     }
     println!(
         "estimated output size: ~{} uncompressed (written to {})",

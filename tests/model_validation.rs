@@ -36,8 +36,8 @@ fn bad_values_name_their_field_and_range() {
 
     let mut s = common::base_spec(0.7);
     s.bat.shell = Some(ShellSpec {
-        thickness: 0.04,
-        from: 0.6,
+        thickness: Some(0.04),
+        from: Some(0.6),
     });
     let m = message(&s);
     assert!(

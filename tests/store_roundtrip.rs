@@ -49,6 +49,7 @@ fn bat(label: &str, n_modes: usize) -> BatVariant {
             moment_of_inertia_knob6: 0.2,
             mode_frequency: (1..=n_modes).map(|k| 170.0 * (k * k) as f64).collect(),
             mode_nodes: (1..=n_modes).map(|k| grid(0.1, 0.7, k + 1)).collect(),
+            metrics: Default::default(),
         },
     }
 }
@@ -175,6 +176,8 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
             hoop: 0.0,
         },
         recontact: index % 5 == 0,
+        grip_vibration_amplitude: 1e-4 * (1.0 + (z - 0.7).abs()),
+        grip_recoil_speed: 0.5 - z,
         history,
     })
 }

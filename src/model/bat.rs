@@ -118,6 +118,7 @@ fn properties(geometry: &BatGeometry, beam: &Beam, modes: &ModalBasis) -> BatPro
         moment_of_inertia_knob6: moment_of_inertia + mass * (z_cm - NCAA_PIVOT).powi(2),
         mode_frequency: freqs[..n_flex].to_vec(),
         mode_nodes: (0..n_flex).map(|k| modes.nodes(beam, k)).collect(),
+        metrics: Default::default(), // filled by metrics::bat_metrics (it simulates)
     }
 }
 

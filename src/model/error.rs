@@ -44,6 +44,57 @@ pub enum ModelError {
     Unsupported(&'static str),
 }
 
+impl ModelError {
+    /// The offending parameter's dotted path, its value and what is allowed, for error
+    /// reports that point at a study file (empty strings where the error has none).
+    pub fn field_value_allowed(&self) -> (String, String, String) {
+        let none = String::new;
+        match self {
+            ModelError::OutOfRange {
+                path,
+                value,
+                allowed,
+            } => (path.clone(), value.to_string(), allowed.clone()),
+            ModelError::ShellTooThick {
+                thickness,
+                radius,
+                z,
+            } => (
+                "bat.shell.thickness".into(),
+                thickness.to_string(),
+                format!("< the bat's outer radius, {radius} m at z = {z} m"),
+            ),
+            ModelError::Profile(message) => ("bat.profile".into(), none(), message.clone()),
+            ModelError::UnresolvedCsvProfile(path) => (
+                "bat.profile.csv".into(),
+                path.clone(),
+                "a loaded CSV profile".into(),
+            ),
+            ModelError::BatShorterThanProfile {
+                length,
+                profile_length,
+            } => (
+                "bat.length".into(),
+                length.to_string(),
+                format!("at least the profile's length, {profile_length} m"),
+            ),
+            ModelError::TimeStepTooLarge { dt, limit, .. } => (
+                "numerics.dt".into(),
+                dt.to_string(),
+                format!("at most {limit} s"),
+            ),
+            ModelError::NoApproach { approach_speed } => (
+                "ball.speed".into(),
+                approach_speed.to_string(),
+                "a positive approach speed at the impact point".into(),
+            ),
+            ModelError::NoSeparation { .. } | ModelError::Unsupported(_) => {
+                (none(), none(), self.to_string())
+            }
+        }
+    }
+}
+
 /// Shorthand for an out-of-range error.
 pub(crate) fn out_of_range(path: &str, value: f64, allowed: &str) -> ModelError {
     ModelError::OutOfRange {

@@ -5,13 +5,15 @@
 //! cross-sections), `beam` (lumped Euler–Bernoulli beam), `modal` (eigenmodes), `bat`
 //! (`PreparedBat`), `ball` (force laws), `wave` (time integration), `history` (sampling),
 //! `validate` (spec checks), `simulate` (dispatch), `rigid` (Brody's model), `sweet`
-//! (sweet-spot finder), `error`.
+//! (sweet-spot finder), `sweet_defs` (least-vibration sweet spots, extremum finder),
+//! `metrics` (centre of percussion, barrel nodes, BBCOR, grip vibration), `error`.
 
 pub mod ball;
 pub mod bat;
 pub mod beam;
 pub mod error;
 mod history;
+pub mod metrics;
 pub mod modal;
 pub mod outcome;
 pub mod profile;
@@ -20,6 +22,7 @@ pub mod section;
 pub mod simulate;
 pub mod spec;
 pub mod sweet;
+pub mod sweet_defs;
 pub mod validate;
 pub mod wave;
 

@@ -118,6 +118,13 @@ pub struct Outcome {
     /// The ball came back into contact after first separating (within the simulated time:
     /// 0.5 ms after each separation, or longer if histories ask for it).
     pub recontact: bool,
+    /// Largest displacement of the bat's free vibration at the grip (6 in from the knob,
+    /// `metrics::KNOB6`) after the ball has left, rigid motion excluded, m (0 for the rigid
+    /// model). See `metrics::grip_vibration_amplitude`.
+    pub grip_vibration_amplitude: f64,
+    /// Change of the grip point's rigid-body velocity caused by the collision, m/s, + along
+    /// the incoming ball (zero for an impact at the grip's centre of percussion).
+    pub grip_recoil_speed: f64,
     /// Requested histories.
     pub history: Option<History>,
 }
@@ -145,4 +152,7 @@ pub struct BatProperties {
     pub mode_frequency: Vec<f64>,
     /// Node positions of each flexible mode, m from the knob.
     pub mode_nodes: Vec<Vec<f64>>,
+    /// Sweet-spot definitions and standard metrics of the bat (centre of percussion, barrel
+    /// nodes, BBCOR): filled by `metrics::bat_metrics`, NaN until then.
+    pub metrics: super::metrics::BatMetrics,
 }

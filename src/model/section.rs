@@ -74,7 +74,7 @@ impl BatGeometry {
         };
         let length = bat.length.unwrap_or(profile.length());
         if !(length > 0.0 && length.is_finite()) {
-            return Err(out_of_range("bat.length", length, "(0, ∞) m"));
+            return Err(out_of_range("bat.length", length, "a finite number > 0 m"));
         }
         if length < profile.length() * (1.0 - 1e-12) {
             return Err(ModelError::BatShorterThanProfile {
@@ -88,7 +88,19 @@ impl BatGeometry {
             length,
             density: bat.material.density.unwrap_or(density),
             youngs_modulus: bat.material.youngs_modulus.unwrap_or(youngs),
-            shell: bat.shell.as_ref().map(|s| (s.thickness, s.from)).or(shell),
+            shell: match (&bat.shell, shell) {
+                (None, preset) => preset,
+                (Some(s), preset) => {
+                    let thickness = s.thickness.or(preset.map(|p| p.0)).ok_or_else(|| {
+                        out_of_range(
+                            "bat.shell.thickness",
+                            f64::NAN,
+                            "a wall thickness in m (required: this preset is solid)",
+                        )
+                    })?;
+                    Some((thickness, s.from.or(preset.map(|p| p.1)).unwrap_or(0.0)))
+                }
+            },
             fill_density: bat.fill.as_ref().map(|f| f.density).unwrap_or(fill),
         };
         geometry.check()?;
@@ -100,7 +112,7 @@ impl BatGeometry {
             if v > 0.0 && v.is_finite() {
                 Ok(())
             } else {
-                Err(out_of_range(path, v, "(0, ∞)"))
+                Err(out_of_range(path, v, "a finite number > 0"))
             }
         };
         positive("bat.material.density", self.density)?;
@@ -229,8 +241,8 @@ mod tests {
     fn shell_thicker_than_handle_is_an_error() {
         let bat = BatSpec {
             shell: Some(crate::model::spec::ShellSpec {
-                thickness: 0.02,
-                from: 0.0,
+                thickness: Some(0.02),
+                from: Some(0.0),
             }),
             ..BatSpec::default()
         };

@@ -75,6 +75,15 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
             hoop: 0.0,
         },
         recontact: false,
+        grip_vibration_amplitude: 0.0,
+        grip_recoil_speed: super::metrics::grip_recoil_speed(
+            r.impulse,
+            r.impulse * lever_arm,
+            properties.mass,
+            properties.moment_of_inertia,
+            properties.z_cm,
+            super::metrics::KNOB6,
+        ),
         history: None,
     }
 }

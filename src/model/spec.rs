@@ -116,14 +116,18 @@ pub struct MaterialSpec {
 }
 
 /// A hollow shell: the wall of thickness `thickness` for z ≥ `from`; solid before.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+/// Fields left out take the preset's values (aluminum: 3 mm from 0; corked: 1 cm from
+/// 0.55 m); a bat whose preset is solid needs `thickness`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShellSpec {
-    /// Wall thickness in m (aluminum preset 0.003, corked 0.01).
-    pub thickness: f64,
-    /// z in m where the hollow part starts (aluminum 0.0, corked 0.55). Default 0.
+    /// Wall thickness in m. Default: the preset's (aluminum 0.003, corked 0.01).
     #[serde(default)]
-    pub from: f64,
+    pub thickness: Option<f64>,
+    /// z in m where the hollow part starts. Default: the preset's (aluminum 0, corked
+    /// 0.55), else 0.
+    #[serde(default)]
+    pub from: Option<f64>,
 }
 
 /// Filling of the hollow part.

@@ -24,14 +24,24 @@ fn check(path: &str, v: f64, ok: bool, allowed: &str) -> Result<(), ModelError> 
 pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     let geometry = BatGeometry::resolve(&spec.bat)?;
     let ball = &spec.ball;
-    check("ball.mass", ball.mass, ball.mass > 0.0, "(0, ∞) kg")?;
-    check("ball.speed", ball.speed, ball.speed > 0.0, "(0, ∞) m/s")?;
+    check(
+        "ball.mass",
+        ball.mass,
+        ball.mass > 0.0,
+        "a finite number > 0 kg",
+    )?;
+    check(
+        "ball.speed",
+        ball.speed,
+        ball.speed > 0.0,
+        "a finite number > 0 m/s",
+    )?;
     let law = &ball.law;
     check(
         "ball.law.stiffness",
         law.stiffness,
         law.stiffness > 0.0,
-        "(0, ∞) N/m",
+        "a finite number > 0 N/m",
     )?;
     check(
         "ball.law.cor",
@@ -39,8 +49,18 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         law.cor > 0.0 && law.cor <= 1.0,
         "(0, 1]",
     )?;
-    check("ball.law.k1", law.k1, law.k1 > 0.0, "(0, ∞) N/m^α")?;
-    check("ball.law.alpha", law.alpha, law.alpha > 0.0, "(0, ∞)")?;
+    check(
+        "ball.law.k1",
+        law.k1,
+        law.k1 > 0.0,
+        "a finite number > 0 N/m^α",
+    )?;
+    check(
+        "ball.law.alpha",
+        law.alpha,
+        law.alpha > 0.0,
+        "a finite number > 0",
+    )?;
     check("swing.omega", spec.swing.omega, true, "finite rad/s")?;
     check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
     if let Some(hoop) = &spec.hoop {
@@ -49,14 +69,14 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
             "hoop.frequency",
             hoop.frequency,
             hoop.frequency >= lo && hoop.frequency <= hi,
-            &format!("[{lo}, {hi}] Hz"),
+            &format!("{lo} to {hi} Hz"),
         )?;
         let max_mass = HOOP_MASS_MAX_BALL_MASSES * ball.mass;
         check(
             "hoop.mass",
             hoop.mass,
             hoop.mass > 0.0 && hoop.mass < max_mass,
-            &format!("(0, {max_mass}) kg (10 ball masses)"),
+            &format!("> 0 and < {max_mass} kg (10 ball masses)"),
         )?;
     }
     let length = geometry.length;
@@ -64,7 +84,7 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         "impact.z",
         spec.impact.z,
         spec.impact.z >= 0.0 && spec.impact.z <= length,
-        &format!("[0, {length}] m (on the bat)"),
+        &format!("on the bat: 0 <= z <= {length} m"),
     )?;
     if let Some(n) = spec.numerics.segments {
         let (lo, hi) = (super::bat::MIN_SEGMENTS, super::bat::MAX_SEGMENTS);
@@ -87,7 +107,7 @@ pub fn validate_history(request: &HistoryRequest) -> Result<(), ModelError> {
         "history.interval",
         request.interval,
         request.interval > 0.0,
-        "(0, ∞) s",
+        "a finite number > 0 s",
     )?;
     let duration = request.interval * request.n_samples as f64;
     check(

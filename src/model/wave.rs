@@ -19,6 +19,7 @@ use super::ball::ContactLaw;
 use super::bat::PreparedBat;
 use super::error::{out_of_range, ModelError};
 use super::history::{Recorder, Sample};
+use super::metrics::{grip_recoil_speed, grip_vibration_amplitude, modal_coordinates, KNOB6};
 use super::outcome::{EnergyPartition, HistoryRequest, Outcome};
 use super::spec::{CollisionSpec, Integrator};
 
@@ -221,6 +222,8 @@ struct FinalState {
     bat_angular_momentum: f64,
     hoop_energy: f64,
     hoop_velocity: f64,
+    /// Free-vibration amplitude at the grip at the end (`metrics::grip_vibration_amplitude`).
+    grip_amplitude: f64,
     steps: usize,
     modes: usize,
 }
@@ -291,6 +294,15 @@ pub fn simulate_wave(
         impulse: m * (collision.ball_speed - fin.ball_velocity),
         energy,
         recontact: contact.recontact,
+        grip_vibration_amplitude: fin.grip_amplitude,
+        grip_recoil_speed: grip_recoil_speed(
+            fin.bat_momentum,
+            fin.bat_angular_momentum - collision.omega * bat.inertia_cm,
+            bat.beam.total_mass(),
+            bat.inertia_cm,
+            bat.z_cm,
+            KNOB6,
+        ),
         history: recorder.map(|r| r.finish()),
     };
     let lever = collision.lever;
@@ -614,6 +626,7 @@ fn run_modal(
         bat_angular_momentum: dot(&bat.angular_weight),
         hoop_energy,
         hoop_velocity: if c.hoop.is_some() { vh } else { 0.0 },
+        grip_amplitude: grip_vibration_amplitude(bat, &q, &qd, KNOB6),
         steps,
         modes: n,
     })
@@ -756,6 +769,12 @@ fn run_verlet(
         bat_angular_momentum: angular,
         hoop_energy,
         hoop_velocity: if c.hoop.is_some() { vh } else { 0.0 },
+        grip_amplitude: grip_vibration_amplitude(
+            bat,
+            &modal_coordinates(bat, &y),
+            &modal_coordinates(bat, &yd),
+            KNOB6,
+        ),
         steps,
         modes: n,
     })

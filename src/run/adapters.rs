@@ -2,6 +2,7 @@
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
 use super::traits::{Simulator, Sink};
+use crate::model::metrics::bat_metrics;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{prepare_bat, simulate, PreparedBat};
@@ -20,7 +21,9 @@ impl Simulator for ModelSimulator {
         numerics: &NumericsSpec,
     ) -> Result<(BatProperties, PreparedBat), String> {
         let prepared = prepare_bat(bat, numerics).map_err(|e| e.to_string())?;
-        Ok((prepared.properties().clone(), prepared))
+        let mut properties = prepared.properties().clone();
+        properties.metrics = bat_metrics(&prepared, bat, numerics).map_err(|e| e.to_string())?;
+        Ok((properties, prepared))
     }
 
     fn simulate(

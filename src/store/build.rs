@@ -6,8 +6,10 @@ use super::error::{H5Ctx, StoreError};
 use super::journal::{JournalReader, RecordLoc, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
 use super::{RunMeta, Summary};
+use crate::model::metrics::BatMetrics;
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
 use crate::model::sweet::find_sweet_spot;
+use crate::model::sweet_defs::vibration_sweet_spot;
 use crate::results::{CoordValues, Dim, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
@@ -249,7 +251,14 @@ pub fn write_file(
                 .map(|(_, &c)| c)
                 .collect();
             let mut vars = Vec::new();
-            for def in [&l::SWEET_POSITION, &l::SWEET_EXIT_SPEED, &l::SWEET_WIDTH] {
+            for def in [
+                &l::SWEET_POSITION,
+                &l::SWEET_EXIT_SPEED,
+                &l::SWEET_WIDTH,
+                &l::SWEET_MIN_VIBRATION_POSITION,
+                &l::SWEET_MIN_VIBRATION_AMPLITUDE,
+                &l::SWEET_MIN_VIBRATION_ENERGY_POSITION,
+            ] {
                 vars.push(new_var(
                     &sg,
                     def,
@@ -347,7 +356,7 @@ pub fn write_file(
             let nz = count[*iz];
             let stride: usize = count[iz + 1..].iter().product();
             let outer = m / nz;
-            let mut res = vec![vec![f64::NAN; outer]; 3];
+            let mut res = vec![vec![f64::NAN; outer]; 6];
             for (o, slot) in (0..outer).enumerate() {
                 let (hi, lo) = (o / stride, o % stride);
                 let base = hi * nz * stride + lo;
@@ -364,6 +373,17 @@ pub fn write_file(
                     res[1][slot] = s.exit_speed;
                     res[2][slot] = s.width;
                 }
+                let along =
+                    |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
+                let zc = &z[start[*iz]..start[*iz] + nz];
+                let v = vibration_sweet_spot(
+                    zc,
+                    &along(l::GRIP_VIBRATION_INDEX),
+                    &along(l::VIBRATION_ENERGY_INDEX),
+                );
+                res[3][slot] = v.min_vibration_position;
+                res[4][slot] = v.min_vibration_amplitude;
+                res[5][slot] = v.min_vibration_energy_position;
             }
             let rs: Vec<usize> = start
                 .iter()
@@ -675,6 +695,41 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
         if n_prof == 0 { vec![] } else { ri },
         &[&bat, &prof],
     )?;
+    type Getter = fn(&BatMetrics) -> f64;
+    let per_bat: [(&VarDef, Getter); 7] = [
+        (&l::BAT_PIVOT, |m| m.pivot),
+        (&l::BAT_COP, |m| m.centre_of_percussion),
+        (&l::BAT_NODE1, |m| m.node1_barrel),
+        (&l::BAT_NODE2, |m| m.node2_barrel),
+        (&l::BAT_BBCOR_SPEED, |m| m.bbcor_ball_speed),
+        (&l::BAT_BBCOR_MAX, |m| m.bbcor_max),
+        (&l::BAT_BBCOR_MAX_POS, |m| m.bbcor_max_position),
+    ];
+    for (def, get) in per_bat {
+        var(
+            def,
+            vec![nb],
+            p.iter().map(|p| get(&p.metrics)).collect(),
+            &[&bat],
+        )?;
+    }
+    let (bz, n_bb) = padded(
+        &p.iter()
+            .map(|p| p.metrics.bbcor_z.clone())
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    let (bb, _) = padded(
+        &p.iter()
+            .map(|p| pad_to(&p.metrics.bbcor, p.metrics.bbcor_z.len()))
+            .collect::<Vec<_>>(),
+        f64::NAN,
+    );
+    let bb_idx: Vec<i64> = (0..n_bb as i64).collect();
+    let bb_dim =
+        h5u::scale_coord(&g, l::BBCOR_DIM.name, &bb_idx, &l::BBCOR_DIM).ctx(out, &e("bbcor"))?;
+    var(&l::BAT_BBCOR_Z, vec![nb, n_bb], bz, &[&bat, &bb_dim])?;
+    var(&l::BAT_BBCOR, vec![nb, n_bb], bb, &[&bat, &bb_dim])?;
     let spec: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.spec_json)).collect();
     let ds = h5u::write_1d(&g, l::BAT_SPEC.name, &spec).ctx(out, &e("spec"))?;
     describe(&ds, &l::BAT_SPEC).ctx(out, &e("spec"))?;

@@ -32,7 +32,7 @@ const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> 
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 14;
+pub const N_SUMMARY_FLOATS: usize = 16;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -74,7 +74,22 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
     ),
     v("energy_bat_vibration", "J", "energy left in bat vibration"),
     v("energy_hoop", "J", "energy left in the hoop mode"),
+    v(
+        "grip_vibration_amplitude",
+        "m",
+        "largest free-vibration displacement at the grip (0.1524 m from the knob) after the ball leaves, rigid motion excluded",
+    ),
+    v(
+        "grip_recoil_speed",
+        "m/s",
+        "change of the grip point's rigid-body velocity caused by the collision, positive along the incoming ball",
+    ),
 ];
+
+/// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
+pub const GRIP_VIBRATION_INDEX: usize = 14;
+/// Index of `energy_bat_vibration` in [`SUMMARY_FLOATS`].
+pub const VIBRATION_ENERGY_INDEX: usize = 12;
 
 /// The f64 summary values of an outcome, in [`SUMMARY_FLOATS`] order.
 pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
@@ -93,6 +108,8 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.energy.bat_rigid,
         o.energy.bat_vibration,
         o.energy.hoop,
+        o.grip_vibration_amplitude,
+        o.grip_recoil_speed,
     ]
 }
 
@@ -107,6 +124,8 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
         peak_force: f[5],
         max_compression: f[6],
         impulse: f[7],
+        grip_vibration_amplitude: f[14],
+        grip_recoil_speed: f[15],
         ..Default::default()
     };
     o.energy.initial = f[8];
@@ -162,6 +181,22 @@ pub const SWEET_WIDTH: VarDef = v(
     "width",
     "m",
     "length of the impact_z range around the maximum where exit_speed >= max - 1 m/s",
+);
+
+pub const SWEET_MIN_VIBRATION_POSITION: VarDef = v(
+    "min_vibration_position",
+    "m",
+    "impact position minimising grip_vibration_amplitude, from the knob (parabola-refined)",
+);
+pub const SWEET_MIN_VIBRATION_AMPLITUDE: VarDef = v(
+    "min_vibration_amplitude",
+    "m",
+    "minimum of grip_vibration_amplitude over impact_z (parabola-refined)",
+);
+pub const SWEET_MIN_VIBRATION_ENERGY_POSITION: VarDef = v(
+    "min_vibration_energy_position",
+    "m",
+    "impact position minimising energy_bat_vibration, from the knob (parabola-refined)",
 );
 
 pub const TIME: VarDef = v("time", "s", "time since first contact");
@@ -271,6 +306,52 @@ pub const BAT_MODE_NODES: VarDef = v(
     "mode_nodes",
     "m",
     "node positions of the mode, from the knob",
+);
+pub const BAT_PIVOT: VarDef = v(
+    "pivot_position",
+    "m",
+    "pivot (hands) position for centre of percussion and BBCOR, from the knob",
+);
+pub const BAT_COP: VarDef = v(
+    "centre_of_percussion",
+    "m",
+    "centre of percussion for the pivot at pivot_position, from the knob (rigid bat)",
+);
+pub const BAT_NODE1: VarDef = v(
+    "node1_barrel",
+    "m",
+    "barrel-side node of free-free mode 1, from the knob",
+);
+pub const BAT_NODE2: VarDef = v(
+    "node2_barrel",
+    "m",
+    "barrel-side node of free-free mode 2, from the knob",
+);
+pub const BAT_BBCOR_SPEED: VarDef = v(
+    "bbcor_ball_speed",
+    "m/s",
+    "ball speed of the BBCOR scan (136 mph, bat at rest)",
+);
+pub const BAT_BBCOR_MAX: VarDef = v(
+    "bbcor_max",
+    "1",
+    "maximum bat-ball coefficient of restitution along the barrel (wave model, parabola-refined)",
+);
+pub const BAT_BBCOR_MAX_POS: VarDef = v(
+    "bbcor_max_position",
+    "m",
+    "impact position of maximum BBCOR, from the knob",
+);
+pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR scan point number");
+pub const BAT_BBCOR_Z: VarDef = v(
+    "bbcor_z",
+    "m",
+    "impact position of the BBCOR scan, from the knob",
+);
+pub const BAT_BBCOR: VarDef = v(
+    "bbcor",
+    "1",
+    "bat-ball coefficient of restitution (NCAA/ASTM F2219 definition, wave model, free bat)",
 );
 pub const BAT_PROFILE_Z: VarDef = v("profile_z", "m", "profile sample position, from the knob");
 pub const BAT_OUTER: VarDef = v("outer_radius", "m", "outer radius of the bat");

@@ -104,7 +104,13 @@ pub fn for_each_record(
     let get = |name: &str| g.dataset(name).ctx(path, &format!("open summary/{name}"));
     let mut floats = Vec::new();
     for def in &l::SUMMARY_FLOATS {
-        floats.push(get(def.name)?.read_raw::<f64>().ctx(path, def.name)?);
+        // Variables added after a file was written read as NaN (layout.md: new variables may
+        // be added without a version bump).
+        if g.link_exists(def.name) {
+            floats.push(get(def.name)?.read_raw::<f64>().ctx(path, def.name)?);
+        } else {
+            floats.push(vec![f64::NAN; n]);
+        }
     }
     let status = get(l::STATUS.name)?.read_raw::<i8>().ctx(path, "status")?;
     let recontact = get(l::RECONTACT.name)?

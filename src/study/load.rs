@@ -62,7 +62,14 @@ const TOP_KEYS: &[&str] = &[
     "history",
     "output",
 ];
-const HISTORY_KEYS: &[&str] = &["fields", "interval", "duration", "precision", "z_step"];
+const HISTORY_KEYS: &[&str] = &[
+    "fields",
+    "interval",
+    "duration",
+    "precision",
+    "z_step",
+    "only",
+];
 
 /// Read and validate a study file.
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Study, StudyError> {
@@ -313,6 +320,9 @@ fn validate_history(cx: &Ctx, f: &StudyFile) -> Result<(), StudyError> {
     if !(h.z_step > 0.0 && h.z_step <= 1.0) {
         return bad("z_step", h.z_step, "0 < z_step <= 1 m".into());
     }
+    for path in h.only.keys() {
+        check_path(cx, path, &keys(&["history", "only", path]))?;
+    }
     Ok(())
 }
 
@@ -550,42 +560,41 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             origin: DimOrigin::Zip { group: g },
         });
     }
-    if let Some(points) = &file.points {
-        let at = keys(&["points"]);
+    if let Some(block) = &file.points {
+        let points = block.sets();
+        let at = keys(&block.sets_key());
         if points.is_empty() {
             return Err(cx
                 .err(&at, "`points` is empty")
                 .field("points")
                 .allowed("at least one parameter set"));
         }
-        let paths: Vec<String> = points[0].keys().cloned().collect();
+        // The union of the paths the sets name, in order of first appearance; a set that
+        // leaves a path out keeps the base value there (marked `UNSET`).
+        let mut paths: Vec<String> = Vec::new();
         for (i, set) in points.iter().enumerate() {
-            let mut p = at.clone();
-            p.push(Seg::Index(i));
-            let these: Vec<String> = set.keys().cloned().collect();
-            let mut a = these.clone();
-            a.sort();
-            let mut b = paths.clone();
-            b.sort();
-            if a != b {
-                return Err(cx
-                    .err(&p, "every entry of `points` must set the same parameters")
-                    .field(format!("points[{i}]"))
-                    .value(these.join(", "))
-                    .allowed(paths.join(", ")));
-            }
-            for k in &these {
-                let mut q = p.clone();
+            for k in set.keys() {
+                let mut q = at.clone();
+                q.push(Seg::Index(i));
                 q.push(Seg::Key(k.clone()));
                 check_path(cx, k, &q)?;
+                if !paths.contains(k) {
+                    paths.push(k.clone());
+                }
             }
         }
         let params = paths
             .iter()
-            .map(|k| (k.clone(), points.iter().map(|s| s[k].clone()).collect()))
+            .map(|k| {
+                let values = points
+                    .iter()
+                    .map(|s| s.get(k).cloned().unwrap_or_else(super::plan::unset))
+                    .collect();
+                (k.clone(), values)
+            })
             .collect();
         dims.push(PlanDim {
-            name: next_name(None),
+            name: next_name(block.name()),
             size: points.len(),
             params,
             origin: DimOrigin::Points,
@@ -657,8 +666,9 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             .field("grid")
             .allowed("at least one point"));
     }
+    let defaults = with_defaults(&base);
     let shape = ResultShape {
-        dims: dims.iter().map(dim_to_shape).collect(),
+        dims: dims.iter().map(|d| dim_to_shape(d, &defaults)).collect(),
     };
 
     // Profiles: from base and from any block value.
@@ -696,8 +706,14 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
     let bat_dims: Vec<usize> = (0..dims.len())
         .filter(|&d| dims[d].params.iter().any(|(p, _)| is_bat_path(p)))
         .collect();
+    let history_only = file
+        .history
+        .as_ref()
+        .map(|h| h.only.iter().map(|(k, v)| (k.clone(), v.clone())).collect())
+        .unwrap_or_default();
     let mut plan = Plan {
         base,
+        history_only,
         dims,
         shape,
         profiles,
@@ -753,7 +769,7 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             let mut label = format!("{:?}", spec.bat.preset).to_lowercase();
             for &d in &plan.bat_dims {
                 for (p, vals) in &plan.dims[d].params {
-                    if is_bat_path(p) {
+                    if is_bat_path(p) && !super::plan::is_unset(&vals[m[d]]) {
                         label.push_str(&format!(", {p}={}", value_text(&vals[m[d]])));
                     }
                 }
@@ -821,4 +837,18 @@ impl Study {
     pub fn position_of(&self, key: &str) -> Option<Pos> {
         SourceMap::build(&self.text).get(&keys(&[key]))
     }
+}
+
+/// The base tree with every defaulted field filled in (as far as the base deserializes
+/// with a placeholder impact), so that coordinates show the values points really use.
+fn with_defaults(base: &Value) -> Value {
+    let mut v = base.clone();
+    if super::paths::get_path(&v, "impact.z").is_none() {
+        let _ = set_path(&mut v, "impact.z", Value::from(0.0));
+    }
+    serde_json::to_value(&v)
+        .ok()
+        .and_then(|j| serde_json::from_value::<crate::model::spec::CollisionSpec>(j).ok())
+        .and_then(|spec| serde_yaml_ng::to_value(spec).ok())
+        .unwrap_or_else(|| base.clone())
 }

@@ -50,6 +50,8 @@ pub struct Point {
     pub spec: CollisionSpec,
     /// Index of the point's bat in `Plan::bats()`.
     pub bat: u32,
+    /// Whether the study records this point's time histories (`history.only`).
+    pub record_history: bool,
 }
 
 impl Point {
@@ -99,6 +101,8 @@ impl std::fmt::Display for ResolveError {
 #[derive(Debug, Clone)]
 pub struct Plan {
     pub(crate) base: Value,
+    /// `history.only`: record histories only where every listed path takes a listed value.
+    pub(crate) history_only: Vec<(String, Vec<Value>)>,
     pub(crate) dims: Vec<PlanDim>,
     pub(crate) shape: ResultShape,
     /// Profile CSV paths as written → knots.
@@ -138,7 +142,29 @@ pub(crate) fn is_bat_path(p: &str) -> bool {
     related(p, "bat") && !p.is_empty() || related(p, "numerics") && !p.is_empty()
 }
 
+/// Equal parameter values: numbers within 1e-9 relative (a value typed as `0.6` matches a
+/// grid value computed as 0.4 + 20·0.01), anything else exactly.
+fn same_value(a: &Value, b: &Value) -> bool {
+    match (a.as_f64(), b.as_f64()) {
+        (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-300),
+        _ => a == b,
+    }
+}
+
 /// A value as short text (flow YAML-ish JSON).
+/// The value a `points` set gives a parameter it leaves out: "keep the base value".
+pub fn unset() -> Value {
+    Value::Tagged(Box::new(serde_yaml_ng::value::TaggedValue {
+        tag: serde_yaml_ng::value::Tag::new("unset"),
+        value: Value::Null,
+    }))
+}
+
+/// Is this the `unset` marker?
+pub fn is_unset(v: &Value) -> bool {
+    matches!(v, Value::Tagged(t) if t.tag == "unset")
+}
+
 pub fn value_text(v: &Value) -> String {
     match v {
         Value::String(s) => s.clone(),
@@ -171,6 +197,9 @@ impl Plan {
         let mut v = self.base.clone();
         for (d, &i) in self.dims.iter().zip(multi) {
             for (path, vals) in &d.params {
+                if is_unset(&vals[i]) {
+                    continue;
+                }
                 // Paths were checked at load time.
                 let _ = super::paths::set_path(&mut v, path, vals[i].clone());
             }
@@ -236,6 +265,7 @@ impl Plan {
             Ok(spec) => Ok(Point {
                 index: flat,
                 id: point_id(&spec),
+                record_history: self.records_history(&spec),
                 spec,
                 bat: self.bat_index(&multi),
             }),
@@ -247,12 +277,26 @@ impl Plan {
         }
     }
 
+    /// Does `history.only` select this collision?
+    pub fn records_history(&self, spec: &CollisionSpec) -> bool {
+        if self.history_only.is_empty() {
+            return true;
+        }
+        let Ok(tree) = serde_yaml_ng::to_value(spec) else {
+            return false;
+        };
+        self.history_only.iter().all(|(path, wanted)| {
+            super::paths::get_path(&tree, path)
+                .is_some_and(|have| wanted.iter().any(|w| same_value(have, w)))
+        })
+    }
+
     /// A short description of the point's coordinates, e.g. `impact_z=0.7, swing_omega=-30`.
     pub fn describe(&self, flat: usize) -> String {
         let multi = self.shape.unravel(flat);
         let mut parts = Vec::new();
         for (d, &i) in self.dims.iter().zip(&multi) {
-            for (path, vals) in &d.params {
+            for (path, vals) in d.params.iter().filter(|(_, vals)| !is_unset(&vals[i])) {
                 parts.push(format!("{path}={}", value_text(&vals[i])));
             }
         }
@@ -280,15 +324,41 @@ pub(crate) fn path_string(p: &serde_path_to_error::Path) -> String {
 }
 
 /// Build the shape's coordinate variables of a dimension.
-pub(crate) fn dim_to_shape(d: &PlanDim) -> Dim {
+/// A `points` set's `unset` value shows the base value, or NaN / "" where the base has none.
+pub(crate) fn dim_to_shape(d: &PlanDim, base: &Value) -> Dim {
     let coords = d
         .params
         .iter()
         .map(|(path, vals)| {
-            let nums: Option<Vec<f64>> = vals.iter().map(|v| v.as_f64()).collect();
+            let base_value = super::paths::get_path(base, path).cloned();
+            let vals: Vec<Value> = vals
+                .iter()
+                .map(|v| match (is_unset(v), &base_value) {
+                    (false, _) => v.clone(),
+                    (true, Some(b)) => b.clone(),
+                    (true, None) => Value::Null,
+                })
+                .collect();
+            let numeric = vals.iter().all(|v| v.is_null() || v.as_f64().is_some())
+                && vals.iter().any(|v| v.as_f64().is_some());
+            let nums: Option<Vec<f64>> = numeric.then(|| {
+                vals.iter()
+                    .map(|v| v.as_f64().unwrap_or(f64::NAN))
+                    .collect()
+            });
             let values = match nums {
                 Some(n) => CoordValues::Numbers(n),
-                None => CoordValues::Labels(vals.iter().map(value_text).collect()),
+                None => CoordValues::Labels(
+                    vals.iter()
+                        .map(|v| {
+                            if v.is_null() {
+                                String::new()
+                            } else {
+                                value_text(v)
+                            }
+                        })
+                        .collect(),
+                ),
             };
             let (units, long_name) = super::paths::units(path);
             let units = if matches!(values, CoordValues::Labels(_)) {

@@ -45,11 +45,12 @@ pub struct StudyFile {
     /// have the same length.
     #[serde(default)]
     pub zip: Vec<ZipGroup>,
-    /// An explicit list of parameter sets (each a map dotted path → value, every set
-    /// with the same paths); one dimension.
+    /// An explicit list of parameter sets; one dimension. Either a plain list of sets, or
+    /// `{name: DIM, sets: [...]}` to name the dimension. Each set is a map dotted path →
+    /// value and sets only what differs from `base` (`{}` is the base itself); a parameter
+    /// a set leaves out keeps its base value.
     #[serde(default)]
-    #[schemars(with = "Option<Vec<IndexMap<String, serde_json::Value>>>")]
-    pub points: Option<Vec<IndexMap<String, Value>>>,
+    pub points: Option<PointsBlock>,
     /// Time histories to store. Default: summaries only.
     #[serde(default)]
     pub history: Option<HistorySpec>,
@@ -70,6 +71,53 @@ fn base_schema(gen: &mut SchemaGenerator) -> Schema {
         );
     }
     s
+}
+
+/// The `points` block: a plain list of parameter sets, or a named one.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum PointsBlock {
+    /// `[{path: value, …}, …]`: the dimension is named `point` (or `point_N`).
+    List(
+        #[schemars(with = "Vec<IndexMap<String, serde_json::Value>>")] Vec<IndexMap<String, Value>>,
+    ),
+    /// `{name: case, sets: [{path: value, …}, …]}`.
+    Named(NamedPoints),
+}
+
+/// A named `points` block.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct NamedPoints {
+    /// Dimension name (letters, digits, `_`).
+    pub name: String,
+    /// The parameter sets.
+    #[schemars(with = "Vec<IndexMap<String, serde_json::Value>>")]
+    pub sets: Vec<IndexMap<String, Value>>,
+}
+
+impl PointsBlock {
+    /// The dimension name the file gives, if any.
+    pub fn name(&self) -> Option<&String> {
+        match self {
+            PointsBlock::List(_) => None,
+            PointsBlock::Named(n) => Some(&n.name),
+        }
+    }
+    /// The parameter sets.
+    pub fn sets(&self) -> &[IndexMap<String, Value>] {
+        match self {
+            PointsBlock::List(s) => s,
+            PointsBlock::Named(n) => &n.sets,
+        }
+    }
+    /// Where the sets are in the file (for error positions).
+    pub fn sets_key(&self) -> Vec<&'static str> {
+        match self {
+            PointsBlock::List(_) => vec!["points"],
+            PointsBlock::Named(_) => vec!["points", "sets"],
+        }
+    }
 }
 
 /// Values of one grid axis.
@@ -330,6 +378,13 @@ pub struct HistorySpec {
     /// Default 0.01.
     #[serde(default = "default_z_step")]
     pub z_step: f64,
+    /// Record histories only at points whose parameters take one of the listed values:
+    /// dotted path → list (e.g. `{impact.z: [0.60], model: [wave]}`); every condition must
+    /// hold. Other points store NaN (and cost no disk: unwritten chunks are not allocated).
+    /// Default: every point. The rigid model never has histories.
+    #[serde(default)]
+    #[schemars(with = "IndexMap<String, Vec<serde_json::Value>>")]
+    pub only: IndexMap<String, Vec<Value>>,
 }
 
 fn default_precision() -> HistoryPrecision {

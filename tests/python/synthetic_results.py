@@ -217,12 +217,32 @@ def write(path, impact_z=None) -> str:
         _var(s, "approach_speed", approach, dims, "m/s", "approach speed", aux)
         _var(s, "bat_index", np.broadcast_to(np.array(bat_index, np.int32), shape), dims, "1", "bat", aux)
         _var(s, "status", np.zeros(shape, np.int8), dims, "1", "status", aux)
+        # Least-vibration stand-ins: |z − node| shapes (wave only; the rigid model has none).
+        node2 = np.array([bat_list[b][1]["mode_nodes"][1, 2] for b in bat_index])
+        node1 = np.array([bat_list[b][1]["mode_nodes"][0, 1] for b in bat_index])
+        grip = np.zeros(shape)
+        grip[0] = 1e-3 * (np.abs(impact_z[:, None] - node2[None, :]) + 0.1 * np.abs(impact_z[:, None] - node1[None, :]))
+        energy = np.zeros(shape)
+        energy[0] = 40.0 * ((impact_z[:, None] - 0.5 * (node1 + node2)[None, :]) / 0.1) ** 2
+        _var(s, "grip_vibration_amplitude", np.where(np.isfinite(exit_speed), grip, NAN), dims, "m",
+             "grip vibration amplitude", aux)  # fmt: skip
+        _var(s, "energy_bat_vibration", np.where(np.isfinite(exit_speed), energy, NAN), dims, "J",
+             "energy left in bat vibration", aux)  # fmt: skip
+        recoil = 0.3 * (0.69 - impact_z)[None, :, None] * np.ones(shape)
+        _var(s, "grip_recoil_speed", np.where(np.isfinite(exit_speed), recoil, NAN), dims, "m/s", "grip recoil", aux)
 
         ss = f["sweet_spot"]
         k = np.nanargmax(np.nan_to_num(exit_speed, nan=-1e9), axis=1)
         pos = impact_z[k]
         best = np.take_along_axis(exit_speed, k[:, None, :], axis=1)[:, 0, :]
         for name, data, units in (("position", pos, "m"), ("exit_speed", best, "m/s"), ("width", pos * 0 + 0.1, "m")):
+            _var(ss, name, data, ["model", "case"], units, name, aux)
+        node1 = np.array([bat_list[b][1]["mode_nodes"][0, 1] for b in bat_index])
+        node2 = np.array([bat_list[b][1]["mode_nodes"][1, 2] for b in bat_index])
+        wave_only = np.array([[1.0], [NAN]])  # model dim: wave, rigid
+        for name, data, units in (("min_vibration_position", node2[None, :] * wave_only, "m"),
+                                  ("min_vibration_amplitude", 1e-4 * (node2 - node1)[None, :] * wave_only, "m"),
+                                  ("min_vibration_energy_position", 0.5 * (node1 + node2)[None, :] * wave_only, "m")):
             _var(ss, name, data, ["model", "case"], units, name, aux)
 
         write_history(f["history"], params, bat_list, bat_index, spec, impact_z, aux)
@@ -272,6 +292,27 @@ def write_bats(g, bat_list):
     _var(g, "mode_nodes", np.array([b["mode_nodes"] for b in props]), ["bat", "mode", "node"], "m", "nodes")
     for name in ("profile_z", "outer_radius", "inner_radius"):
         _var(g, name, np.array([b[name] for b in props]), ["bat", "profile_point"], "m", name)
+    # Sweet-spot definitions and BBCOR (stand-ins: a parabola peaking between the nodes).
+    pivot = 0.1524
+    _var(g, "pivot_position", np.full(len(props), pivot), ["bat"], "m", "pivot")
+    cop = [pivot + (b["moment_of_inertia"] + b["mass"] * (b["z_cm"] - pivot) ** 2) / (b["mass"] * (b["z_cm"] - pivot))
+           for b in props]  # fmt: skip
+    _var(g, "centre_of_percussion", np.array(cop), ["bat"], "m", "centre of percussion")
+    _var(g, "node1_barrel", np.array([b["mode_nodes"][0, 1] for b in props]), ["bat"], "m", "mode-1 barrel node")
+    _var(g, "node2_barrel", np.array([b["mode_nodes"][1, 2] for b in props]), ["bat"], "m", "mode-2 barrel node")
+    _var(g, "bbcor_ball_speed", np.full(len(props), 136 * 0.44704), ["bat"], "m/s", "BBCOR ball speed")
+    n_bb = 50
+    _scale(g, "bbcor_point", np.arange(n_bb), "1", "BBCOR scan point")
+    bz = np.array([b["z_cm"] + 0.005 * np.arange(n_bb) for b in props])
+    peak = np.array([0.5 * (b["mode_nodes"][0, 1] + b["mode_nodes"][1, 2]) for b in props])
+    bb = 0.5 - 8.0 * (bz - peak[:, None]) ** 2
+    lengths = np.array([b["length"] for b in props])
+    outside = bz > lengths[:, None] - 0.0366
+    bz[outside], bb[outside] = NAN, NAN
+    _var(g, "bbcor_z", bz, ["bat", "bbcor_point"], "m", "BBCOR scan position")
+    _var(g, "bbcor", bb, ["bat", "bbcor_point"], "1", "BBCOR")
+    _var(g, "bbcor_max", np.full(len(props), 0.5), ["bat"], "1", "max BBCOR")
+    _var(g, "bbcor_max_position", peak, ["bat"], "m", "max BBCOR position")
 
 
 if __name__ == "__main__":

@@ -16,7 +16,8 @@ xr = pytest.importorskip("xarray")
 pytest.importorskip("h5netcdf")
 
 ROOT = Path(__file__).resolve().parents[2]
-CHECK = Path(os.environ.get("BATSTUDY_CHECK_LAYOUT", "/work/shared/tools/check_layout.py"))
+# shared/ sits beside the repository (CI clones it there).
+CHECK = Path(os.environ.get("BATSTUDY_CHECK_LAYOUT", ROOT.parent / "shared/tools/check_layout.py"))
 
 
 @pytest.fixture(scope="module")

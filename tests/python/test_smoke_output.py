@@ -1,0 +1,87 @@
+"""The CI smoke study's real output (studies/smoke.yaml, run on 2 threads by scripts/test.sh),
+opened the way users open it: h5py, xarray with the h5netcdf engine, and the shared layout
+check. Physics spot checks compare it with closed forms computed here from the stored bat
+properties, independent of the Rust code.
+
+Needs SMOKE_H5 (set by scripts/test.sh); skipped without it."""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+h5py = pytest.importorskip("h5py")
+xr = pytest.importorskip("xarray")
+
+ROOT = Path(__file__).resolve().parents[2]
+CHECK = Path(os.environ.get("BATSTUDY_CHECK_LAYOUT", ROOT.parent / "shared/tools/check_layout.py"))
+SMOKE = os.environ.get("SMOKE_H5")
+pytestmark = pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
+
+
+def open_group(group):
+    return xr.open_dataset(SMOKE, engine="h5netcdf", group=group)
+
+
+def test_h5py_sees_every_group_and_the_study_text():
+    with h5py.File(SMOKE, "r") as f:
+        for g in ["summary", "sweet_spot", "history", "bat", "errors"]:
+            assert g in f, g
+        assert "name: smoke" in f.attrs["study_yaml"]
+        assert f.attrs["threads"] == 2  # run with --jobs 2
+        assert f.attrs["complete"] == 1
+
+
+def test_shared_layout_check_passes():
+    if not CHECK.exists():
+        pytest.skip(f"{CHECK} not found")
+    r = subprocess.run([sys.executable, str(CHECK), SMOKE], capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_xarray_dims_coordinates_and_units():
+    s = open_group("summary")
+    assert s.exit_speed.dims == ("model", "swing_omega", "impact_z", "case")
+    assert list(s.model.values) == ["wave", "rigid"]
+    assert s.exit_speed.attrs["units"] == "m/s"
+    assert int((s.status != 0).sum()) == 0, "every smoke point succeeds"
+    # Selection by coordinate value works as the README promises.
+    base = s.exit_speed.sel(model="wave", swing_omega=0, case=0)
+    assert base.sizes == {"impact_z": 4}
+    h = open_group("history")
+    assert {"time", "z"} <= set(h.displacement.dims)
+
+
+def test_rigid_points_match_brody_closed_form():
+    # PHYSICS.md, rigid-body model: v_exit = v (e − m/M*)/(1 + m/M*) at ω = 0,
+    # M* = M / (1 + M l²/I), l = z − z_cm; M, I, z_cm from /bat.
+    s = open_group("summary").sel(model="rigid", swing_omega=0, case=0)
+    bat = open_group("bat")
+    i = int(open_group("summary").bat_index.sel(model="rigid", swing_omega=0, case=0).values[0])
+    M, I, zcm = (float(bat[k].values[i]) for k in ("mass", "moment_of_inertia", "z_cm"))
+    m, v, e = 0.145, 40.0, 0.5
+    for z, got in zip(s.impact_z.values, s.exit_speed.values):
+        l = z - zcm
+        ratio = m * (1 / M + l * l / I)
+        assert got == pytest.approx(v * (e - ratio) / (1 + ratio), rel=1e-9)
+
+
+def test_wave_energy_partition_closes():
+    # Energy conservation: what the ball and bat keep plus what the ball's hysteresis
+    # dissipates equals the initial kinetic energy (to the integrator's accuracy).
+    s = open_group("summary").sel(model="wave")
+    total = (s.energy_ball_final + s.energy_ball_loss + s.energy_bat_rigid
+             + s.energy_bat_vibration + s.energy_hoop)
+    np.testing.assert_allclose(total.values, s.energy_initial.values, rtol=1e-3)
+
+
+def test_histories_only_where_asked():
+    # studies/smoke.yaml: history.only = {impact.z: [0.60], model: [wave]}.
+    h = open_group("history")
+    recorded = np.isfinite(h.force).any("time")
+    assert bool(recorded.sel(model="wave", impact_z=0.6, swing_omega=0).all())
+    assert not bool(recorded.sel(model="rigid").any())
+    assert not bool(recorded.sel(model="wave", impact_z=0.5).any())
+    assert not bool(recorded.sel(model="wave", swing_omega=-30).any())
