@@ -39,7 +39,7 @@ done
 if ((${#need[@]})); then
   say "installing Debian packages: ${need[*]}"
   as_root apt-get update -qq || fail "apt-get update failed"
-  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq "${need[@]}" >/dev/null ||
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null ||
     fail "apt-get install ${need[*]} failed"
 fi
 [ "$(id -u)" = 0 ] || fail "must run as root (slurmd runs jobs as their user and needs root)"
