@@ -56,6 +56,66 @@ pub enum Command {
         /// A results file.
         file: PathBuf,
     },
+    /// Merge shard files (`run --shard I/N`) into one results file.
+    Merge(MergeArgs),
+    /// Write Slurm job scripts: an array of shards and a merge job that depends on it.
+    Slurm(SlurmArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The merged results file.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// The shard files (every shard of one study, each once).
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
+    /// The study file (default: re-read from the text stored in the shards; give it when
+    /// the study uses profile CSV files at paths relative to a study folder that moved).
+    #[arg(long)]
+    pub study: Option<PathBuf>,
+    /// Replace an existing output file.
+    #[arg(long)]
+    pub force: bool,
+    /// Threads for preparing the bats (default: all cores).
+    #[arg(short, long)]
+    pub jobs: Option<usize>,
+    /// No summary on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct SlurmArgs {
+    /// The study file (YAML).
+    pub study: PathBuf,
+    /// Number of shards (array tasks).
+    #[arg(long)]
+    pub shards: usize,
+    /// Time limit of each array task (Slurm format, e.g. 02:00:00 or 1-00:00:00).
+    #[arg(long)]
+    pub time: Option<String>,
+    /// Time limit of the merge job (default: --time).
+    #[arg(long)]
+    pub merge_time: Option<String>,
+    /// Slurm partition.
+    #[arg(long)]
+    pub partition: Option<String>,
+    /// Cores per array task (its rayon threads).
+    #[arg(long, default_value_t = 1)]
+    pub cpus_per_task: usize,
+    /// Memory per task (Slurm format, e.g. 4G).
+    #[arg(long)]
+    pub mem: Option<String>,
+    /// The merged results file (default: the study's `output`, else results/<name>.h5).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Folder for the scripts, the shard files and the logs (default: slurm/<name>).
+    #[arg(long)]
+    pub dir: Option<PathBuf>,
+    /// Largest number of points allowed.
+    #[arg(long, default_value_t = DEFAULT_MAX_POINTS)]
+    pub max_points: usize,
 }
 
 #[derive(Debug, Args)]
@@ -134,7 +194,10 @@ impl RunSettings {
             (_, true) => Existing::Overwrite,
             _ => Existing::Refuse,
         };
-        let output = study.output_path(a.output.as_deref());
+        let output = match (a.shard, &a.output) {
+            (Some(sh), None) => shard_output(&study.output_path(None), sh),
+            _ => study.output_path(a.output.as_deref()),
+        };
         check_output_of(&study, &output, a.output.is_some(), existing)?;
         Ok(RunSettings {
             output,
@@ -150,6 +213,17 @@ impl RunSettings {
             study,
         })
     }
+}
+
+/// Default output of a shard: the study's output with `.shard-I-of-N.h5` for `.h5`
+/// (`results/<name>.shard-I-of-N.h5`).
+pub fn shard_output(study_output: &Path, shard: Shard) -> PathBuf {
+    let s = study_output.display().to_string();
+    let stem = s.strip_suffix(".h5").unwrap_or(&s);
+    PathBuf::from(format!(
+        "{stem}.shard-{}-of-{}.h5",
+        shard.index, shard.count
+    ))
 }
 
 fn check_output_of(
@@ -199,6 +273,8 @@ pub fn run_command(cmd: Command) -> i32 {
             print!("{}", study::schema_json());
             EXIT_OK
         }
+        Command::Merge(a) => cmd_merge(&a),
+        Command::Slurm(a) => cmd_slurm(&a),
         Command::Inspect { file } => match store::inspect(&file) {
             Ok(text) => {
                 print!("{text}");
@@ -424,7 +500,12 @@ fn cmd_run(a: &RunArgs) -> i32 {
         &settings,
         &ModelSimulator,
         |path, info, existing| {
-            store::open(path, info, &store_options(existing))
+            let mut o = store_options(existing);
+            o.run_meta.shard_range = settings.options.shard.map(|sh| {
+                let r = run::shard_range(&settings.study.plan, info.history.as_ref(), sh);
+                (r.start, r.end)
+            });
+            store::open(path, info, &o)
                 .map(StoreSink::new)
                 .map_err(|e| e.to_string())
         },
@@ -533,5 +614,301 @@ fn print_report(s: &RunSettings, r: &RunReport) {
             cmd.push_str(&format!(" --shard {sh}"));
         }
         eprintln!("stopped early; to finish the study run:\n  {cmd}");
+    }
+}
+
+fn jobs_or_all(jobs: Option<usize>, file: &Path) -> Result<usize, StudyError> {
+    match jobs {
+        Some(0) => Err(StudyError::new(file, "bad --jobs")
+            .field("--jobs")
+            .value("0")
+            .allowed("a number of threads >= 1")),
+        Some(j) => Ok(j),
+        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+    }
+}
+
+/// `batstudy merge`: re-read the study from the shards' stored text, prepare its bats (as
+/// `run` does), check that the shards are one study and hold every point once, then write
+/// one complete results file. Exit 2 (nothing written) when refused.
+fn cmd_merge(a: &MergeArgs) -> i32 {
+    let bad = |msg: String| {
+        eprintln!("error: {msg}");
+        EXIT_BAD_INPUT
+    };
+    let mut infos = Vec::new();
+    for p in &a.shards {
+        match store::file_info(p) {
+            Ok(i) => infos.push(i),
+            Err(e) => return bad(e.to_string()),
+        }
+    }
+    let first = &infos[0];
+    for fi in &infos[1..] {
+        if fi.layout_version != first.layout_version {
+            return bad(format!(
+                "cannot merge files of different layout versions: {} has version {}, {} has version {}",
+                first.path.display(),
+                first.layout_version,
+                fi.path.display(),
+                fi.layout_version
+            ));
+        }
+        if fi.study_sha256 != first.study_sha256 {
+            return bad(format!(
+                "cannot merge shards of different studies: {} is study '{}' (study_sha256 {}), {} is study '{}' (study_sha256 {})",
+                first.path.display(),
+                first.study_name,
+                first.study_sha256,
+                fi.path.display(),
+                fi.study_name,
+                fi.study_sha256
+            ));
+        }
+    }
+    if first.layout_version != store::layout::LAYOUT_VERSION {
+        return bad(format!(
+            "{}: layout version {}, this batstudy writes version {}",
+            first.path.display(),
+            first.layout_version,
+            store::layout::LAYOUT_VERSION
+        ));
+    }
+    let existing = if a.force {
+        Existing::Overwrite
+    } else {
+        Existing::Refuse
+    };
+    if let Err((msg, allowed)) = check_output(&a.output, existing) {
+        return bad(format!("--output: {msg} (allowed: {allowed})"));
+    }
+    let jobs = match jobs_or_all(a.jobs, &a.output) {
+        Ok(j) => j,
+        Err(e) => return bad(e.to_string()),
+    };
+    // The study, from the text stored in the shards (relative profile CSVs are found next
+    // to the stored study path, or next to --study).
+    let (text, path) = match &a.study {
+        Some(p) => match std::fs::read_to_string(p) {
+            Ok(t) => (t, p.clone()),
+            Err(e) => return bad(format!("{}: cannot read the study file: {e}", p.display())),
+        },
+        None => (first.study_yaml.clone(), PathBuf::from(&first.study_path)),
+    };
+    let study = match study::load_str(
+        &text,
+        &path,
+        &LoadOptions {
+            max_points: usize::MAX,
+        },
+    ) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            eprintln!(
+                "(the study text stored in {}; if it names profile CSV files by relative paths, give the study file with --study)",
+                first.path.display()
+            );
+            return EXIT_BAD_INPUT;
+        }
+    };
+    if study.sha256 != first.study_sha256 {
+        return bad(format!(
+            "{}: this study file (sha256 {}) is not the shards' study '{}' (study_sha256 {})",
+            path.display(),
+            study.sha256,
+            first.study_name,
+            first.study_sha256
+        ));
+    }
+    let pool = match run::build_pool(jobs) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_RUN_FAILED;
+        }
+    };
+    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
+    let history = study.history_request(bats.max_length());
+    let info = study.info(bats.variants, history);
+    let store_err = |e: store::StoreError| match e {
+        store::StoreError::Io { .. } | store::StoreError::Hdf5 { .. } => {
+            eprintln!("error: {e}");
+            EXIT_RUN_FAILED
+        }
+        e => bad(e.to_string()),
+    };
+    if let Err(e) = store::merge_check(&a.output, &info, &a.shards) {
+        return store_err(e);
+    }
+    if let Some(dir) = a.output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("error: cannot create {}: {e}", dir.display());
+            return EXIT_RUN_FAILED;
+        }
+    }
+    let opts = store::StoreOptions {
+        force: a.force,
+        run_meta: store::RunMeta {
+            threads: jobs,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    match store::merge(&a.output, &info, &a.shards, &opts) {
+        Err(e) => store_err(e),
+        Ok(sum) => {
+            if !a.quiet {
+                eprintln!(
+                    "{}: merged {} files: {} points, {} failed",
+                    a.output.display(),
+                    a.shards.len(),
+                    sum.n_done,
+                    sum.n_failed
+                );
+            }
+            if sum.n_failed > 0 {
+                EXIT_POINTS_FAILED
+            } else {
+                EXIT_OK
+            }
+        }
+    }
+}
+
+/// An absolute path (relative ones against the working folder; nothing is resolved).
+fn absolute(p: &Path) -> PathBuf {
+    if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        std::env::current_dir()
+            .map(|d| d.join(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    }
+}
+
+/// `batstudy slurm`: write the job array, merge job and submit scripts.
+fn cmd_slurm(a: &SlurmArgs) -> i32 {
+    let study = match study::load(
+        &a.study,
+        &LoadOptions {
+            max_points: a.max_points,
+        },
+    ) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let flag = |name: &str, value: String, allowed: &str| {
+        eprintln!(
+            "{}",
+            StudyError::new(&a.study, format!("bad {name}"))
+                .field(name)
+                .value(value)
+                .allowed(allowed)
+        );
+        EXIT_BAD_INPUT
+    };
+    if a.shards == 0 {
+        return flag("--shards", "0".into(), "a number of shards >= 1");
+    }
+    if a.cpus_per_task == 0 {
+        return flag("--cpus-per-task", "0".into(), "a number of cores >= 1");
+    }
+    for (name, v) in [("--time", &a.time), ("--merge-time", &a.merge_time)] {
+        if let Some(t) = v.as_ref().filter(|t| !crate::slurm::valid_time(t)) {
+            return flag(
+                name,
+                t.clone(),
+                "a Slurm time limit: MM, HH:MM:SS, D-HH or D-HH:MM:SS",
+            );
+        }
+    }
+    if let Some(m) = a.mem.as_ref().filter(|m| !crate::slurm::valid_mem(m)) {
+        return flag("--mem", m.clone(), "a size such as 4G or 500M");
+    }
+    if let Some(p) = a
+        .partition
+        .as_ref()
+        .filter(|p| !crate::slurm::sbatch_safe(p))
+    {
+        return flag("--partition", p.clone(), "a partition name");
+    }
+    let binary = match std::env::current_exe().and_then(|p| p.canonicalize()) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot find the batstudy binary's path: {e}");
+            return EXIT_RUN_FAILED;
+        }
+    };
+    let study_path = match a.study.canonicalize() {
+        Ok(p) => p,
+        Err(e) => return flag("STUDY", format!("{} ({e})", a.study.display()), "a file"),
+    };
+    let name = study.file.name.clone();
+    let dir = absolute(
+        &a.dir
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("slurm").join(&name)),
+    );
+    if !crate::slurm::sbatch_safe(&dir.display().to_string()) {
+        return flag(
+            "--dir",
+            dir.display().to_string(),
+            "a folder path without spaces, quotes, `$`, `#` or `;` (it goes into #SBATCH lines)",
+        );
+    }
+    let output = absolute(&study.output_path(a.output.as_deref()));
+    if let Err((msg, allowed)) = check_output(&output, Existing::Refuse) {
+        if output.exists() {
+            eprintln!("warning: {msg}: the merge job will refuse to replace it; remove it or choose another -o before submitting");
+        } else {
+            return flag("--output", output.display().to_string(), &allowed);
+        }
+    }
+    let n = study.plan.n_points();
+    if a.shards > n {
+        eprintln!(
+            "warning: {} shards for {n} points: {} shards will be empty",
+            a.shards,
+            a.shards - n
+        );
+    }
+    let job = crate::slurm::SlurmJob {
+        binary,
+        study: study_path,
+        name,
+        shards: a.shards,
+        merge_time: a.merge_time.clone().or_else(|| a.time.clone()),
+        time: a.time.clone(),
+        partition: a.partition.clone(),
+        cpus_per_task: a.cpus_per_task,
+        mem: a.mem.clone(),
+        output,
+        dir,
+    };
+    match job.write() {
+        Ok(paths) => {
+            for p in &paths {
+                println!("wrote {}", p.display());
+            }
+            println!(
+                "submit with: bash {}   ({} array tasks of {} cores, then the merge into {})",
+                job.dir.join("submit.sh").display(),
+                job.shards,
+                job.cpus_per_task,
+                job.output.display()
+            );
+            EXIT_OK
+        }
+        Err(e) => {
+            eprintln!(
+                "error: cannot write the scripts into {}: {e}",
+                job.dir.display()
+            );
+            EXIT_RUN_FAILED
+        }
     }
 }

@@ -8,5 +8,6 @@ pub mod cli;
 pub mod model;
 pub mod results;
 pub mod run;
+pub mod slurm;
 pub mod store;
 pub mod study;

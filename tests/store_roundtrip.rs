@@ -587,7 +587,8 @@ fn merge_shards_equals_single_run_and_refuses_bad_sets() {
     let e = store::merge(&bad, &small_study(vec![]), &shards, &opts(false, false))
         .err()
         .unwrap();
-    assert!(matches!(e, StoreError::WrongStudy { .. }), "{e}");
+    // issue 8: merge refuses another study with its own error kind
+    assert!(matches!(e, StoreError::CannotMerge { .. }), "{e}");
     assert!(!bad.exists() && !store::journal_path(&bad).exists());
 }
 

@@ -212,7 +212,10 @@ pub fn run_plan<S: Simulator, K: Sink>(
     stop: &AtomicBool,
 ) -> Result<(RunReport, K), RunError> {
     let n = plan.n_points();
-    let total = opts.shard.map_or(n, |s| s.size(n));
+    let range = opts
+        .shard
+        .map_or(0..n, |s| super::shard::shard_range(plan, history, s));
+    let total = range.len();
     let pb = if opts.progress && std::io::stderr().is_terminal() {
         ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr())
     } else {
@@ -232,7 +235,6 @@ pub fn run_plan<S: Simulator, K: Sink>(
     let writer_sink = &sink;
     let writer_pb = pb.clone();
     let fail_fast = opts.fail_fast;
-    let shard = opts.shard;
     let written = std::thread::scope(|scope| {
         let writer = std::thread::Builder::new()
             .name("batstudy-writer".into())
@@ -269,53 +271,50 @@ pub fn run_plan<S: Simulator, K: Sink>(
             .expect("spawn writer thread");
 
         pool.install(|| {
-            (0..n)
-                .into_par_iter()
-                .filter(|&i| shard.is_none_or(|s| s.owns(i)))
-                .for_each_with(tx, |tx, i| {
-                    if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
-                        return;
-                    }
-                    let rec = match plan.point(i) {
-                        Err(e) => PointRecord {
-                            index: i,
-                            id: e.id,
-                            bat: 0,
-                            result: Err(e.message),
-                        },
-                        Ok(p) => {
-                            let done = sink.lock().unwrap_or_else(|p| p.into_inner()).is_done(p.id);
-                            if done {
-                                skipped.fetch_add(1, Ordering::Relaxed);
-                                pb.inc(1);
-                                return;
-                            }
-                            let result = match &bats.handles[p.bat as usize] {
-                                Err(e) => Err(e.clone()),
-                                Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
-                                    sim.simulate(bat, &p.spec, history.filter(|_| p.record_history))
-                                })) {
-                                    Ok(Ok(o)) => check_finite(&o).map(|_| o),
-                                    Ok(Err(e)) => Err(e),
-                                    Err(payload) => Err(format!("panic: {}", panic_text(payload))),
-                                },
-                            };
-                            PointRecord {
-                                index: i,
-                                id: p.id,
-                                bat: p.bat,
-                                result,
-                            }
+            range.into_par_iter().for_each_with(tx, |tx, i| {
+                if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
+                    return;
+                }
+                let rec = match plan.point(i) {
+                    Err(e) => PointRecord {
+                        index: i,
+                        id: e.id,
+                        bat: 0,
+                        result: Err(e.message),
+                    },
+                    Ok(p) => {
+                        let done = sink.lock().unwrap_or_else(|p| p.into_inner()).is_done(p.id);
+                        if done {
+                            skipped.fetch_add(1, Ordering::Relaxed);
+                            pb.inc(1);
+                            return;
                         }
-                    };
-                    if rec.result.is_err() && fail_fast {
-                        abort.store(true, Ordering::Relaxed);
+                        let result = match &bats.handles[p.bat as usize] {
+                            Err(e) => Err(e.clone()),
+                            Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
+                                sim.simulate(bat, &p.spec, history.filter(|_| p.record_history))
+                            })) {
+                                Ok(Ok(o)) => check_finite(&o).map(|_| o),
+                                Ok(Err(e)) => Err(e),
+                                Err(payload) => Err(format!("panic: {}", panic_text(payload))),
+                            },
+                        };
+                        PointRecord {
+                            index: i,
+                            id: p.id,
+                            bat: p.bat,
+                            result,
+                        }
                     }
-                    if tx.send(rec).is_err() {
-                        // The writer has stopped (a sink error): stop dispatching.
-                        abort.store(true, Ordering::Relaxed);
-                    }
-                });
+                };
+                if rec.result.is_err() && fail_fast {
+                    abort.store(true, Ordering::Relaxed);
+                }
+                if tx.send(rec).is_err() {
+                    // The writer has stopped (a sink error): stop dispatching.
+                    abort.store(true, Ordering::Relaxed);
+                }
+            });
         });
         writer
             .join()

@@ -10,5 +10,5 @@ pub use adapters::{ModelSimulator, StoreSink};
 pub use driver::{
     build_pool, check_finite, prepare_bats, run_plan, PreparedBats, RunError, RunOptions, RunReport,
 };
-pub use shard::Shard;
+pub use shard::{estimate_cost, shard_range, CostModel, Shard};
 pub use traits::{Simulator, Sink};

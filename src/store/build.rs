@@ -489,6 +489,10 @@ fn root_attrs(
     n("n_done", n_done as i64)?;
     n("n_failed", n_failed as i64)?;
     n("complete", (n_done == n_points) as i64)?;
+    if let Some((start, stop)) = meta.shard_range {
+        n("shard_start", start as i64)?;
+        n("shard_stop", stop as i64)?;
+    }
     Ok(())
 }
 

@@ -20,6 +20,8 @@ pub enum StoreError {
     Exists { path: PathBuf },
     #[error("{}: cannot resume: {what}", path.display())]
     WrongStudy { path: PathBuf, what: String },
+    #[error("{}: cannot merge: {what}", path.display())]
+    CannotMerge { path: PathBuf, what: String },
     #[error("{}: damaged journal: {what}", path.display())]
     BadJournal { path: PathBuf, what: String },
     #[error("{}: not a batstudy results file: {what}", path.display())]

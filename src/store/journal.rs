@@ -289,7 +289,10 @@ pub fn scan(path: &Path) -> Result<Scan, StoreError> {
         if r.read_exact(&mut payload).is_err() || fnv1a(&payload) != sum {
             break;
         }
-        let Some(rec) = decode_record(&payload[..payload.len().min(OK_SUMMARY_LEN)], true) else {
+        // The whole payload: a failed point's message follows the fixed part and may be
+        // longer than OK_SUMMARY_LEN (cutting it made the record undecodable and silently
+        // ended the journal there); `summary_only` skips histories, so this stays cheap.
+        let Some(rec) = decode_record(&payload, true) else {
             break;
         };
         records.push((

@@ -21,7 +21,9 @@ pub mod layout;
 pub mod read;
 
 pub use error::StoreError;
-pub use read::{inspect, read_results, ReadBack};
+pub use read::{
+    file_info, for_each_record, inspect, present_points, read_results, FileInfo, ReadBack,
+};
 
 use crate::results::{PointId, PointRecord, StudyInfo};
 use journal::{JournalHeader, JournalWriter};
@@ -42,6 +44,9 @@ pub struct RunMeta {
     pub created: String,
     /// `Some("I/N")` for a shard file.
     pub shard: Option<String>,
+    /// A shard's block of flat indices `[start, stop)` (root attributes `shard_start`,
+    /// `shard_stop`): the points it covers.
+    pub shard_range: Option<(usize, usize)>,
 }
 
 impl Default for RunMeta {
@@ -64,6 +69,7 @@ impl Default for RunMeta {
             batstudy_version: env!("CARGO_PKG_VERSION").to_string(),
             created: iso8601_now(),
             shard: None,
+            shard_range: None,
         }
     }
 }
@@ -281,50 +287,14 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
 /// Merge shard files (each the same layout with a subset of the points) into one complete
 /// results file `out`, identical in data to a single-process run. Refuses, before writing
 /// anything, shards of another study or layout version, points present twice, and missing
-/// points. (Each shard is read into memory one at a time.)
+/// points. Memory: one flag per point and one record at a time (shards are streamed).
 pub fn merge(
     out: &Path,
     info: &StudyInfo,
     shards: &[PathBuf],
     opts: &StoreOptions,
 ) -> Result<Summary, StoreError> {
-    let want = JournalHeader::of(info);
-    let n = info.shape.n_points();
-    let mut owner: Vec<Option<usize>> = vec![None; n];
-    for (k, p) in shards.iter().enumerate() {
-        let back = read::read_results(p)?;
-        if let Some(e) = back.header.mismatch(&want, p) {
-            return Err(e);
-        }
-        for r in &back.records {
-            if let Some(o) = owner[r.index] {
-                return Err(StoreError::WrongStudy {
-                    path: p.clone(),
-                    what: format!(
-                        "point {} (flat index {}) is also in {}",
-                        r.id,
-                        r.index,
-                        shards[o].display()
-                    ),
-                });
-            }
-            owner[r.index] = Some(k);
-        }
-    }
-    let missing: Vec<usize> = (0..n).filter(|&i| owner[i].is_none()).collect();
-    if !missing.is_empty() {
-        return Err(StoreError::WrongStudy {
-            path: out.to_path_buf(),
-            what: format!(
-                "the shards lack {} of the study's {} points (flat indices {:?}{})",
-                missing.len(),
-                n,
-                &missing[..missing.len().min(8)],
-                if missing.len() > 8 { ", ..." } else { "" }
-            ),
-        });
-    }
-    drop(owner);
+    merge_check(out, info, shards)?;
     let mut s = open(
         out,
         info,
@@ -334,11 +304,98 @@ pub fn merge(
         },
     )?;
     for p in shards {
-        for r in read::read_results(p)?.records {
-            s.write(r)?;
-        }
+        read::for_each_record(p, |r| s.write(r))?;
     }
     s.finish()
+}
+
+/// The checks of [`merge`], without writing anything: every shard of this study and layout
+/// version, every point present exactly once.
+pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(), StoreError> {
+    let want = JournalHeader::of(info);
+    let n = info.shape.n_points();
+    const NONE: u32 = u32::MAX;
+    let mut owner: Vec<u32> = vec![NONE; n];
+    let mut declared = Vec::new();
+    for (k, p) in shards.iter().enumerate() {
+        let fi = read::file_info(p)?;
+        if fi.layout_version != layout::LAYOUT_VERSION {
+            return Err(StoreError::CannotMerge {
+                path: p.clone(),
+                what: format!(
+                    "it has layout version {}, this batstudy writes version {}",
+                    fi.layout_version,
+                    layout::LAYOUT_VERSION
+                ),
+            });
+        }
+        if let Some(StoreError::WrongStudy { path, what }) = fi.header.mismatch(&want, p) {
+            return Err(StoreError::CannotMerge { path, what });
+        }
+        if out.exists() && same_file(out, p) {
+            return Err(StoreError::CannotMerge {
+                path: p.clone(),
+                what: "it is also the merge's output file".into(),
+            });
+        }
+        for i in read::present_points(p)? {
+            if owner[i] != NONE {
+                return Err(StoreError::CannotMerge {
+                    path: p.clone(),
+                    what: format!(
+                        "point at flat index {i} is also in {}: points present twice (each shard may be given once)",
+                        shards[owner[i] as usize].display()
+                    ),
+                });
+            }
+            owner[i] = k as u32;
+        }
+        declared.push((fi.shard, fi.shard_range));
+    }
+    let missing: Vec<usize> = (0..n).filter(|&i| owner[i] == NONE).collect();
+    if let Some(&first) = missing.first() {
+        let list = format!(
+            "{:?}{}",
+            &missing[..missing.len().min(8)],
+            if missing.len() > 8 { ", ..." } else { "" }
+        );
+        let owner_of = declared
+            .iter()
+            .position(|(_, r)| r.is_some_and(|(a, b)| a <= first && first < b));
+        let (path, what) = match owner_of {
+            Some(k) => {
+                let (a, b) = declared[k].1.unwrap_or_default();
+                let lack = missing.iter().filter(|&&i| a <= i && i < b).count();
+                (
+                    shards[k].clone(),
+                    format!(
+                        "shard {} is incomplete: it lacks {lack} of its {} points (flat indices {list}); the shards lack {} of the study's {n} points in all. Finish it with `batstudy run STUDY --shard {} --resume -o {}`",
+                        declared[k].0,
+                        b - a,
+                        missing.len(),
+                        declared[k].0,
+                        shards[k].display()
+                    ),
+                )
+            }
+            None => (
+                out.to_path_buf(),
+                format!(
+                    "the shards lack {} of the study's {n} points (flat indices {list}): a shard file is missing from the list",
+                    missing.len()
+                ),
+            ),
+        };
+        return Err(StoreError::CannotMerge { path, what });
+    }
+    Ok(())
+}
+
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
 }
 
 impl Session {

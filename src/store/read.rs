@@ -74,6 +74,21 @@ fn open_checked(path: &Path) -> Result<(hdf5::File, JournalHeader, u32), StoreEr
 
 /// Read every present point of a results file.
 pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
+    let mut records = Vec::new();
+    let mut back = for_each_record(path, |r| {
+        records.push(r);
+        Ok(())
+    })?;
+    back.records = records;
+    Ok(back)
+}
+
+/// Hand every present point of a results file to `each`, in flat-index order, one at a
+/// time (memory: the summary arrays and one history). The returned `ReadBack` has no records.
+pub fn for_each_record(
+    path: &Path,
+    mut each: impl FnMut(PointRecord) -> Result<(), StoreError>,
+) -> Result<ReadBack, StoreError> {
     let (f, header, layout_version) = open_checked(path)?;
     if layout_version != l::LAYOUT_VERSION {
         return Err(StoreError::WrongStudy {
@@ -160,7 +175,6 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
             })
             .collect(),
     };
-    let mut records = Vec::new();
     for i in 0..n {
         let result = match status[i] {
             l::STATUS_OK => {
@@ -192,12 +206,12 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
             l::STATUS_FAILED => Err(msgs.remove(&i).unwrap_or_default()),
             _ => continue,
         };
-        records.push(PointRecord {
+        each(PointRecord {
             index: i,
             id: ids[i],
             bat: bats[i].max(0) as u32,
             result,
-        });
+        })?;
     }
     Ok(ReadBack {
         path: path.to_path_buf(),
@@ -205,8 +219,64 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
         study_sha256: str_attr(&f, "study_sha256", path)?,
         layout_version,
         header,
-        records,
+        records: Vec::new(),
     })
+}
+
+/// What identifies a results file (root attributes only; cheap): for merge's checks.
+#[derive(Debug, Clone)]
+pub struct FileInfo {
+    pub path: PathBuf,
+    pub layout_version: u32,
+    pub header: JournalHeader,
+    pub study_name: String,
+    pub study_sha256: String,
+    /// The study file's text, verbatim.
+    pub study_yaml: String,
+    /// The study path as given to `run`.
+    pub study_path: String,
+    /// `"I/N"` for a shard, `""` otherwise.
+    pub shard: String,
+    /// A shard's block of flat indices `[start, stop)` (absent in files of older builds).
+    pub shard_range: Option<(usize, usize)>,
+}
+
+/// Read a results file's identification (root attributes), whatever its layout version.
+pub fn file_info(path: &Path) -> Result<FileInfo, StoreError> {
+    let (f, header, layout_version) = open_checked(path)?;
+    let num = |name: &str| f.attr(name).and_then(|a| a.read_scalar::<i64>()).ok();
+    let shard_range = match (num("shard_start"), num("shard_stop")) {
+        (Some(a), Some(b)) if 0 <= a && a <= b => Some((a as usize, b as usize)),
+        _ => None,
+    };
+    Ok(FileInfo {
+        path: path.to_path_buf(),
+        layout_version,
+        study_name: str_attr(&f, "study_name", path)?,
+        study_sha256: str_attr(&f, "study_sha256", path)?,
+        study_yaml: str_attr(&f, "study_yaml", path)?,
+        study_path: str_attr(&f, "study_path", path)?,
+        shard: str_attr(&f, "shard", path).unwrap_or_default(),
+        shard_range,
+        header,
+    })
+}
+
+/// Flat indices of the points present in a results file (status ok or failed), in order.
+pub fn present_points(path: &Path) -> Result<Vec<usize>, StoreError> {
+    let (f, header, _) = open_checked(path)?;
+    let n: usize = header.dims.iter().map(|d| d.1).product();
+    let status = f
+        .group(l::GROUP_SUMMARY)
+        .and_then(|g| g.dataset(l::STATUS.name))
+        .and_then(|d| d.read_raw::<i8>())
+        .ctx(path, "read summary/status")?;
+    if status.len() != n {
+        return Err(bad(path, "summary arrays do not match the study's shape"));
+    }
+    Ok((0..n)
+        .filter(|&i| status[i] == l::STATUS_OK || status[i] == l::STATUS_FAILED)
+        .collect())
 }
 
 /// A human-readable description of a results file: study, layout version, dims, counts by
