@@ -56,6 +56,15 @@ pub enum Command {
         /// A results file.
         file: PathBuf,
     },
+    /// Measure speed, parallel efficiency, HDF5 write share and peak memory (issue 7).
+    Bench {
+        /// Shrink every case (a few seconds; for tests).
+        #[arg(long)]
+        quick: bool,
+        /// Also write the figures as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
 }
 
 #[derive(Debug, Args)]
@@ -198,6 +207,9 @@ pub fn run_command(cmd: Command) -> i32 {
         Command::Schema => {
             print!("{}", study::schema_json());
             EXIT_OK
+        }
+        Command::Bench { quick, json } => {
+            crate::bench::main(&crate::bench::BenchOptions { quick }, json.as_deref())
         }
         Command::Inspect { file } => match store::inspect(&file) {
             Ok(text) => {

@@ -8,6 +8,7 @@
 use super::shard::Shard;
 use super::traits::{Simulator, Sink};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
+use crate::model::spec::ModelKind;
 use crate::results::{BatVariant, PointRecord};
 use crate::study::Plan;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -158,6 +159,17 @@ pub fn prepare_bats<S: Simulator>(
 
 /// Non-finite summary numbers make a point fail.
 pub fn check_finite(o: &Outcome) -> Result<(), String> {
+    check_finite_for(o, ModelKind::Wave)
+}
+
+/// `check_finite` for a point of this model: the rigid model has no time scale, so its
+/// contact time, peak force and compression are NaN by design (see `model::simulate`).
+pub fn check_finite_for(o: &Outcome, model: ModelKind) -> Result<(), String> {
+    let rigid_nan = |name: &str, v: f64| {
+        model == ModelKind::Rigid
+            && v.is_nan()
+            && matches!(name, "contact_time" | "peak_force" | "max_compression")
+    };
     let e = &o.energy;
     let fields = [
         ("exit_speed", o.exit_speed),
@@ -175,7 +187,10 @@ pub fn check_finite(o: &Outcome) -> Result<(), String> {
         ("energy.bat_vibration", e.bat_vibration),
         ("energy.hoop", e.hoop),
     ];
-    match fields.iter().find(|(_, v)| !v.is_finite()) {
+    match fields
+        .iter()
+        .find(|(n, v)| !v.is_finite() && !rigid_nan(n, *v))
+    {
         Some((n, v)) => Err(format!("non-finite {n} ({v})")),
         None => Ok(()),
     }
@@ -284,7 +299,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
                                 Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
                                     sim.simulate(bat, &p.spec, history)
                                 })) {
-                                    Ok(Ok(o)) => check_finite(&o).map(|_| o),
+                                    Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
                                     Ok(Err(e)) => Err(e),
                                     Err(payload) => Err(format!("panic: {}", panic_text(payload))),
                                 },
