@@ -110,8 +110,15 @@ pub struct ParallelBench {
     /// Median wall seconds of `run_plan` on 1 thread and on `threads`.
     pub seconds_1: f64,
     pub seconds_n: f64,
-    /// Median over repeats of t_1 / (threads · t_n).
+    /// Median over repeats of t_1 / (threads · t_n) (wall clock: depends on what else runs).
     pub efficiency: f64,
+    /// Median process CPU seconds of the two runs, and their ratio cpu_1 / cpu_n: the work
+    /// added by running in parallel (1.0 = none), whatever else shares the machine.
+    pub cpu_seconds_1: f64,
+    pub cpu_seconds_n: f64,
+    pub cpu_efficiency: f64,
+    /// Cores the n-thread run actually got on average (cpu_n / t_n).
+    pub cores_obtained: f64,
     /// Median µs to resolve one point of the plan (`Plan::point`), one thread.
     pub resolve_us_per_point: f64,
     pub repeats: usize,
@@ -459,12 +466,27 @@ fn load_study(text: &str, name: &str) -> Result<Study, String> {
     .map_err(|e| format!("bench study {name}: {e}"))
 }
 
+/// CPU seconds (user + system) of this process so far, from /proc/self/stat (0 elsewhere).
+fn process_cpu_seconds() -> f64 {
+    let Ok(s) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // fields after the command name (which may hold spaces) start at field 3 (state)
+    let rest = s.rsplit_once(')').map_or("", |(_, r)| r);
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let tick = |i: usize| f.get(i).and_then(|x| x.parse::<f64>().ok()).unwrap_or(0.0);
+    // utime, stime are fields 14, 15 (1-based) = indices 11, 12 here; USER_HZ is 100 on Linux
+    (tick(11) + tick(12)) / 100.0
+}
+
+/// Wall and CPU seconds of one null-sink run.
 fn run_null(
     study: &Study,
     bats: &run::PreparedBats<crate::model::PreparedBat>,
     pool: &rayon::ThreadPool,
-) -> Result<f64, String> {
+) -> Result<(f64, f64), String> {
     let stop = AtomicBool::new(false);
+    let c0 = process_cpu_seconds();
     let t0 = Instant::now();
     let (report, _) = run::run_plan(
         &study.plan,
@@ -478,10 +500,11 @@ fn run_null(
     )
     .map_err(err("run"))?;
     let t = t0.elapsed().as_secs_f64();
+    let c = process_cpu_seconds() - c0;
     if report.failed > 0 {
         return Err(format!("bench run: {} points failed", report.failed));
     }
-    Ok(t)
+    Ok((t, c))
 }
 
 fn bench_parallel(sz: &Sizes, threads: usize) -> Result<ParallelBench, String> {
@@ -495,12 +518,17 @@ fn bench_parallel(sz: &Sizes, threads: usize) -> Result<ParallelBench, String> {
     // warm-up (page faults, lazy statics)
     run_null(&study, &bats, &pool_n)?;
     let (mut t1, mut tn, mut eff) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut c1, mut cn, mut ceff, mut cores) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for _ in 0..sz.parallel_repeats {
-        let a = run_null(&study, &bats, &pool1)?;
-        let b = run_null(&study, &bats, &pool_n)?;
+        let (a, ca) = run_null(&study, &bats, &pool1)?;
+        let (b, cb) = run_null(&study, &bats, &pool_n)?;
         t1.push(a);
         tn.push(b);
         eff.push(a / (threads as f64 * b));
+        c1.push(ca);
+        cn.push(cb);
+        ceff.push(ca / cb);
+        cores.push(cb / b);
     }
     let n = study.plan.n_points();
     let resolve = {
@@ -520,6 +548,10 @@ fn bench_parallel(sz: &Sizes, threads: usize) -> Result<ParallelBench, String> {
         seconds_1: median(t1),
         seconds_n: median(tn),
         efficiency: median(eff),
+        cpu_seconds_1: median(c1),
+        cpu_seconds_n: median(cn),
+        cpu_efficiency: median(ceff),
+        cores_obtained: median(cores),
         resolve_us_per_point: resolve,
         repeats: sz.parallel_repeats,
     })
@@ -762,6 +794,19 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
             EFFICIENCY_TARGET * 100.0,
             status(pb.efficiency >= EFFICIENCY_TARGET),
             pb.resolve_us_per_point
+        ),
+    );
+    p(
+        out,
+        format!(
+            "CPU time: 1 thread {:.3} s, {} threads {:.3} s: CPU efficiency {:.1} % (work added by \
+             running in parallel); the {}-thread run got {:.2} cores on average",
+            pb.cpu_seconds_1,
+            pb.threads,
+            pb.cpu_seconds_n,
+            pb.cpu_efficiency * 100.0,
+            pb.threads,
+            pb.cores_obtained
         ),
     );
 
