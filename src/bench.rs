@@ -74,9 +74,12 @@ pub struct IntegratorFigures {
     pub steps: usize,
     /// Modes time-stepped (modal) or nodes (Verlet).
     pub modes: usize,
-    /// Median seconds per collision.
+    /// Median wall seconds per collision.
     pub seconds_per_collision: f64,
     pub collisions_per_second: f64,
+    /// Median CPU seconds of the thread per collision (insensitive to other load).
+    pub cpu_seconds_per_collision: f64,
+    pub collisions_per_cpu_second: f64,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -86,18 +89,21 @@ pub struct IntegratorBench {
     pub reference_segments: usize,
     pub modal: IntegratorFigures,
     pub verlet: IntegratorFigures,
-    /// Median over repeats of (Verlet time / modal time).
+    /// Median over repeats of (Verlet time / modal time), wall clock and CPU time.
     pub speedup: f64,
+    pub speedup_cpu: f64,
     pub repeats: usize,
 }
 
 #[derive(Debug, Clone, Serialize)]
 pub struct CurveBench {
     pub points: usize,
-    /// Median seconds for the whole curve (bat prepared beforehand, shared).
+    /// Median seconds for the whole curve (bat prepared beforehand, shared): wall, CPU.
     pub curve_seconds: f64,
-    /// Median seconds of one `prepare_bat`.
+    pub curve_cpu_seconds: f64,
+    /// Median seconds of one `prepare_bat`: wall, CPU.
     pub prepare_seconds: f64,
+    pub prepare_cpu_seconds: f64,
     pub exit_speed_min: f64,
     pub exit_speed_max: f64,
     pub repeats: usize,
@@ -138,6 +144,12 @@ pub struct WriteShare {
     pub final_file_seconds: f64,
     /// (journal + final) / wall.
     pub share: f64,
+    /// The same in CPU time: process CPU seconds of the run, the store's CPU seconds (writer
+    /// thread in `write`/`idle`, caller in `finish`) and their ratio (insensitive to load).
+    pub cpu_seconds: f64,
+    pub journal_cpu_seconds: f64,
+    pub final_file_cpu_seconds: f64,
+    pub cpu_share: f64,
     /// Peak resident memory during the run (VmHWM after a reset), bytes; None where
     /// `/proc/self/clear_refs` is unavailable.
     pub peak_rss_bytes: Option<u64>,
@@ -225,8 +237,19 @@ fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
-/// Seconds per call of `f`, calling it until at least `min_time` has passed (at least once).
-fn time_per_call(min_time: f64, mut f: impl FnMut()) -> f64 {
+/// CPU seconds this thread has run (`/proc/thread-self/schedstat`, ns; NaN elsewhere). On a
+/// shared machine a thread waits for a core part of the wall time; its CPU time does not.
+fn thread_cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
+/// (wall, CPU) seconds per call of `f`, calling it until at least `min_time` of wall time has
+/// passed (at least once).
+fn time_per_call(min_time: f64, mut f: impl FnMut()) -> (f64, f64) {
+    let c0 = thread_cpu_seconds();
     let t0 = Instant::now();
     let mut calls = 0u64;
     loop {
@@ -234,7 +257,8 @@ fn time_per_call(min_time: f64, mut f: impl FnMut()) -> f64 {
         calls += 1;
         let e = t0.elapsed().as_secs_f64();
         if e >= min_time {
-            return e / calls as f64;
+            let c = thread_cpu_seconds() - c0;
+            return (e / calls as f64, c / calls as f64);
         }
     }
 }
@@ -325,35 +349,43 @@ fn bench_integrators(sz: &Sizes) -> Result<IntegratorBench, String> {
     let v_ref = ro.exit_speed;
 
     let (mut tm, mut tv, mut ratio) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut cm, mut cv, mut cratio) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..sz.repeats {
-        let m = time_per_call(sz.min_time, || {
+        let (m, mc) = time_per_call(sz.min_time, || {
             std::hint::black_box(simulate(&spec, &bat, None).ok());
         });
-        let v = time_per_call(sz.min_time, || {
+        let (v, vc) = time_per_call(sz.min_time, || {
             std::hint::black_box(simulate(&verlet_spec, &bat, None).ok());
         });
         tm.push(m);
         tv.push(v);
         ratio.push(v / m);
+        cm.push(mc);
+        cv.push(vc);
+        cratio.push(vc / mc);
     }
-    let figures = |o: &crate::model::outcome::Outcome, d: &crate::model::wave::Diagnostics, t| {
-        IntegratorFigures {
-            exit_speed: o.exit_speed,
-            rel_error: (o.exit_speed / v_ref - 1.0).abs(),
-            dt: d.dt,
-            steps: d.steps,
-            modes: d.modes,
-            seconds_per_collision: t,
-            collisions_per_second: 1.0 / t,
-        }
+    let figures = |o: &crate::model::outcome::Outcome,
+                   d: &crate::model::wave::Diagnostics,
+                   t: f64,
+                   c: f64| IntegratorFigures {
+        exit_speed: o.exit_speed,
+        rel_error: (o.exit_speed / v_ref - 1.0).abs(),
+        dt: d.dt,
+        steps: d.steps,
+        modes: d.modes,
+        seconds_per_collision: t,
+        collisions_per_second: 1.0 / t,
+        cpu_seconds_per_collision: c,
+        collisions_per_cpu_second: 1.0 / c,
     };
     Ok(IntegratorBench {
         reference_exit_speed: v_ref,
         reference_dt: rd.dt,
         reference_segments: rd.segments,
-        modal: figures(&mo, &md, median(tm)),
-        verlet: figures(&vo, &vd, median(tv)),
+        modal: figures(&mo, &md, median(tm), median(cm)),
+        verlet: figures(&vo, &vd, median(tv), median(cv)),
         speedup: median(ratio),
+        speedup_cpu: median(cratio),
         repeats: sz.repeats,
     })
 }
@@ -365,20 +397,23 @@ pub fn curve_positions() -> Vec<f64> {
 
 fn bench_curve(sz: &Sizes) -> Result<CurveBench, String> {
     let spec = base_spec(0.70);
-    let mut prep = Vec::new();
+    let (mut prep, mut prep_cpu) = (Vec::new(), Vec::new());
     let mut bat: Option<PreparedBat> = None;
     for _ in 0..sz.curve_repeats {
+        let c0 = thread_cpu_seconds();
         let t0 = Instant::now();
         let b = prepare_bat(&spec.bat, &spec.numerics).map_err(err("prepare the bat"))?;
         prep.push(t0.elapsed().as_secs_f64());
+        prep_cpu.push(thread_cpu_seconds() - c0);
         bat = Some(b);
     }
     let bat = bat.ok_or("no repeats")?;
     let zs = curve_positions();
     let specs: Vec<CollisionSpec> = zs.iter().map(|&z| base_spec(z)).collect();
-    let mut times = Vec::new();
+    let (mut times, mut cpu) = (Vec::new(), Vec::new());
     let mut speeds = Vec::new();
     for _ in 0..sz.curve_repeats {
+        let c0 = thread_cpu_seconds();
         let t0 = Instant::now();
         speeds = specs
             .iter()
@@ -386,11 +421,14 @@ fn bench_curve(sz: &Sizes) -> Result<CurveBench, String> {
             .collect::<Result<Vec<f64>, _>>()
             .map_err(err("curve"))?;
         times.push(t0.elapsed().as_secs_f64());
+        cpu.push(thread_cpu_seconds() - c0);
     }
     Ok(CurveBench {
         points: zs.len(),
         curve_seconds: median(times),
+        curve_cpu_seconds: median(cpu),
         prepare_seconds: median(prep),
+        prepare_cpu_seconds: median(prep_cpu),
         exit_speed_min: speeds.iter().copied().fold(f64::INFINITY, f64::min),
         exit_speed_max: speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max),
         repeats: sz.curve_repeats,
@@ -413,11 +451,35 @@ impl Sink for NullSink {
     }
 }
 
-/// A sink that times the calls into another.
+/// A sink that times the calls into another (wall and CPU time of the calling thread; each
+/// call runs on one thread).
 struct TimedSink<K> {
     inner: K,
     journal: Duration,
     finish: Duration,
+    journal_cpu: f64,
+    finish_cpu: f64,
+}
+
+impl<K> TimedSink<K> {
+    fn new(inner: K) -> Self {
+        TimedSink {
+            inner,
+            journal: Duration::ZERO,
+            finish: Duration::ZERO,
+            journal_cpu: 0.0,
+            finish_cpu: 0.0,
+        }
+    }
+}
+
+fn timed<R>(wall: &mut Duration, cpu: &mut f64, f: impl FnOnce() -> R) -> R {
+    let c0 = thread_cpu_seconds();
+    let t0 = Instant::now();
+    let r = f();
+    *wall += t0.elapsed();
+    *cpu += thread_cpu_seconds() - c0;
+    r
 }
 
 impl<K: Sink> Sink for TimedSink<K> {
@@ -425,22 +487,18 @@ impl<K: Sink> Sink for TimedSink<K> {
         self.inner.is_done(id)
     }
     fn write(&mut self, rec: PointRecord) -> Result<(), String> {
-        let t0 = Instant::now();
-        let r = self.inner.write(rec);
-        self.journal += t0.elapsed();
-        r
+        let inner = &mut self.inner;
+        timed(&mut self.journal, &mut self.journal_cpu, || {
+            inner.write(rec)
+        })
     }
     fn idle(&mut self) -> Result<(), String> {
-        let t0 = Instant::now();
-        let r = self.inner.idle();
-        self.journal += t0.elapsed();
-        r
+        let inner = &mut self.inner;
+        timed(&mut self.journal, &mut self.journal_cpu, || inner.idle())
     }
     fn finish(&mut self) -> Result<(), String> {
-        let t0 = Instant::now();
-        let r = self.inner.finish();
-        self.finish += t0.elapsed();
-        r
+        let inner = &mut self.inner;
+        timed(&mut self.finish, &mut self.finish_cpu, || inner.finish())
     }
 }
 
@@ -584,14 +642,11 @@ fn bench_write(
     let info = study.info(bats.variants.clone(), history.clone());
     let out: PathBuf = dir.join(format!("{case}.h5"));
     let rss_before = reset_peak();
+    let c0 = process_cpu_seconds();
     let t0 = Instant::now();
     let session = store::open(&out, &info, &store::StoreOptions::default())
         .map_err(err("open the results file"))?;
-    let sink = TimedSink {
-        inner: StoreSink::new(session),
-        journal: Duration::ZERO,
-        finish: Duration::ZERO,
-    };
+    let sink = TimedSink::new(StoreSink::new(session));
     let stop = AtomicBool::new(false);
     let opts = RunOptions {
         jobs: threads,
@@ -609,6 +664,7 @@ fn bench_write(
     )
     .map_err(err("run"))?;
     let wall = t0.elapsed().as_secs_f64();
+    let cpu = process_cpu_seconds() - c0;
     let peak = rss_before.and_then(|_| peak_rss());
     if report.failed > 0 {
         return Err(format!("bench {case}: {} points failed", report.failed));
@@ -625,6 +681,10 @@ fn bench_write(
         journal_seconds: journal,
         final_file_seconds: fin,
         share: (journal + fin) / wall,
+        cpu_seconds: cpu,
+        journal_cpu_seconds: sink.journal_cpu,
+        final_file_cpu_seconds: sink.finish_cpu,
+        cpu_share: (sink.journal_cpu + sink.finish_cpu) / cpu,
         peak_rss_bytes: peak,
         rss_before_bytes: rss_before,
         history_bytes_in_memory: history.as_ref().map_or(0, history_bytes) * n as u64,
@@ -728,7 +788,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
             out,
             format!(
                 "{name}: exit {:.7} m/s, rel. error {:.2e} ({}), dt {:.3} µs, {} steps, {} modes/nodes, \
-                 {:.3} ms/collision, {:.0} collisions/s",
+                 {:.3} ms/collision ({:.3} ms CPU), {:.0} collisions/s ({:.0} per CPU-second)",
                 f.exit_speed,
                 f.rel_error,
                 if f.rel_error <= ACCURACY_TARGET { "≤ 1e-4" } else { "ABOVE 1e-4" },
@@ -736,17 +796,21 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
                 f.steps,
                 f.modes,
                 f.seconds_per_collision * 1e3,
-                f.collisions_per_second
+                f.cpu_seconds_per_collision * 1e3,
+                f.collisions_per_second,
+                f.collisions_per_cpu_second
             ),
         );
     }
     p(
         out,
         format!(
-            "speed-up modal/verlet: {:.1}× (median of {} repeats; target ≥ {SPEEDUP_TARGET}×: {})",
+            "speed-up modal/verlet: {:.1}× wall, {:.1}× CPU (medians of {} repeats; target ≥ \
+             {SPEEDUP_TARGET}×: {})",
             ib.speedup,
+            ib.speedup_cpu,
             ib.repeats,
-            status(ib.speedup >= SPEEDUP_TARGET)
+            status(ib.speedup.min(ib.speedup_cpu) >= SPEEDUP_TARGET)
         ),
     );
 
@@ -759,14 +823,15 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     p(
         out,
         format!(
-            "curve {:.2} ms (target < {:.0} ms: {}), {:.2} ms per point; prepare_bat {:.2} ms \
-             (curve / prepare = {:.2}); exit speed {:.3}..{:.3} m/s",
+            "curve {:.2} ms wall, {:.2} ms CPU (target < {:.0} ms: {}), {:.3} ms CPU per point; \
+             prepare_bat {:.2} ms wall, {:.2} ms CPU; exit speed {:.3}..{:.3} m/s",
             cb.curve_seconds * 1e3,
+            cb.curve_cpu_seconds * 1e3,
             CURVE_TARGET_S * 1e3,
             status(cb.curve_seconds < CURVE_TARGET_S),
-            cb.curve_seconds * 1e3 / cb.points as f64,
+            cb.curve_cpu_seconds * 1e3 / cb.points as f64,
             cb.prepare_seconds * 1e3,
-            cb.curve_seconds / cb.prepare_seconds,
+            cb.prepare_cpu_seconds * 1e3,
             cb.exit_speed_min,
             cb.exit_speed_max
         ),
@@ -832,7 +897,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         p(
             out,
             format!(
-                "{:8}: {} points in {:.3} s; journal {:.3} s + final file {:.3} s = {:.2} % of wall{}; file {:.1} MiB",
+                "{:8}: {} points in {:.3} s; journal {:.3} s + final file {:.3} s = {:.2} % of wall{}; \
+                 CPU: {:.3} s, store {:.3} + {:.3} s = {:.2} % of CPU; file {:.1} MiB",
                 w.case,
                 w.points,
                 w.wall_seconds,
@@ -844,6 +910,10 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
                 } else {
                     String::new()
                 },
+                w.cpu_seconds,
+                w.journal_cpu_seconds,
+                w.final_file_cpu_seconds,
+                w.cpu_share * 100.0,
                 w.file_bytes as f64 / 1048576.0
             ),
         );

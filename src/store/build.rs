@@ -119,7 +119,15 @@ fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     aux: &[String],
     path: &Path,
 ) -> Result<Dataset, StoreError> {
-    new_var_level(g, def, shape_chunk, fill, (scales, aux), l::DEFLATE_LEVEL, path)
+    new_var_level(
+        g,
+        def,
+        shape_chunk,
+        fill,
+        (scales, aux),
+        l::DEFLATE_LEVEL,
+        path,
+    )
 }
 
 fn new_var_level<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
