@@ -168,6 +168,12 @@ pub struct MemoryBench {
     pub plan_rss_before_bytes: Option<u64>,
     /// Channel capacity of the driver (records in flight).
     pub channel_capacity: usize,
+    /// A summary-only study through the driver and the real store (rigid model): the store
+    /// keeps a small index per point (done ids while running, record locations at the end).
+    pub store_points: usize,
+    pub store_seconds: f64,
+    pub store_peak_rss_bytes: Option<u64>,
+    pub store_rss_before_bytes: Option<u64>,
     /// The history study's peak (same run as `hdf5[1]`).
     pub history_points: usize,
     pub history_peak_rss_bytes: Option<u64>,
@@ -195,6 +201,7 @@ struct Sizes {
     summary_omegas: usize,
     history_omegas: usize,
     plan_points: [usize; 3],
+    store_points: [usize; 3],
 }
 
 impl Sizes {
@@ -209,6 +216,7 @@ impl Sizes {
                 summary_omegas: 2,
                 history_omegas: 1,
                 plan_points: [100, 10, 10],
+                store_points: [100, 10, 10],
             }
         } else {
             Sizes {
@@ -220,6 +228,7 @@ impl Sizes {
                 summary_omegas: 60,
                 history_omegas: 40,
                 plan_points: [1000, 100, 100],
+                store_points: [1000, 100, 10],
             }
         }
     }
@@ -920,6 +929,16 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     }
 
     let (plan_points, plan_seconds, plan_peak, plan_before) = bench_plan_memory(&sz, threads)?;
+    let [a, b, c] = sz.store_points;
+    let store_study = load_study(
+        &format!(
+            "name: bench-store\nmodel: rigid\nbase:\n  bat: {{preset: r161}}\n  ball: {{speed: 40}}\n  \
+             impact: {{z: 0.7}}\ngrid:\n  ball.speed: {{linspace: [30, 50, {c}]}}\n  \
+             swing.omega: {{linspace: [0, -50, {b}]}}\n  impact.z: {{linspace: [0.40, 0.84, {a}]}}\n"
+        ),
+        "bench-store",
+    )?;
+    let wst = bench_write("store", &store_study, dir.path(), threads)?;
     let mb = MemoryBench {
         plan_points,
         plan_seconds,
@@ -929,6 +948,10 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         history_points: wh.points,
         history_peak_rss_bytes: wh.peak_rss_bytes,
         history_bytes_in_memory: wh.history_bytes_in_memory,
+        store_points: wst.points,
+        store_seconds: wst.wall_seconds,
+        store_peak_rss_bytes: wst.peak_rss_bytes,
+        store_rss_before_bytes: wst.rss_before_bytes,
     };
     p(
         out,
@@ -943,6 +966,24 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
             mb.plan_seconds,
             mib(mb.plan_peak_rss_bytes),
             mib(mb.plan_rss_before_bytes)
+        ),
+    );
+    let per_point = match (mb.store_peak_rss_bytes, mb.store_rss_before_bytes) {
+        (Some(p), Some(b)) => format!(
+            "{:.0} B/point",
+            p.saturating_sub(b) as f64 / mb.store_points as f64
+        ),
+        _ => "n/a".into(),
+    };
+    p(
+        out,
+        format!(
+            "summary-only study of {} points with the store (rigid model, {threads} threads, {:.1} s): \
+             peak {} (before {}): {per_point} above the start",
+            mb.store_points,
+            mb.store_seconds,
+            mib(mb.store_peak_rss_bytes),
+            mib(mb.store_rss_before_bytes)
         ),
     );
     p(
