@@ -35,8 +35,9 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
         "verlet {:e} off the reference",
         i.verlet.rel_error
     );
-    // the reference is finer than both: smaller step, more segments
-    assert!(i.reference_dt < i.modal.dt && i.reference_dt < i.verlet.dt);
+    // the reference is finer than the modal default (1/16 of its step) and has more segments
+    // than both (Verlet's stable step is smaller still, set by the highest beam mode)
+    assert!(i.reference_dt < i.modal.dt);
     assert!(i.reference_segments > i.verlet.modes);
     // plausible figures in every section (no timing thresholds)
     assert!(i.speedup.is_finite() && i.speedup > 0.0);
