@@ -56,6 +56,15 @@ pub enum Command {
         /// A results file.
         file: PathBuf,
     },
+    /// Measure speed, parallel efficiency, HDF5 write share and peak memory (issue 7).
+    Bench {
+        /// Shrink every case (a few seconds; for tests).
+        #[arg(long)]
+        quick: bool,
+        /// Also write the figures as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Merge shard files (`run --shard I/N`) into one results file.
     Merge(MergeArgs),
     /// Write Slurm job scripts: an array of shards and a merge job that depends on it.
@@ -275,6 +284,9 @@ pub fn run_command(cmd: Command) -> i32 {
         }
         Command::Merge(a) => cmd_merge(&a),
         Command::Slurm(a) => cmd_slurm(&a),
+        Command::Bench { quick, json } => {
+            crate::bench::main(&crate::bench::BenchOptions { quick }, json.as_deref())
+        }
         Command::Inspect { file } => match store::inspect(&file) {
             Ok(text) => {
                 print!("{text}");

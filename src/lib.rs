@@ -4,6 +4,7 @@
 //! study file → `study` (parse, validate, expand to points) → `model` (simulate one
 //! collision) → `results` (finished points) → `store` (HDF5) ← `run` (drives it all).
 
+pub mod bench;
 pub mod cli;
 pub mod model;
 pub mod results;

@@ -882,7 +882,7 @@ fn run_modal(
         t = steps as f64 * h;
         contact.update(&c.law, t_prev, s_prev, t, s_track, force);
         s = s_track;
-        if let Some(rec) = recorder.as_mut() {
+        if let Some(rec) = recorder.as_mut().filter(|r| r.wants(t, h)) {
             let p_bat = if c.hoop.is_some() { hoop_force } else { force };
             let smp = sample(&q, rec, force, p_bat, s.max(0.0), v, xh - y_c);
             rec.push(t, smp);
@@ -1032,7 +1032,7 @@ fn run_verlet(
         steps += 1;
         t = steps as f64 * h;
         contact.update(&c.law, t_prev, s_prev, t, s, force);
-        if let Some(rec) = recorder.as_mut() {
+        if let Some(rec) = recorder.as_mut().filter(|r| r.wants(t, h)) {
             let smp = sample(&y, rec, force, s.max(0.0), v, xh - y_c);
             rec.push(t, smp);
         }

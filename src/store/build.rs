@@ -115,14 +115,34 @@ fn coord_values(
 fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     g: &Group,
     def: &VarDef,
-    (shape, chunk): (&[usize], &[usize]),
+    shape_chunk: (&[usize], &[usize]),
     fill: T,
     scales: &[&Dataset],
     aux: &[String],
     path: &Path,
 ) -> Result<Dataset, StoreError> {
+    new_var_level(
+        g,
+        def,
+        shape_chunk,
+        fill,
+        (scales, aux),
+        l::DEFLATE_LEVEL,
+        path,
+    )
+}
+
+fn new_var_level<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
+    g: &Group,
+    def: &VarDef,
+    (shape, chunk): (&[usize], &[usize]),
+    fill: T,
+    (scales, aux): (&[&Dataset], &[String]),
+    level: u8,
+    path: &Path,
+) -> Result<Dataset, StoreError> {
     let what = format!("create variable {}/{}", g.name(), def.name);
-    let ds = h5u::create_var(g, def.name, shape, chunk, fill).ctx(path, &what)?;
+    let ds = h5u::create_var_level(g, def.name, shape, chunk, fill, level).ctx(path, &what)?;
     describe(&ds, def).ctx(path, &what)?;
     if !aux.is_empty() {
         attr_str(&ds, "coordinates", &aux.join(" ")).ctx(path, &what)?;
@@ -514,6 +534,7 @@ fn write_history(
     let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
     let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let vars = history_vars(h);
+    const HL: u8 = l::HISTORY_DEFLATE_LEVEL;
     let mut created: Vec<(usize, Dataset, Vec<usize>)> = Vec::new();
     for &k in &vars {
         let (def, _, with_z) = &l::HISTORY_VARS[k];
@@ -529,8 +550,12 @@ fn write_history(
             sc.push(&zscale);
         }
         let ds = match h.precision {
-            HistoryPrecision::F64 => new_var(&g, def, (&s, &c), f64::NAN, &sc, &aux, out)?,
-            HistoryPrecision::F32 => new_var(&g, def, (&s, &c), f32::NAN, &sc, &aux, out)?,
+            HistoryPrecision::F64 => {
+                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux), HL, out)?
+            }
+            HistoryPrecision::F32 => {
+                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux), HL, out)?
+            }
         };
         attr_str(
             &ds,

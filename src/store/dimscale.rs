@@ -75,11 +75,23 @@ pub fn create_var<T: H5Type + Into<hdf5::types::OwnedDynValue>>(
     chunk: &[usize],
     fill: T,
 ) -> hdf5::Result<Dataset> {
+    create_var_level(g, name, shape, chunk, fill, DEFLATE_LEVEL)
+}
+
+/// `create_var` with this deflate level.
+pub fn create_var_level<T: H5Type + Into<hdf5::types::OwnedDynValue>>(
+    g: &Group,
+    name: &str,
+    shape: &[usize],
+    chunk: &[usize],
+    fill: T,
+    level: u8,
+) -> hdf5::Result<Dataset> {
     let mut b = g.new_dataset_builder().empty::<T>();
     let chunkable = !shape.is_empty() && shape.iter().all(|&n| n > 0);
     b = b.fill_value(fill);
     if chunkable {
-        b = b.chunk(chunk.to_vec()).shuffle().deflate(DEFLATE_LEVEL);
+        b = b.chunk(chunk.to_vec()).shuffle().deflate(level);
     }
     b.shape(shape.to_vec()).create(name)
 }

@@ -319,7 +319,15 @@ pub struct JournalReader {
     file: File,
     path: PathBuf,
     buf: Vec<u8>,
+    /// Read-ahead window for summary reads: `window` holds the journal's bytes from
+    /// `window_start` (records sit near each other in flat-index order, so one read serves
+    /// thousands of summary records instead of a seek + read each; issue 7).
+    window: Vec<u8>,
+    window_start: u64,
 }
+
+/// Bytes of the read-ahead window.
+const READ_WINDOW: u64 = 1 << 20;
 
 impl JournalReader {
     pub fn open(path: &Path) -> Result<Self, StoreError> {
@@ -327,7 +335,31 @@ impl JournalReader {
             file: File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?,
             path: path.to_path_buf(),
             buf: Vec::new(),
+            window: Vec::new(),
+            window_start: 0,
         })
+    }
+
+    /// Copy `n` bytes at `offset` into `self.buf` through the read-ahead window.
+    fn read_windowed(&mut self, offset: u64, n: usize) -> std::io::Result<()> {
+        let end = offset + n as u64;
+        let have =
+            offset >= self.window_start && end <= self.window_start + self.window.len() as u64;
+        if !have {
+            self.window.clear();
+            self.file.seek(SeekFrom::Start(offset))?;
+            (&mut self.file)
+                .take(READ_WINDOW.max(n as u64))
+                .read_to_end(&mut self.window)?;
+            self.window_start = offset;
+            if (self.window.len() as u64) < n as u64 {
+                return Err(std::io::ErrorKind::UnexpectedEof.into());
+            }
+        }
+        let a = (offset - self.window_start) as usize;
+        self.buf.clear();
+        self.buf.extend_from_slice(&self.window[a..a + n]);
+        Ok(())
     }
 
     /// Read the record at `loc`; `summary_only` reads only the fixed summary part.
@@ -338,11 +370,15 @@ impl JournalReader {
             loc.len as usize
         };
         // failed records keep their message after the summary part: read them whole
-        self.buf.resize(n, 0);
-        self.file
-            .seek(SeekFrom::Start(loc.offset))
-            .and_then(|_| self.file.read_exact(&mut self.buf))
-            .map_err(|e| StoreError::io(&self.path, "read the journal", e))?;
+        if summary_only {
+            self.read_windowed(loc.offset, n)
+        } else {
+            self.buf.resize(n, 0);
+            self.file
+                .seek(SeekFrom::Start(loc.offset))
+                .and_then(|_| self.file.read_exact(&mut self.buf))
+        }
+        .map_err(|e| StoreError::io(&self.path, "read the journal", e))?;
         if self.buf.get(20) == Some(&0) && n < loc.len as usize {
             return self.read(loc, false);
         }

@@ -518,6 +518,9 @@ impl Session {
     pub fn finish(mut self) -> Result<Summary, StoreError> {
         self.flush()?;
         drop(self.journal.take());
+        // the per-point index of the run is not needed to build the file (issue 7: memory)
+        self.done_ids = HashSet::new();
+        self.done_index = Vec::new();
         let scan = journal::scan(&self.journal_path)?;
         if let Some(e) = scan
             .header
