@@ -380,18 +380,18 @@ fn human_secs(s: f64) -> String {
     }
 }
 
+/// Load a study; on bad input print the located error and give the exit code.
+fn load_or_report(path: &Path, max_points: usize) -> Result<Study, i32> {
+    study::load(path, &LoadOptions { max_points }).map_err(|e| {
+        eprintln!("{e}");
+        EXIT_BAD_INPUT
+    })
+}
+
 fn cmd_plan(a: &PlanArgs) -> i32 {
-    let s = match study::load(
-        &a.study,
-        &LoadOptions {
-            max_points: a.max_points,
-        },
-    ) {
+    let s = match load_or_report(&a.study, a.max_points) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("{e}");
-            return EXIT_BAD_INPUT;
-        }
+        Err(code) => return code,
     };
     let plan = &s.plan;
     let n = plan.n_points();
@@ -801,17 +801,9 @@ fn absolute(p: &Path) -> PathBuf {
 
 /// `batstudy slurm`: write the job array, merge job and submit scripts.
 fn cmd_slurm(a: &SlurmArgs) -> i32 {
-    let study = match study::load(
-        &a.study,
-        &LoadOptions {
-            max_points: a.max_points,
-        },
-    ) {
+    let study = match load_or_report(&a.study, a.max_points) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("{e}");
-            return EXIT_BAD_INPUT;
-        }
+        Err(code) => return code,
     };
     let flag = |name: &str, value: String, allowed: &str| {
         eprintln!(

@@ -222,7 +222,7 @@ pub fn bat_metrics(
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
     let (bbcor_z, bbcor) = bbcor_scan(bat, bat_spec, numerics, &BallSpec::default())?;
     let (bbcor_max_position, bbcor_max) =
-        super::sweet_defs::find_maximum(&bbcor_z, &bbcor).unwrap_or((f64::NAN, f64::NAN));
+        super::sweet::find_maximum(&bbcor_z, &bbcor).unwrap_or((f64::NAN, f64::NAN));
     Ok(BatMetrics {
         pivot: KNOB6,
         centre_of_percussion: centre_of_percussion(p.mass, p.z_cm, p.moment_of_inertia, KNOB6),

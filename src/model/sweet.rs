@@ -31,20 +31,9 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
         .filter(|(a, b)| a.is_finite() && b.is_finite())
         .map(|(a, b)| (*a, *b))
         .unzip();
+    let (position, peak) = find_maximum(&z, &v)?;
+    // The zone grows from the best sample (the refined peak lies next to it).
     let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
-    let (mut position, mut peak) = (z[best], v[best]);
-    if best > 0 && best + 1 < v.len() {
-        if let Some((zp, vp)) = parabola_vertex(
-            [z[best - 1], z[best], z[best + 1]],
-            [v[best - 1], v[best], v[best + 1]],
-        ) {
-            // Keep the vertex between the neighbours: outside them the fit means nothing.
-            if zp > z[best - 1] && zp < z[best + 1] && vp >= peak {
-                position = zp;
-                peak = vp;
-            }
-        }
-    }
     let threshold = peak - SWEET_ZONE_DROP;
     let crossing = |i: usize, j: usize| {
         // Linear interpolation between a sample above the threshold (i) and one below (j).
@@ -71,18 +60,38 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
     })
 }
 
-/// Vertex of the parabola through three points; None when they are collinear.
-fn parabola_vertex(x: [f64; 3], y: [f64; 3]) -> Option<(f64, f64)> {
-    let d1 = (y[1] - y[0]) / (x[1] - x[0]);
-    let d2 = (y[2] - y[1]) / (x[2] - x[1]);
-    let curvature = (d2 - d1) / (x[2] - x[0]); // the x² coefficient
-    if curvature >= 0.0 || !curvature.is_finite() {
+/// Maximum of `v` over increasing `z` (finite samples only), refined by the parabola through
+/// the best sample and its two neighbours (kept only if its vertex lies between them).
+pub fn find_maximum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
+    if z.len() != v.len() || z.windows(2).any(|w| w[1] <= w[0]) {
         return None;
     }
-    // y = y1 + d1 (x − x0) + c (x − x0)(x − x1): dy/dx = d1 + c (2x − x0 − x1) = 0.
-    let xv = 0.5 * (x[0] + x[1]) - d1 / (2.0 * curvature);
-    let yv = y[0] + d1 * (xv - x[0]) + curvature * (xv - x[0]) * (xv - x[1]);
-    Some((xv, yv))
+    let (z, v): (Vec<f64>, Vec<f64>) = z
+        .iter()
+        .zip(v)
+        .filter(|(a, b)| a.is_finite() && b.is_finite())
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
+    let (mut position, mut peak) = (z[best], v[best]);
+    if best > 0 && best + 1 < v.len() {
+        let (x, y) = (
+            [z[best - 1], z[best], z[best + 1]],
+            [v[best - 1], v[best], v[best + 1]],
+        );
+        let d1 = (y[1] - y[0]) / (x[1] - x[0]);
+        let d2 = (y[2] - y[1]) / (x[2] - x[1]);
+        let c = (d2 - d1) / (x[2] - x[0]);
+        if c < 0.0 && c.is_finite() {
+            let xv = 0.5 * (x[0] + x[1]) - d1 / (2.0 * c);
+            let yv = y[0] + d1 * (xv - x[0]) + c * (xv - x[0]) * (xv - x[1]);
+            if xv > x[0] && xv < x[2] && yv >= peak {
+                position = xv;
+                peak = yv;
+            }
+        }
+    }
+    Some((position, peak))
 }
 
 #[cfg(test)]

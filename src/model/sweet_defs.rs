@@ -40,41 +40,7 @@ pub fn find_minimum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
         return None;
     }
     let neg: Vec<f64> = v.iter().map(|x| -x).collect();
-    find_maximum(z, &neg).map(|(p, m)| (p, -m))
-}
-
-/// Maximum of `v` over increasing `z` (finite samples only), refined by the parabola through
-/// the best sample and its two neighbours (kept only if its vertex lies between them).
-pub fn find_maximum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
-    if z.len() != v.len() || z.windows(2).any(|w| w[1] <= w[0]) {
-        return None;
-    }
-    let (z, v): (Vec<f64>, Vec<f64>) = z
-        .iter()
-        .zip(v)
-        .filter(|(a, b)| a.is_finite() && b.is_finite())
-        .map(|(a, b)| (*a, *b))
-        .unzip();
-    let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
-    let (mut position, mut peak) = (z[best], v[best]);
-    if best > 0 && best + 1 < v.len() {
-        let (x, y) = (
-            [z[best - 1], z[best], z[best + 1]],
-            [v[best - 1], v[best], v[best + 1]],
-        );
-        let d1 = (y[1] - y[0]) / (x[1] - x[0]);
-        let d2 = (y[2] - y[1]) / (x[2] - x[1]);
-        let c = (d2 - d1) / (x[2] - x[0]);
-        if c < 0.0 && c.is_finite() {
-            let xv = 0.5 * (x[0] + x[1]) - d1 / (2.0 * c);
-            let yv = y[0] + d1 * (xv - x[0]) + c * (xv - x[0]) * (xv - x[1]);
-            if xv > x[0] && xv < x[2] && yv >= peak {
-                position = xv;
-                peak = yv;
-            }
-        }
-    }
-    Some((position, peak))
+    super::sweet::find_maximum(z, &neg).map(|(p, m)| (p, -m))
 }
 
 #[cfg(test)]

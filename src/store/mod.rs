@@ -481,8 +481,15 @@ impl Session {
             j.flush()?;
             self.last_flush = Instant::now();
         }
+        self.sync_if_due()
+    }
+
+    /// fsync the journal when `sync_interval` has passed since the last time.
+    fn sync_if_due(&mut self) -> Result<(), StoreError> {
         if self.last_sync.elapsed() >= self.sync_interval {
-            j.sync()?;
+            if let Some(j) = self.journal.as_mut() {
+                j.sync()?;
+            }
             self.last_sync = Instant::now();
         }
         Ok(())
@@ -495,11 +502,7 @@ impl Session {
         let j = self.journal.as_mut().expect("open session has a journal");
         j.flush()?;
         self.last_flush = Instant::now();
-        if self.last_sync.elapsed() >= self.sync_interval {
-            j.sync()?;
-            self.last_sync = Instant::now();
-        }
-        Ok(())
+        self.sync_if_due()
     }
 
     /// Make everything written so far durable (e.g. on Ctrl-C, before exiting to resume later).
