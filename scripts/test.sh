@@ -16,10 +16,6 @@ echo "== Smoke study (--jobs 2)"
 mkdir -p target/smoke
 ./target/debug/batstudy run studies/smoke.yaml -o target/smoke/smoke.h5 --jobs 2 --force --quiet
 
-echo "== Python tests"
-BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
-  .venv/bin/python -m pytest -q tests/python
-
 # Issue 8: a real one-node Slurm on 127.0.0.1 runs a 4-shard array and the merge job; the
 # merged file must equal a single-process run bit for bit (~20-25 s, ~8 s of it installing the
 # Debian packages slurmctld, slurmd, munge; needs root). Runs when BATSTUDY_SLURM_TEST=1
@@ -30,3 +26,7 @@ if [ "${BATSTUDY_SLURM_TEST:-}" = 1 ] || { [ "${CI:-}" = true ] && [ "${BATSTUDY
 else
   echo "== Slurm test skipped (BATSTUDY_SLURM_TEST=1 runs scripts/slurm-local-test.sh)"
 fi
+
+echo "== Python tests"
+BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
+  .venv/bin/python -m pytest -q tests/python
