@@ -22,9 +22,7 @@
 //! Timings never go into tests; `tests/bench_quick.rs` checks the accuracy figures only.
 
 use crate::model::outcome::HistoryRequest;
-use crate::model::spec::{
-    BallSpec, BatSpec, CollisionSpec, ImpactSpec, Integrator, ModelKind, NumericsSpec, SwingSpec,
-};
+use crate::model::spec::{CollisionSpec, Integrator};
 use crate::model::{prepare_bat, simulate, simulate_with_diagnostics, PreparedBat};
 use crate::results::{PointId, PointRecord};
 use crate::run::{self, ModelSimulator, RunOptions, Sink, StoreSink};
@@ -274,15 +272,7 @@ fn time_per_call(min_time: f64, mut f: impl FnMut()) -> (f64, f64) {
 
 /// The base case of issue 7 at impact position `z`.
 pub fn base_spec(z: f64) -> CollisionSpec {
-    CollisionSpec {
-        model: ModelKind::Wave,
-        bat: BatSpec::default(),
-        ball: BallSpec::default(),
-        swing: SwingSpec::default(),
-        hoop: None,
-        impact: ImpactSpec { z },
-        numerics: NumericsSpec::default(),
-    }
+    CollisionSpec::base_case(z)
 }
 
 fn proc_status_kib(key: &str) -> Option<u64> {

@@ -47,6 +47,23 @@ pub struct CollisionSpec {
     pub numerics: NumericsSpec,
 }
 
+impl CollisionSpec {
+    /// The paper's base case at impact position `impact_z` (m): the R161 wood bat with free
+    /// ends at rest, the default ball (0.145 kg, 40 m/s, linear hysteresis, e = 0.5), no hoop,
+    /// the wave model with automatic numerics.
+    pub fn base_case(impact_z: f64) -> Self {
+        CollisionSpec {
+            model: ModelKind::Wave,
+            bat: BatSpec::default(),
+            ball: BallSpec::default(),
+            swing: SwingSpec::default(),
+            hoop: None,
+            impact: ImpactSpec { z: impact_z },
+            numerics: NumericsSpec::default(),
+        }
+    }
+}
+
 /// Built-in bats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema, Default)]
 #[serde(rename_all = "snake_case")]

@@ -5,15 +5,7 @@ use batstudy::model::spec::*;
 
 /// The base case: R161, default ball (linear hysteresis, e = 0.5, 40 m/s), free ends.
 pub fn base_spec(z: f64) -> CollisionSpec {
-    CollisionSpec {
-        model: ModelKind::Wave,
-        bat: BatSpec::default(),
-        ball: BallSpec::default(),
-        swing: SwingSpec::default(),
-        hoop: None,
-        impact: ImpactSpec { z },
-        numerics: NumericsSpec::default(),
-    }
+    CollisionSpec::base_case(z)
 }
 
 pub fn elastic() -> BallLaw {
