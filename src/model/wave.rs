@@ -963,15 +963,23 @@ fn run_verlet(
         compression: s,
         ball_velocity: v,
         hoop_displacement: hoop_rel,
-        rigid_translation: beam.mass.iter().zip(y).map(|(m, y)| m * y).sum::<f64>() / total_mass,
-        rigid_rotation: beam
-            .mass
-            .iter()
-            .zip(y)
-            .zip(&beam.z)
-            .map(|((m, y), z)| m * y * (z - bat.z_cm))
-            .sum::<f64>()
-            / bat.inertia_cm,
+        // Only when asked, as in the modal integrator: these are O(N) per sample.
+        rigid_translation: if rec.wants_rigid {
+            beam.mass.iter().zip(y).map(|(m, y)| m * y).sum::<f64>() / total_mass
+        } else {
+            0.0
+        },
+        rigid_rotation: if rec.wants_rigid {
+            beam.mass
+                .iter()
+                .zip(y)
+                .zip(&beam.z)
+                .map(|((m, y), z)| m * y * (z - bat.z_cm))
+                .sum::<f64>()
+                / bat.inertia_cm
+        } else {
+            0.0
+        },
         displacement: if rec.wants_displacement {
             points
                 .iter()
