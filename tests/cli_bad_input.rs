@@ -290,7 +290,17 @@ fn bad_flags_exit_2() {
 
 #[test]
 fn example_studies_validate() {
-    let out = batstudy(&["validate", "studies/smoke.yaml", "studies/param_space.yaml"]);
+    // Every bundled study, not just the two CI runs.
+    let mut files: Vec<String> = std::fs::read_dir("studies")
+        .unwrap()
+        .map(|e| e.unwrap().path().display().to_string())
+        .filter(|p| p.ends_with(".yaml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 2, "{files:?}");
+    let mut args = vec!["validate"];
+    args.extend(files.iter().map(String::as_str));
+    let out = batstudy(&args);
     assert_eq!(
         out.status.code(),
         Some(0),
