@@ -24,7 +24,7 @@
 use crate::model::outcome::HistoryRequest;
 use crate::model::spec::{CollisionSpec, Integrator};
 use crate::model::{prepare_bat, simulate, simulate_with_diagnostics, PreparedBat};
-use crate::results::{PointId, PointRecord};
+use crate::results::PointRecord;
 use crate::run::{self, ModelSimulator, RunOptions, Sink, StoreSink};
 use crate::store;
 use crate::study::{self, LoadOptions, Study};
@@ -438,7 +438,7 @@ fn bench_curve(sz: &Sizes) -> Result<CurveBench, String> {
 struct NullSink;
 
 impl Sink for NullSink {
-    fn is_done(&self, _id: PointId) -> bool {
+    fn is_done(&self, _index: usize) -> bool {
         false
     }
     fn write(&mut self, rec: PointRecord) -> Result<(), String> {
@@ -482,8 +482,8 @@ fn timed<R>(wall: &mut Duration, cpu: &mut f64, f: impl FnOnce() -> R) -> R {
 }
 
 impl<K: Sink> Sink for TimedSink<K> {
-    fn is_done(&self, id: PointId) -> bool {
-        self.inner.is_done(id)
+    fn is_done(&self, index: usize) -> bool {
+        self.inner.is_done(index)
     }
     fn write(&mut self, rec: PointRecord) -> Result<(), String> {
         let inner = &mut self.inner;

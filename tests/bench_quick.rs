@@ -67,7 +67,7 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
 /// A sink that only counts.
 struct Count(usize);
 impl Sink for Count {
-    fn is_done(&self, _: u64) -> bool {
+    fn is_done(&self, _: usize) -> bool {
         false
     }
     fn write(&mut self, rec: batstudy::results::PointRecord) -> Result<(), String> {

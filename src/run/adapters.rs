@@ -6,7 +6,7 @@ use crate::model::metrics::bat_metrics;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{prepare_bat, simulate, PreparedBat};
-use crate::results::{PointId, PointRecord};
+use crate::results::PointRecord;
 use crate::store::Session;
 
 /// The collision models of `crate::model`.
@@ -53,8 +53,8 @@ impl StoreSink {
 }
 
 impl Sink for StoreSink {
-    fn is_done(&self, id: PointId) -> bool {
-        self.0.as_ref().is_some_and(|s| s.is_done(id))
+    fn is_done(&self, index: usize) -> bool {
+        self.0.as_ref().is_some_and(|s| s.is_done(index))
     }
     fn write(&mut self, rec: PointRecord) -> Result<(), String> {
         self.session()?.write(rec).map_err(|e| e.to_string())

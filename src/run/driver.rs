@@ -280,6 +280,11 @@ pub fn run_plan<S: Simulator, K: Sink>(
                 if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
                     return;
                 }
+                if sink.lock().unwrap_or_else(|p| p.into_inner()).is_done(i) {
+                    skipped.fetch_add(1, Ordering::Relaxed);
+                    pb.inc(1);
+                    return;
+                }
                 let rec = match plan.point(i) {
                     Err(e) => PointRecord {
                         index: i,
@@ -288,12 +293,6 @@ pub fn run_plan<S: Simulator, K: Sink>(
                         result: Err(e.message),
                     },
                     Ok(p) => {
-                        let done = sink.lock().unwrap_or_else(|p| p.into_inner()).is_done(p.id);
-                        if done {
-                            skipped.fetch_add(1, Ordering::Relaxed);
-                            pb.inc(1);
-                            return;
-                        }
                         let result = match &bats.handles[p.bat as usize] {
                             Err(e) => Err(e.clone()),
                             Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {

@@ -3,7 +3,7 @@
 
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
-use crate::results::{PointId, PointRecord};
+use crate::results::PointRecord;
 
 /// Simulates collisions. Shared by all worker threads.
 pub trait Simulator: Sync {
@@ -28,8 +28,9 @@ pub trait Simulator: Sync {
 /// Receives finished points; owned by the single writer thread (the driver also asks it,
 /// under a lock, which points are done).
 pub trait Sink: Send {
-    /// Is the point with this id already in the output (resume)?
-    fn is_done(&self, id: PointId) -> bool;
+    /// Is the point at this flat index already in the output (resume)? Asked before the
+    /// point is resolved, so a resumed run spends nothing on the points it skips.
+    fn is_done(&self, index: usize) -> bool;
     /// Store one finished point (at `rec.index`; arrival order is arbitrary).
     fn write(&mut self, rec: PointRecord) -> Result<(), String>;
     /// Called when no point has arrived for a while: a chance to flush what is buffered,

@@ -1,10 +1,12 @@
 //! Writing the final HDF5 file from a journal (the only place that writes results to HDF5).
-//! Memory: one summary chunk of every variable, one history, and the list of failed points.
+//! Memory: a bounded window of summary values (see [`write_file`]), one history, and the
+//! failed points' messages.
 
 use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
 use super::error::{H5Ctx, StoreError};
-use super::journal::{JournalReader, RecordLoc, Scan};
+use super::journal::{RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
+use super::pointset::PointSet;
 use super::{RunMeta, Summary};
 use crate::model::metrics::BatMetrics;
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
@@ -166,51 +168,155 @@ fn write_block<T: hdf5::H5Type>(
         .ctx(path, &format!("write a block of {}", ds.name()))
 }
 
-/// Row-major iteration over the multi-indices of a block.
-fn for_each_in_block(start: &[usize], count: &[usize], mut f: impl FnMut(&[usize])) {
-    let n: usize = count.iter().product();
-    let mut idx = start.to_vec();
-    for _ in 0..n {
-        f(&idx);
-        for k in (0..idx.len()).rev() {
-            idx[k] += 1;
-            if idx[k] < start[k] + count[k] {
-                break;
-            }
-            idx[k] = start[k];
+/// The chunk grid of the summary arrays: blocks in row-major order, and where a point lies.
+struct BlockGrid {
+    shape: Vec<usize>,
+    chunk: Vec<usize>,
+    grid: Vec<usize>,
+}
+
+impl BlockGrid {
+    fn new(shape: &[usize], chunk: &[usize]) -> Self {
+        BlockGrid {
+            shape: shape.to_vec(),
+            chunk: chunk.to_vec(),
+            grid: shape
+                .iter()
+                .zip(chunk)
+                .map(|(&n, &c)| n.div_ceil(c))
+                .collect(),
+        }
+    }
+
+    fn n_blocks(&self) -> usize {
+        if self.shape.contains(&0) {
+            0
+        } else {
+            self.grid.iter().product()
+        }
+    }
+
+    /// Start and extent of block `b`.
+    fn block(&self, b: usize) -> (Vec<usize>, Vec<usize>) {
+        let d = self.grid.len();
+        let (mut start, mut count) = (vec![0; d], vec![0; d]);
+        let mut r = b;
+        for k in (0..d).rev() {
+            start[k] = r % self.grid[k] * self.chunk[k];
+            count[k] = self.chunk[k].min(self.shape[k] - start[k]);
+            r /= self.grid[k];
+        }
+        (start, count)
+    }
+
+    fn block_len(&self, b: usize) -> usize {
+        self.block(b).1.iter().product()
+    }
+
+    /// The block holding flat index `flat`, and its row-major position inside that block.
+    fn locate(&self, mut flat: usize) -> (usize, usize) {
+        let d = self.shape.len();
+        let (mut b, mut pos, mut b_stride, mut p_stride) = (0, 0, 1, 1);
+        for k in (0..d).rev() {
+            let i = flat % self.shape[k];
+            flat /= self.shape[k];
+            let (g, r) = (i / self.chunk[k], i % self.chunk[k]);
+            let count = self.chunk[k].min(self.shape[k] - g * self.chunk[k]);
+            b += g * b_stride;
+            pos += r * p_stride;
+            b_stride *= self.grid[k];
+            p_stride *= count;
+        }
+        (b, pos)
+    }
+}
+
+/// Summary values of a run of consecutive blocks, concatenated (block `b0 + q` starts at
+/// `offsets[q]`).
+struct Window {
+    offsets: Vec<usize>,
+    floats: Vec<Vec<f64>>,
+    recontact: Vec<i8>,
+    status: Vec<i8>,
+    point_id: Vec<u64>,
+    bat_index: Vec<i32>,
+}
+
+/// Bytes a window holds per point.
+const WINDOW_BYTES_PER_POINT: usize = 8 * N_SUMMARY_FLOATS + 1 + 1 + 8 + 4;
+
+impl Window {
+    fn new(offsets: Vec<usize>) -> Self {
+        let m = *offsets.last().unwrap_or(&0);
+        Window {
+            offsets,
+            floats: vec![vec![f64::NAN; m]; N_SUMMARY_FLOATS],
+            recontact: vec![-1; m],
+            status: vec![l::STATUS_NOT_COMPUTED; m],
+            point_id: vec![0; m],
+            bat_index: vec![-1; m],
         }
     }
 }
 
-fn ravel(dims: &[Dim], idx: &[usize]) -> usize {
-    dims.iter()
-        .zip(idx)
-        .fold(0, |acc, (d, &i)| acc * d.size + i)
+/// The sweet-spot variables along `impact_z` for every curve inside one block (`fv` the
+/// block's summary floats).
+fn block_sweet_spots(fv: &[&[f64]], count: &[usize], iz: usize, z: &[f64]) -> [Vec<f64>; 6] {
+    let m: usize = count.iter().product();
+    let nz = count[iz];
+    let stride: usize = count[iz + 1..].iter().product();
+    let outer = m / nz;
+    let mut res: [Vec<f64>; 6] = std::array::from_fn(|_| vec![f64::NAN; outer]);
+    for slot in 0..outer {
+        let (hi, lo) = (slot / stride, slot % stride);
+        let base = hi * nz * stride + lo;
+        let along = |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
+        let exit = along(0);
+        let (zz, vv): (Vec<f64>, Vec<f64>) = z
+            .iter()
+            .zip(&exit)
+            .filter(|(_, v)| v.is_finite())
+            .map(|(&z, &v)| (z, v))
+            .unzip();
+        if let Some(s) = find_sweet_spot(&zz, &vv) {
+            res[0][slot] = s.position;
+            res[1][slot] = s.exit_speed;
+            res[2][slot] = s.width;
+        }
+        let v = vibration_sweet_spot(
+            z,
+            &along(l::GRIP_VIBRATION_INDEX),
+            &along(l::VIBRATION_ENERGY_INDEX),
+        );
+        res[3][slot] = v.min_vibration_position;
+        res[4][slot] = v.min_vibration_amplitude;
+        res[5][slot] = v.min_vibration_energy_position;
+    }
+    res
 }
 
-/// Write the complete results file `out` from the scanned journal.
+fn without<T: Copy>(v: &[T], skip: usize) -> Vec<T> {
+    v.iter()
+        .enumerate()
+        .filter(|&(k, _)| k != skip)
+        .map(|(_, &x)| x)
+        .collect()
+}
+
+/// Write the complete results file `out` from the scanned journal. Memory: `memory` bytes of
+/// summary values at most (a study larger than that takes several sequential passes over the
+/// journal), one history, the failed points' messages; nothing else grows with the study.
 pub fn write_file(
     journal: &Path,
     scan: &Scan,
     info: &StudyInfo,
     meta: &RunMeta,
     out: &Path,
+    memory: usize,
 ) -> Result<Summary, StoreError> {
     let n_points = info.shape.n_points();
-    // first valid record per flat index
-    let mut loc: Vec<Option<RecordLoc>> = vec![None; n_points];
-    let mut n_done = 0;
-    let mut n_failed = 0;
-    for &(index, _, ok, l) in &scan.records {
-        if index < n_points && loc[index].is_none() {
-            loc[index] = Some(l);
-            n_done += 1;
-            n_failed += usize::from(!ok);
-        }
-    }
-    let mut jr = JournalReader::open(journal)?;
     let f = hdf5::File::create(out).ctx(out, "create the results file")?;
-    root_attrs(&f, info, meta, n_points, n_done, n_failed, out)?;
+    root_attrs(&f, info, meta, out)?;
 
     let dims = &info.shape.dims;
     let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
@@ -264,12 +370,7 @@ pub fn write_file(
             let (ss, saux) = study_dims(&sg, &rest, out)?;
             let ssref: Vec<&Dataset> = ss.iter().collect();
             let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
-            let rchunk: Vec<usize> = chunk
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != iz)
-                .map(|(_, &c)| c)
-                .collect();
+            let rchunk = without(&chunk, iz);
             let mut vars = Vec::new();
             for def in [
                 &l::SWEET_POSITION,
@@ -308,126 +409,91 @@ pub fn write_file(
         None => None,
     };
 
+    let (mut n_done, mut n_failed) = (0, 0);
     let mut errors: Vec<(u64, u64, String)> = Vec::new();
-    let grid: Vec<usize> = shape
-        .iter()
-        .zip(&chunk)
-        .map(|(&n, &c)| n.div_ceil(c))
-        .collect();
-    let n_blocks: usize = if shape.contains(&0) {
-        0
-    } else {
-        grid.iter().product()
-    };
-    for b in 0..n_blocks {
-        // block b of the chunk grid, row-major
-        let mut gi = vec![0; grid.len()];
-        let mut r = b;
-        for k in (0..grid.len()).rev() {
-            gi[k] = r % grid[k];
-            r /= grid[k];
-        }
-        let start: Vec<usize> = gi.iter().zip(&chunk).map(|(&i, &c)| i * c).collect();
-        let count: Vec<usize> = start
-            .iter()
-            .zip(&chunk)
-            .zip(&shape)
-            .map(|((&s, &c), &n)| c.min(n - s))
-            .collect();
-        let m: usize = count.iter().product();
-        let mut fv = vec![vec![f64::NAN; m]; N_SUMMARY_FLOATS];
-        let mut rc = vec![-1i8; m];
-        let mut st = vec![l::STATUS_NOT_COMPUTED; m];
-        let mut pid = vec![0u64; m];
-        let mut bi = vec![-1i32; m];
-        let mut j = 0;
-        let mut err: Option<StoreError> = None;
-        for_each_in_block(&start, &count, |idx| {
-            let flat = ravel(dims, idx);
-            if let (Some(l), None) = (loc[flat], &err) {
-                match jr.read(l, true) {
-                    Ok(rec) => {
-                        pid[j] = rec.id;
-                        bi[j] = rec.bat as i32;
-                        match rec.result {
-                            Ok(o) => {
-                                st[j] = l::STATUS_OK;
-                                rc[j] = o.recontact as i8;
-                                for (k, x) in l::summary_floats(&o).into_iter().enumerate() {
-                                    fv[k][j] = x;
-                                }
-                            }
-                            Err(msg) => {
-                                st[j] = l::STATUS_FAILED;
-                                errors.push((flat as u64, rec.id, msg));
-                            }
-                        }
-                    }
-                    Err(e) => err = Some(e),
-                }
+    let blocks = BlockGrid::new(&shape, &chunk);
+    let n_blocks = blocks.n_blocks();
+    let window_points = (memory / WINDOW_BYTES_PER_POINT).max(1);
+    let mut b0 = 0;
+    while b0 < n_blocks {
+        // the next run of whole blocks within the budget (at least one block)
+        let mut offsets = vec![0];
+        let mut b1 = b0;
+        while b1 < n_blocks {
+            let m = blocks.block_len(b1);
+            let total = *offsets.last().unwrap();
+            if b1 > b0 && total + m > window_points {
+                break;
             }
-            j += 1;
-        });
-        if let Some(e) = err {
-            return Err(e);
+            offsets.push(total + m);
+            b1 += 1;
         }
-        if let Some((iz, vars, z)) = &sweet {
-            // curves along impact_z within the block
-            let nz = count[*iz];
-            let stride: usize = count[iz + 1..].iter().product();
-            let outer = m / nz;
-            let mut res = vec![vec![f64::NAN; outer]; 6];
-            for (o, slot) in (0..outer).enumerate() {
-                let (hi, lo) = (o / stride, o % stride);
-                let base = hi * nz * stride + lo;
-                let (mut zz, mut vv) = (Vec::with_capacity(nz), Vec::with_capacity(nz));
-                for q in 0..nz {
-                    let v = fv[0][base + q * stride];
-                    if v.is_finite() {
-                        zz.push(z[start[*iz] + q]);
-                        vv.push(v);
+        let mut w = Window::new(offsets);
+        // one sequential pass over the journal; the first record of a point wins
+        let mut rr = RecordReader::open(journal, scan)?;
+        while let Some(rec) = rr.next_summary()? {
+            if rec.index >= n_points {
+                continue;
+            }
+            let (b, pos) = blocks.locate(rec.index);
+            if b < b0 || b >= b1 {
+                continue;
+            }
+            let j = w.offsets[b - b0] + pos;
+            if w.status[j] != l::STATUS_NOT_COMPUTED {
+                continue;
+            }
+            w.point_id[j] = rec.id;
+            w.bat_index[j] = rec.bat as i32;
+            n_done += 1;
+            match rec.result {
+                Ok(o) => {
+                    w.status[j] = l::STATUS_OK;
+                    w.recontact[j] = o.recontact as i8;
+                    for (k, x) in l::summary_floats(&o).into_iter().enumerate() {
+                        w.floats[k][j] = x;
                     }
                 }
-                if let Some(s) = find_sweet_spot(&zz, &vv) {
-                    res[0][slot] = s.position;
-                    res[1][slot] = s.exit_speed;
-                    res[2][slot] = s.width;
+                Err(msg) => {
+                    w.status[j] = l::STATUS_FAILED;
+                    n_failed += 1;
+                    errors.push((rec.index as u64, rec.id, msg));
                 }
-                let along =
-                    |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
-                let zc = &z[start[*iz]..start[*iz] + nz];
-                let v = vibration_sweet_spot(
-                    zc,
-                    &along(l::GRIP_VIBRATION_INDEX),
-                    &along(l::VIBRATION_ENERGY_INDEX),
-                );
-                res[3][slot] = v.min_vibration_position;
-                res[4][slot] = v.min_vibration_amplitude;
-                res[5][slot] = v.min_vibration_energy_position;
-            }
-            let rs: Vec<usize> = start
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != *iz)
-                .map(|(_, &s)| s)
-                .collect();
-            let rcnt: Vec<usize> = count
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != *iz)
-                .map(|(_, &s)| s)
-                .collect();
-            for (ds, data) in vars.iter().zip(res) {
-                write_block(ds, &rs, &rcnt, data, out)?;
             }
         }
-        for (ds, data) in floats.iter().zip(fv) {
-            write_block(ds, &start, &count, data, out)?;
+        for b in b0..b1 {
+            let (start, count) = blocks.block(b);
+            let r = w.offsets[b - b0]..w.offsets[b - b0 + 1];
+            let fv: Vec<&[f64]> = w.floats.iter().map(|v| &v[r.clone()]).collect();
+            if let Some((iz, vars, z)) = &sweet {
+                let zc = &z[start[*iz]..start[*iz] + count[*iz]];
+                let res = block_sweet_spots(&fv, &count, *iz, zc);
+                let (rs, rcnt) = (without(&start, *iz), without(&count, *iz));
+                for (ds, data) in vars.iter().zip(res) {
+                    write_block(ds, &rs, &rcnt, data, out)?;
+                }
+            }
+            for (ds, data) in floats.iter().zip(&fv) {
+                write_block(ds, &start, &count, data.to_vec(), out)?;
+            }
+            write_block(
+                &recontact,
+                &start,
+                &count,
+                w.recontact[r.clone()].to_vec(),
+                out,
+            )?;
+            write_block(&status, &start, &count, w.status[r.clone()].to_vec(), out)?;
+            write_block(
+                &point_id,
+                &start,
+                &count,
+                w.point_id[r.clone()].to_vec(),
+                out,
+            )?;
+            write_block(&bat_index, &start, &count, w.bat_index[r].to_vec(), out)?;
         }
-        write_block(&recontact, &start, &count, rc, out)?;
-        write_block(&status, &start, &count, st, out)?;
-        write_block(&point_id, &start, &count, pid, out)?;
-        write_block(&bat_index, &start, &count, bi, out)?;
+        b0 = b1;
     }
 
     // ---- /errors
@@ -459,11 +525,15 @@ pub fn write_file(
 
     // ---- /history
     if let Some(h) = &info.history {
-        write_history(&f, h, info, &loc, &mut jr, out)?;
+        write_history(&f, h, info, journal, scan, out)?;
     }
 
     // ---- /bat
     write_bats(&f, info, out)?;
+    let n = |k: &str, v: i64| attr_num(&f, k, v).ctx(out, "write root attributes");
+    n("n_done", n_done as i64)?;
+    n("n_failed", n_failed as i64)?;
+    n("complete", (n_done == n_points) as i64)?;
     f.flush().ctx(out, "flush the results file")?;
     drop(f);
     Ok(Summary {
@@ -473,13 +543,12 @@ pub fn write_file(
     })
 }
 
+/// Root attributes known before the data are read (`n_done`, `n_failed` and `complete` are
+/// written after the summary passes).
 fn root_attrs(
     f: &hdf5::File,
     info: &StudyInfo,
     meta: &RunMeta,
-    n_points: usize,
-    n_done: usize,
-    n_failed: usize,
     out: &Path,
 ) -> Result<(), StoreError> {
     let s = |k: &str, v: &str| attr_str(f, k, v).ctx(out, "write root attributes");
@@ -505,10 +574,7 @@ fn root_attrs(
     n("layout_version", l::LAYOUT_VERSION as i64)?;
     n("git_dirty", meta.git_dirty as i64)?;
     n("threads", meta.threads as i64)?;
-    n("n_points", n_points as i64)?;
-    n("n_done", n_done as i64)?;
-    n("n_failed", n_failed as i64)?;
-    n("complete", (n_done == n_points) as i64)?;
+    n("n_points", info.shape.n_points() as i64)?;
     if let Some((start, stop)) = meta.shard_range {
         n("shard_start", start as i64)?;
         n("shard_stop", stop as i64)?;
@@ -520,8 +586,8 @@ fn write_history(
     f: &hdf5::File,
     h: &HistoryRequest,
     info: &StudyInfo,
-    loc: &[Option<RecordLoc>],
-    jr: &mut JournalReader,
+    journal: &Path,
+    scan: &Scan,
     out: &Path,
 ) -> Result<(), StoreError> {
     let dims = &info.shape.dims;
@@ -568,12 +634,18 @@ fn write_history(
         .ctx(out, "describe history")?;
         created.push((k, ds, s));
     }
-    for (flat, l) in loc.iter().enumerate() {
-        let Some(l) = l else { continue };
-        let rec = jr.read(*l, false)?;
-        let Ok(o) = rec.result else { continue };
+    // One sequential pass; every history is one whole chunk, so writing them in journal
+    // order keeps the chunk cache out of the way. The first record of a point wins, as in
+    // the summary.
+    let mut written = PointSet::new(info.shape.n_points());
+    let mut rr = RecordReader::open(journal, scan)?;
+    while let Some(rec) = rr.next_summary()? {
+        if rec.index >= written.len() || !written.insert(rec.index) || rec.result.is_err() {
+            continue;
+        }
+        let Ok(o) = rr.whole()?.result else { continue };
         let Some(hist) = o.history else { continue };
-        let idx = info.shape.unravel(flat);
+        let idx = info.shape.unravel(rec.index);
         for (k, ds, s) in &created {
             let a = l::history_array(&hist, *k);
             let tail = &s[dims.len()..];

@@ -213,19 +213,20 @@ pub fn decode_record(payload: &[u8], summary_only: bool) -> Option<PointRecord> 
     })
 }
 
-/// Where one valid record lies in the journal.
-#[derive(Debug, Clone, Copy)]
-pub struct RecordLoc {
-    /// Offset of the payload.
-    pub offset: u64,
-    pub len: u32,
+/// What a scan reports of one valid record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RecordMeta {
+    pub index: usize,
+    pub id: u64,
+    pub ok: bool,
 }
 
-/// Result of scanning a journal.
+/// Result of scanning a journal (the records themselves went to the scan's visitor).
+#[derive(Debug, Clone)]
 pub struct Scan {
     pub header: JournalHeader,
-    /// Valid records in file order: (flat index, point id, ok, location).
-    pub records: Vec<(usize, u64, bool, RecordLoc)>,
+    /// Byte length of the header (records start here).
+    pub header_len: u64,
     /// Byte length of the valid part (header + complete records).
     pub valid_len: u64,
     /// Bytes after the valid part (a torn or corrupt tail).
@@ -263,25 +264,24 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
     Ok((header, (8 + 4 + n + 8) as u64))
 }
 
-/// Read a journal's header and index its valid records (the payloads are checksummed, not kept).
-pub fn scan(path: &Path) -> Result<Scan, StoreError> {
+/// Read a journal's header and check every record, handing each valid one to `visit` in file
+/// order. Memory: one record (the payloads are checksummed, not kept).
+pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, StoreError> {
     let file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
     let file_len = file
         .metadata()
         .map_err(|e| StoreError::io(path, "stat the journal", e))?
         .len();
     let mut r = BufReader::with_capacity(1 << 20, file);
-    let (header, mut pos) = read_header(&mut r, path)?;
-    let mut records = Vec::new();
+    let (header, header_len) = read_header(&mut r, path)?;
+    let mut pos = header_len;
     let mut payload = Vec::new();
     loop {
         let mut pre = [0u8; REC_PREFIX];
         if pos + REC_PREFIX as u64 > file_len || r.read_exact(&mut pre).is_err() {
             break;
         }
-        let magic = u32::from_le_bytes(pre[0..4].try_into().unwrap());
-        let len = u32::from_le_bytes(pre[4..8].try_into().unwrap()) as u64;
-        let sum = u64::from_le_bytes(pre[8..16].try_into().unwrap());
+        let (magic, len, sum) = split_prefix(&pre);
         if magic != REC_MAGIC || len > MAX_PAYLOAD || pos + REC_PREFIX as u64 + len > file_len {
             break;
         }
@@ -295,112 +295,131 @@ pub fn scan(path: &Path) -> Result<Scan, StoreError> {
         let Some(rec) = decode_record(&payload, true) else {
             break;
         };
-        records.push((
-            rec.index,
-            rec.id,
-            rec.result.is_ok(),
-            RecordLoc {
-                offset: pos + REC_PREFIX as u64,
-                len: len as u32,
-            },
-        ));
+        visit(RecordMeta {
+            index: rec.index,
+            id: rec.id,
+            ok: rec.result.is_ok(),
+        });
         pos += REC_PREFIX as u64 + len;
     }
     Ok(Scan {
         header,
-        records,
+        header_len,
         valid_len: pos,
         dropped_bytes: file_len - pos,
     })
 }
 
-/// Random access to records of a scanned journal.
-pub struct JournalReader {
-    file: File,
-    path: PathBuf,
-    buf: Vec<u8>,
-    /// Read-ahead window for summary reads: `window` holds the journal's bytes from
-    /// `window_start` (records sit near each other in flat-index order, so one read serves
-    /// thousands of summary records instead of a seek + read each; issue 7).
-    window: Vec<u8>,
-    window_start: u64,
+fn split_prefix(pre: &[u8; REC_PREFIX]) -> (u32, u64, u64) {
+    (
+        u32::from_le_bytes(pre[0..4].try_into().unwrap()),
+        u32::from_le_bytes(pre[4..8].try_into().unwrap()) as u64,
+        u64::from_le_bytes(pre[8..16].try_into().unwrap()),
+    )
 }
 
-/// Bytes of the read-ahead window.
-const READ_WINDOW: u64 = 1 << 20;
+/// Sequential reading of a scanned journal's valid records, in file order: summaries
+/// cheaply (a history is skipped over, not read), and whole records on request. Memory: one
+/// record.
+pub struct RecordReader {
+    r: BufReader<File>,
+    path: PathBuf,
+    /// Offset of the next unread byte.
+    pos: u64,
+    /// End of the valid part.
+    end: u64,
+    payload: Vec<u8>,
+    /// Current record: payload offset, length and checksum.
+    current: Option<(u64, u64, u64)>,
+}
 
-impl JournalReader {
-    pub fn open(path: &Path) -> Result<Self, StoreError> {
-        Ok(JournalReader {
-            file: File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?,
+impl RecordReader {
+    /// Open `path`, already scanned as `scan`, at its first record.
+    pub fn open(path: &Path, scan: &Scan) -> Result<Self, StoreError> {
+        let mut file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+        file.seek(SeekFrom::Start(scan.header_len))
+            .map_err(|e| StoreError::io(path, "read the journal", e))?;
+        Ok(RecordReader {
+            r: BufReader::with_capacity(1 << 20, file),
             path: path.to_path_buf(),
-            buf: Vec::new(),
-            window: Vec::new(),
-            window_start: 0,
+            pos: scan.header_len,
+            end: scan.valid_len,
+            payload: Vec::new(),
+            current: None,
         })
     }
 
-    /// Copy `n` bytes at `offset` into `self.buf` through the read-ahead window.
-    fn read_windowed(&mut self, offset: u64, n: usize) -> std::io::Result<()> {
-        let end = offset + n as u64;
-        let have =
-            offset >= self.window_start && end <= self.window_start + self.window.len() as u64;
-        if !have {
-            self.window.clear();
-            self.file.seek(SeekFrom::Start(offset))?;
-            (&mut self.file)
-                .take(READ_WINDOW.max(n as u64))
-                .read_to_end(&mut self.window)?;
-            self.window_start = offset;
-            if (self.window.len() as u64) < n as u64 {
-                return Err(std::io::ErrorKind::UnexpectedEof.into());
-            }
+    fn bad(&self, what: String) -> StoreError {
+        StoreError::BadJournal {
+            path: self.path.clone(),
+            what,
         }
-        let a = (offset - self.window_start) as usize;
-        self.buf.clear();
-        self.buf.extend_from_slice(&self.window[a..a + n]);
+    }
+
+    fn io(&self, e: std::io::Error) -> StoreError {
+        StoreError::io(&self.path, "read the journal", e)
+    }
+
+    /// Move to the next record and decode its summary (a failed record whole, an ok record
+    /// without its history). `None` at the end of the valid part.
+    pub fn next_summary(&mut self) -> Result<Option<PointRecord>, StoreError> {
+        if let Some((at, len, _)) = self.current.take() {
+            let next = at + len;
+            self.r
+                .seek_relative((next - self.pos) as i64)
+                .map_err(|e| self.io(e))?;
+            self.pos = next;
+        }
+        if self.pos >= self.end {
+            return Ok(None);
+        }
+        let mut pre = [0u8; REC_PREFIX];
+        self.r.read_exact(&mut pre).map_err(|e| self.io(e))?;
+        let (magic, len, sum) = split_prefix(&pre);
+        let at = self.pos + REC_PREFIX as u64;
+        if magic != REC_MAGIC || at + len > self.end {
+            return Err(self.bad(format!(
+                "record at byte {} changed after it was scanned",
+                self.pos
+            )));
+        }
+        self.pos = at;
+        self.current = Some((at, len, sum));
+        self.payload.clear();
+        self.extend((len as usize).min(OK_SUMMARY_LEN))?;
+        // failed records keep their message after the fixed part: read them whole
+        if self.payload.get(20) == Some(&0) {
+            self.extend(len as usize - self.payload.len())?;
+        }
+        decode_record(&self.payload, true)
+            .map(Some)
+            .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))
+    }
+
+    fn extend(&mut self, n: usize) -> Result<(), StoreError> {
+        let have = self.payload.len();
+        self.payload.resize(have + n, 0);
+        self.r
+            .read_exact(&mut self.payload[have..])
+            .map_err(|e| self.io(e))?;
+        self.pos += n as u64;
         Ok(())
     }
 
-    /// Read the record at `loc`; `summary_only` reads only the fixed summary part.
-    pub fn read(&mut self, loc: RecordLoc, summary_only: bool) -> Result<PointRecord, StoreError> {
-        let n = if summary_only {
-            (loc.len as usize).min(OK_SUMMARY_LEN)
-        } else {
-            loc.len as usize
-        };
-        // failed records keep their message after the summary part: read them whole
-        if summary_only {
-            self.read_windowed(loc.offset, n)
-        } else {
-            self.buf.resize(n, 0);
-            self.file
-                .seek(SeekFrom::Start(loc.offset))
-                .and_then(|_| self.file.read_exact(&mut self.buf))
+    /// The whole record last returned by [`Self::next_summary`], history included (its
+    /// checksum checked again: the journal must not have changed since the scan).
+    pub fn whole(&mut self) -> Result<PointRecord, StoreError> {
+        let (at, len, sum) = self
+            .current
+            .ok_or_else(|| self.bad("no current record".into()))?;
+        let rest = (at + len - self.pos) as usize;
+        self.extend(rest)?;
+        if fnv1a(&self.payload) != sum {
+            return Err(self.bad(format!("record at byte {at} changed after it was scanned")));
         }
-        .map_err(|e| StoreError::io(&self.path, "read the journal", e))?;
-        if self.buf.get(20) == Some(&0) && n < loc.len as usize {
-            return self.read(loc, false);
-        }
-        if !summary_only && fnv1a(&self.buf) != fnv1a_expected(&self.file, loc, &self.path)? {
-            return Err(StoreError::BadJournal {
-                path: self.path.clone(),
-                what: format!("record at byte {} changed after it was scanned", loc.offset),
-            });
-        }
-        decode_record(&self.buf, summary_only).ok_or_else(|| StoreError::BadJournal {
-            path: self.path.clone(),
-            what: format!("undecodable record at byte {}", loc.offset),
-        })
+        decode_record(&self.payload, false)
+            .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))
     }
-}
-
-fn fnv1a_expected(mut file: &File, loc: RecordLoc, path: &Path) -> Result<u64, StoreError> {
-    let mut sum = [0u8; 8];
-    file.seek(SeekFrom::Start(loc.offset - 8))
-        .and_then(|_| file.read_exact(&mut sum))
-        .map_err(|e| StoreError::io(path, "read the journal", e))?;
-    Ok(u64::from_le_bytes(sum))
 }
 
 /// Appends records; the caller decides when to flush and sync.

@@ -18,6 +18,7 @@ pub mod dimscale;
 pub mod error;
 pub mod journal;
 pub mod layout;
+pub mod pointset;
 pub mod read;
 
 pub use error::StoreError;
@@ -25,9 +26,9 @@ pub use read::{
     file_info, for_each_record, inspect, present_points, read_results, FileInfo, ReadBack,
 };
 
-use crate::results::{PointId, PointRecord, StudyInfo};
+use crate::results::{PointRecord, StudyInfo};
 use journal::{JournalHeader, JournalWriter};
-use std::collections::HashSet;
+use pointset::PointSet;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -110,6 +111,10 @@ pub struct StoreOptions {
     pub flush_interval: Duration,
     /// fsync the journal at least this often (protects against power loss).
     pub sync_interval: Duration,
+    /// Bytes of summary values the final file's build holds at once (default 64 MiB, about
+    /// 380 000 points). A larger study is built in several passes over the journal, so the
+    /// store's memory does not grow with the study.
+    pub build_memory: usize,
 }
 
 impl Default for StoreOptions {
@@ -120,6 +125,7 @@ impl Default for StoreOptions {
             run_meta: RunMeta::default(),
             flush_interval: Duration::from_millis(50),
             sync_interval: Duration::from_secs(1),
+            build_memory: 64 << 20,
         }
     }
 }
@@ -157,9 +163,10 @@ pub struct Session {
     info: StudyInfo,
     meta: RunMeta,
     journal: Option<JournalWriter>,
-    done_ids: HashSet<PointId>,
-    done_index: Vec<bool>,
-    n_done: usize,
+    /// The points stored so far: one bit each, the session's only per-point state.
+    done: PointSet,
+    /// Memory budget of the final file's build (bytes of summary values held at once).
+    build_memory: usize,
     history_keep: Option<Vec<usize>>,
     flush_interval: Duration,
     sync_interval: Duration,
@@ -216,9 +223,8 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
         info: info.clone(),
         meta: opts.run_meta.clone(),
         journal: None,
-        done_ids: HashSet::new(),
-        done_index: vec![false; n_points],
-        n_done: 0,
+        done: PointSet::new(n_points),
+        build_memory: opts.build_memory,
         history_keep: info.history.as_ref().map(build::history_vars),
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
@@ -230,18 +236,16 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
     let out_exists = path.exists();
     let j_exists = jpath.exists();
     if opts.resume && j_exists {
-        let scan = journal::scan(&jpath)?;
+        let done = &mut s.done;
+        let scan = journal::scan(&jpath, |r| {
+            if r.index < n_points {
+                done.insert(r.index);
+            }
+        })?;
         if let Some(e) = scan.header.mismatch(&want, &jpath) {
             return Err(e);
         }
-        for &(index, id, _, _) in &scan.records {
-            if index < n_points && !s.done_index[index] {
-                s.done_index[index] = true;
-                s.done_ids.insert(id);
-                s.n_done += 1;
-            }
-        }
-        s.resumed = s.n_done;
+        s.resumed = s.done.count();
         s.dropped_bytes = scan.dropped_bytes;
         s.journal = Some(JournalWriter::append_to(&jpath, scan.valid_len)?);
         return Ok(s);
@@ -249,25 +253,23 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
     if opts.resume && out_exists {
         // a finished (possibly partial, e.g. interrupted-then-finished) file: its records
         // seed a new journal
-        let back = read::read_results(path)?;
-        let file_header = back.header();
-        if let Some(e) = file_header.mismatch(&want, path) {
+        let fi = read::file_info(path)?;
+        if let Some(e) = fi.header.mismatch(&want, path) {
             return Err(e);
         }
         let mut w = JournalWriter::create(&jpath, &want)?;
-        for rec in back.records {
-            if rec.index < n_points && !s.done_index[rec.index] {
-                s.done_index[rec.index] = true;
-                s.done_ids.insert(rec.id);
-                s.n_done += 1;
+        let done = &mut s.done;
+        read::for_each_record(path, |rec| {
+            if rec.index < n_points && done.insert(rec.index) {
                 w.append(&rec);
                 if w.buffered_bytes() > 1 << 22 {
                     w.flush()?;
                 }
             }
-        }
+            Ok(())
+        })?;
         w.sync()?;
-        s.resumed = s.n_done;
+        s.resumed = s.done.count();
         s.journal = Some(w);
         return Ok(s);
     }
@@ -314,8 +316,8 @@ pub fn merge(
 pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(), StoreError> {
     let want = JournalHeader::of(info);
     let n = info.shape.n_points();
-    const NONE: u32 = u32::MAX;
-    let mut owner: Vec<u32> = vec![NONE; n];
+    // one bit per point (issue 7); the earlier owner of a duplicate is looked up only then
+    let mut seen = PointSet::new(n);
     let mut declared = Vec::new();
     for (k, p) in shards.iter().enumerate() {
         let fi = read::file_info(p)?;
@@ -338,41 +340,46 @@ pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(
                 what: "it is also the merge's output file".into(),
             });
         }
-        for i in read::present_points(p)? {
-            if owner[i] != NONE {
-                return Err(StoreError::CannotMerge {
-                    path: p.clone(),
-                    what: format!(
-                        "point at flat index {i} is also in {}: points present twice (each shard may be given once)",
-                        shards[owner[i] as usize].display()
-                    ),
-                });
+        let present = read::present_points(p)?;
+        if let Some(i) = present.iter().find(|&i| seen.contains(i)) {
+            let mut other = None;
+            for q in &shards[..k] {
+                if read::present_points(q)?.contains(i) {
+                    other = Some(q);
+                    break;
+                }
             }
-            owner[i] = k as u32;
+            return Err(StoreError::CannotMerge {
+                path: p.clone(),
+                what: format!(
+                    "point at flat index {i} is also in {}: points present twice (each shard may be given once)",
+                    other.map_or_else(|| p.display().to_string(), |q| q.display().to_string())
+                ),
+            });
+        }
+        for i in present.iter() {
+            seen.insert(i);
         }
         declared.push((fi.shard, fi.shard_range));
     }
-    let missing: Vec<usize> = (0..n).filter(|&i| owner[i] == NONE).collect();
-    if let Some(&first) = missing.first() {
-        let list = format!(
-            "{:?}{}",
-            &missing[..missing.len().min(8)],
-            if missing.len() > 8 { ", ..." } else { "" }
-        );
+    let n_missing = n - seen.count();
+    let shown: Vec<usize> = seen.missing().take(8).collect();
+    if let Some(&first) = shown.first() {
+        let list = format!("{shown:?}{}", if n_missing > 8 { ", ..." } else { "" });
         let owner_of = declared
             .iter()
             .position(|(_, r)| r.is_some_and(|(a, b)| a <= first && first < b));
         let (path, what) = match owner_of {
             Some(k) => {
                 let (a, b) = declared[k].1.unwrap_or_default();
-                let lack = missing.iter().filter(|&&i| a <= i && i < b).count();
+                let lack = (a..b.min(n)).filter(|&i| !seen.contains(i)).count();
                 (
                     shards[k].clone(),
                     format!(
                         "shard {} is incomplete: it lacks {lack} of its {} points (flat indices {list}); the shards lack {} of the study's {n} points in all. Finish it with `batstudy run STUDY --shard {} --resume -o {}`",
                         declared[k].0,
                         b - a,
-                        missing.len(),
+                        n_missing,
                         declared[k].0,
                         shards[k].display()
                     ),
@@ -382,7 +389,7 @@ pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(
                 out.to_path_buf(),
                 format!(
                     "the shards lack {} of the study's {n} points (flat indices {list}): a shard file is missing from the list",
-                    missing.len()
+                    n_missing
                 ),
             ),
         };
@@ -404,19 +411,16 @@ impl Session {
         &self.path
     }
 
-    /// Whether the point with this id is already stored (resume: skip it).
-    pub fn is_done(&self, id: PointId) -> bool {
-        self.done_ids.contains(&id)
-    }
-
-    /// Whether the point at this flat index is already stored.
-    pub fn is_done_index(&self, index: usize) -> bool {
-        self.done_index.get(index).copied().unwrap_or(false)
+    /// Whether the point at this flat index is already stored (resume: skip it). The
+    /// journal's header pins the study's sha256 and shape, so an index names the same point
+    /// (and point id) in every run of that study.
+    pub fn is_done(&self, index: usize) -> bool {
+        self.done.contains(index)
     }
 
     /// Number of points stored so far (including those recovered on resume).
     pub fn n_done(&self) -> usize {
-        self.n_done
+        self.done.count()
     }
 
     fn reject(&self, what: String) -> StoreError {
@@ -429,7 +433,7 @@ impl Session {
     /// Store one finished point (buffered; see the module docs for when it becomes durable).
     /// A point already stored is ignored.
     pub fn write(&mut self, mut rec: PointRecord) -> Result<(), StoreError> {
-        let n = self.done_index.len();
+        let n = self.done.len();
         if rec.index >= n {
             return Err(self.reject(format!(
                 "point index {} is outside the study's {} points",
@@ -444,7 +448,7 @@ impl Session {
                 self.info.bats.len()
             )));
         }
-        if self.done_index[rec.index] {
+        if self.done.contains(rec.index) {
             return Ok(());
         }
         if let Ok(o) = &mut rec.result {
@@ -474,9 +478,7 @@ impl Session {
         }
         let j = self.journal.as_mut().expect("open session has a journal");
         j.append(&rec);
-        self.done_index[rec.index] = true;
-        self.done_ids.insert(rec.id);
-        self.n_done += 1;
+        self.done.insert(rec.index);
         if j.buffered_bytes() >= 1 << 22 || self.last_flush.elapsed() >= self.flush_interval {
             j.flush()?;
             self.last_flush = Instant::now();
@@ -519,12 +521,14 @@ impl Session {
     /// remove the journal. Works for incomplete studies too (missing points have status -1,
     /// e.g. a shard or an interrupted run); `--resume` continues from such a file.
     pub fn finish(mut self) -> Result<Summary, StoreError> {
-        self.flush()?;
-        drop(self.journal.take());
-        // the per-point index of the run is not needed to build the file (issue 7: memory)
-        self.done_ids = HashSet::new();
-        self.done_index = Vec::new();
-        let scan = journal::scan(&self.journal_path)?;
+        // To the OS, not fsync'd: the journal is removed only after the finished file is
+        // fsync'd and renamed into place, and a power loss before that loses at most what an
+        // unfinished run would (issue 7: one fsync less on every run's critical path).
+        if let Some(mut j) = self.journal.take() {
+            j.flush()?;
+        }
+        self.done = PointSet::default();
+        let scan = journal::scan(&self.journal_path, |_| {})?;
         if let Some(e) = scan
             .header
             .mismatch(&JournalHeader::of(&self.info), &self.journal_path)
@@ -533,8 +537,14 @@ impl Session {
         }
         let partial = partial_path(&self.path);
         self.meta.created = iso8601_now();
-        let summary =
-            build::write_file(&self.journal_path, &scan, &self.info, &self.meta, &partial)?;
+        let summary = build::write_file(
+            &self.journal_path,
+            &scan,
+            &self.info,
+            &self.meta,
+            &partial,
+            self.build_memory,
+        )?;
         std::fs::File::open(&partial)
             .and_then(|f| f.sync_all())
             .map_err(|e| StoreError::io(&partial, "sync the finished file", e))?;

@@ -5,6 +5,7 @@ use super::dimscale::block;
 use super::error::{H5Ctx, StoreError};
 use super::journal::JournalHeader;
 use super::layout::{self as l, N_SUMMARY_FLOATS};
+use super::pointset::PointSet;
 use crate::model::outcome::History;
 use crate::results::PointRecord;
 use hdf5::types::VarLenUnicode;
@@ -83,8 +84,69 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
     Ok(back)
 }
 
+/// Points read at once from a file's summary arrays (a slab of about 10 MiB of values), so that
+/// reading back a file of any size holds a bounded amount of it (issue 7).
+const READ_SLAB_POINTS: usize = 1 << 16;
+
+/// Hyperslabs `(start, count, first flat index)` that cover a row-major array of `shape` in
+/// flat order, each a contiguous flat range of at most `target` (≥ 1) elements.
+pub(crate) fn flat_slabs(shape: &[usize], target: usize) -> Vec<(Vec<usize>, Vec<usize>, usize)> {
+    let d = shape.len();
+    if shape.contains(&0) {
+        return Vec::new();
+    }
+    // smallest k whose trailing block fits the target: dims k.. are read whole
+    let k = (0..=d)
+        .find(|&k| shape[k..].iter().product::<usize>() <= target.max(1))
+        .unwrap_or(d);
+    if k == 0 {
+        return vec![(vec![0; d], shape.to_vec(), 0)];
+    }
+    let j = k - 1;
+    let inner: usize = shape[k..].iter().product();
+    let r = (target / inner).clamp(1, shape[j]);
+    let outer: usize = shape[..j].iter().product();
+    let mut slabs = Vec::new();
+    for o in 0..outer {
+        let mut prefix = vec![0; j];
+        let mut rem = o;
+        for q in (0..j).rev() {
+            prefix[q] = rem % shape[q];
+            rem /= shape[q];
+        }
+        for a in (0..shape[j]).step_by(r) {
+            let mut start = prefix.clone();
+            start.push(a);
+            start.extend(std::iter::repeat_n(0, d - k));
+            let mut count = vec![1; j];
+            count.push(r.min(shape[j] - a));
+            count.extend_from_slice(&shape[k..]);
+            slabs.push((start, count, (o * shape[j] + a) * inner));
+        }
+    }
+    slabs
+}
+
+fn read_slab<T: hdf5::H5Type>(
+    ds: &hdf5::Dataset,
+    start: &[usize],
+    count: &[usize],
+    path: &Path,
+) -> Result<Vec<T>, StoreError> {
+    let what = format!("read {}", ds.name());
+    if start.is_empty() {
+        return ds.read_raw::<T>().ctx(path, &what);
+    }
+    Ok(ds
+        .read_slice::<T, _, ndarray::IxDyn>(block(start, count))
+        .ctx(path, &what)?
+        .into_iter()
+        .collect())
+}
+
 /// Hand every present point of a results file to `each`, in flat-index order, one at a
-/// time (memory: the summary arrays and one history). The returned `ReadBack` has no records.
+/// time. Memory: one slab of [`READ_SLAB_POINTS`] points of the summary arrays, one history and
+/// the failed points' messages, whatever the file's size.
 pub fn for_each_record(
     path: &Path,
     mut each: impl FnMut(PointRecord) -> Result<(), StoreError>,
@@ -99,32 +161,27 @@ pub fn for_each_record(
             ),
         });
     }
-    let n: usize = header.dims.iter().map(|d| d.1).product();
+    let shape: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
+    let n: usize = shape.iter().product();
     let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
     let get = |name: &str| g.dataset(name).ctx(path, &format!("open summary/{name}"));
+    // Variables added after a file was written read as NaN (layout.md: new variables may be
+    // added without a version bump).
     let mut floats = Vec::new();
     for def in &l::SUMMARY_FLOATS {
-        // Variables added after a file was written read as NaN (layout.md: new variables may
-        // be added without a version bump).
-        if g.link_exists(def.name) {
-            floats.push(get(def.name)?.read_raw::<f64>().ctx(path, def.name)?);
+        floats.push(if g.link_exists(def.name) {
+            Some(get(def.name)?)
         } else {
-            floats.push(vec![f64::NAN; n]);
-        }
+            None
+        });
     }
-    let status = get(l::STATUS.name)?.read_raw::<i8>().ctx(path, "status")?;
-    let recontact = get(l::RECONTACT.name)?
-        .read_raw::<i8>()
-        .ctx(path, "recontact")?;
-    let ids = get(l::POINT_ID.name)?
-        .read_raw::<u64>()
-        .ctx(path, "point_id")?;
-    let bats = get(l::BAT_INDEX.name)?
-        .read_raw::<i32>()
-        .ctx(path, "bat_index")?;
-    if [status.len(), ids.len(), bats.len(), floats[0].len()]
+    let status = get(l::STATUS.name)?;
+    let recontact = get(l::RECONTACT.name)?;
+    let ids = get(l::POINT_ID.name)?;
+    let bats = get(l::BAT_INDEX.name)?;
+    if [&status, &recontact, &ids, &bats]
         .iter()
-        .any(|&m| m != n)
+        .any(|d| d.size() != n)
     {
         return Err(bad(path, "summary arrays do not match the study's shape"));
     }
@@ -164,7 +221,7 @@ pub fn for_each_record(
         }
         None => None,
     };
-    let shape = crate::results::ResultShape {
+    let result_shape = crate::results::ResultShape {
         dims: header
             .dims
             .iter()
@@ -175,43 +232,55 @@ pub fn for_each_record(
             })
             .collect(),
     };
-    for i in 0..n {
-        let result = match status[i] {
-            l::STATUS_OK => {
-                let mut fv = [0.0; N_SUMMARY_FLOATS];
-                for (k, x) in fv.iter_mut().enumerate() {
-                    *x = floats[k][i];
-                }
-                let mut o = l::outcome_from_floats(&fv);
-                o.recontact = recontact[i] == 1;
-                if let Some(hv) = &hist {
-                    let idx = shape.unravel(i);
-                    let mut h = History::default();
-                    for (k, ds, tail) in hv {
-                        let mut start = idx.clone();
-                        let mut count = vec![1; idx.len()];
-                        for &t in tail {
-                            start.push(0);
-                            count.push(t);
-                        }
-                        let a = ds
-                            .read_slice::<f64, _, ndarray::IxDyn>(block(&start, &count))
-                            .ctx(path, "read a history")?;
-                        *l::history_array_mut(&mut h, *k) = a.iter().copied().collect();
+    for (start, count, flat0) in flat_slabs(&shape, READ_SLAB_POINTS) {
+        let st = read_slab::<i8>(&status, &start, &count, path)?;
+        let rc = read_slab::<i8>(&recontact, &start, &count, path)?;
+        let pid = read_slab::<u64>(&ids, &start, &count, path)?;
+        let bi = read_slab::<i32>(&bats, &start, &count, path)?;
+        let mut fv = Vec::with_capacity(N_SUMMARY_FLOATS);
+        for ds in &floats {
+            fv.push(match ds {
+                Some(ds) => read_slab::<f64>(ds, &start, &count, path)?,
+                None => vec![f64::NAN; st.len()],
+            });
+        }
+        for j in 0..st.len() {
+            let i = flat0 + j;
+            let result = match st[j] {
+                l::STATUS_OK => {
+                    let mut x = [0.0; N_SUMMARY_FLOATS];
+                    for (k, v) in x.iter_mut().enumerate() {
+                        *v = fv[k][j];
                     }
-                    o.history = Some(h);
+                    let mut o = l::outcome_from_floats(&x);
+                    o.recontact = rc[j] == 1;
+                    if let Some(hv) = &hist {
+                        let idx = result_shape.unravel(i);
+                        let mut h = History::default();
+                        for (k, ds, tail) in hv {
+                            let mut start = idx.clone();
+                            let mut count = vec![1; idx.len()];
+                            for &t in tail {
+                                start.push(0);
+                                count.push(t);
+                            }
+                            *l::history_array_mut(&mut h, *k) =
+                                read_slab::<f64>(ds, &start, &count, path)?;
+                        }
+                        o.history = Some(h);
+                    }
+                    Ok(o)
                 }
-                Ok(o)
-            }
-            l::STATUS_FAILED => Err(msgs.remove(&i).unwrap_or_default()),
-            _ => continue,
-        };
-        each(PointRecord {
-            index: i,
-            id: ids[i],
-            bat: bats[i].max(0) as u32,
-            result,
-        })?;
+                l::STATUS_FAILED => Err(msgs.remove(&i).unwrap_or_default()),
+                _ => continue,
+            };
+            each(PointRecord {
+                index: i,
+                id: pid[j],
+                bat: bi[j].max(0) as u32,
+                result,
+            })?;
+        }
     }
     Ok(ReadBack {
         path: path.to_path_buf(),
@@ -262,21 +331,31 @@ pub fn file_info(path: &Path) -> Result<FileInfo, StoreError> {
     })
 }
 
-/// Flat indices of the points present in a results file (status ok or failed), in order.
-pub fn present_points(path: &Path) -> Result<Vec<usize>, StoreError> {
+/// The points present in a results file (status ok or failed). Memory: one bit per point
+/// and one slab of `status`.
+pub fn present_points(path: &Path) -> Result<PointSet, StoreError> {
     let (f, header, _) = open_checked(path)?;
-    let n: usize = header.dims.iter().map(|d| d.1).product();
+    let shape: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
+    let n: usize = shape.iter().product();
     let status = f
         .group(l::GROUP_SUMMARY)
         .and_then(|g| g.dataset(l::STATUS.name))
-        .and_then(|d| d.read_raw::<i8>())
         .ctx(path, "read summary/status")?;
-    if status.len() != n {
+    if status.size() != n {
         return Err(bad(path, "summary arrays do not match the study's shape"));
     }
-    Ok((0..n)
-        .filter(|&i| status[i] == l::STATUS_OK || status[i] == l::STATUS_FAILED)
-        .collect())
+    let mut present = PointSet::new(n);
+    for (start, count, flat0) in flat_slabs(&shape, READ_SLAB_POINTS) {
+        for (j, s) in read_slab::<i8>(&status, &start, &count, path)?
+            .into_iter()
+            .enumerate()
+        {
+            if s == l::STATUS_OK || s == l::STATUS_FAILED {
+                present.insert(flat0 + j);
+            }
+        }
+    }
+    Ok(present)
 }
 
 /// A human-readable description of a results file: study, layout version, dims, counts by
@@ -360,4 +439,36 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
         }
     }
     Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flat_slabs;
+
+    // The slabs must tile the array exactly once, in flat order, each within the target:
+    // guards the resume-from-file and merge reads (issue 7), which rely on both.
+    #[test]
+    fn flat_slabs_tile_the_array_in_order() {
+        for (shape, target) in [
+            (vec![3usize, 5, 7], 10usize),
+            (vec![3, 5, 7], 1000),
+            (vec![2, 1000], 64),
+            (vec![10], 3),
+            (vec![4, 3], 1),
+            (vec![2, 0, 3], 5),
+        ] {
+            let n: usize = shape.iter().product();
+            let mut next = 0;
+            for (start, count, flat0) in flat_slabs(&shape, target) {
+                assert_eq!(flat0, next, "{shape:?} {target}");
+                let m: usize = count.iter().product();
+                assert!(m <= target, "{shape:?} {target}");
+                // the slab's first element is at flat0
+                let f = start.iter().zip(&shape).fold(0, |a, (&s, &d)| a * d + s);
+                assert_eq!(f, flat0);
+                next += m;
+            }
+            assert_eq!(next, n, "{shape:?} {target}");
+        }
+    }
 }
