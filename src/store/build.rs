@@ -266,8 +266,7 @@ fn block_sweet_spots(fv: &[&[f64]], count: &[usize], iz: usize, z: &[f64]) -> [V
     let nz = count[iz];
     let stride: usize = count[iz + 1..].iter().product();
     let outer = m / nz;
-    let mut res: [Vec<f64>; 6] = std::array::from_fn(|_| vec![f64::NAN; outer]);
-    for slot in 0..outer {
+    let curve = |slot: usize| -> [f64; 6] {
         let (hi, lo) = (slot / stride, slot % stride);
         let base = hi * nz * stride + lo;
         let along = |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
@@ -278,21 +277,23 @@ fn block_sweet_spots(fv: &[&[f64]], count: &[usize], iz: usize, z: &[f64]) -> [V
             .filter(|(_, v)| v.is_finite())
             .map(|(&z, &v)| (z, v))
             .unzip();
-        if let Some(s) = find_sweet_spot(&zz, &vv) {
-            res[0][slot] = s.position;
-            res[1][slot] = s.exit_speed;
-            res[2][slot] = s.width;
-        }
+        let s = find_sweet_spot(&zz, &vv);
         let v = vibration_sweet_spot(
             z,
             &along(l::GRIP_VIBRATION_INDEX),
             &along(l::VIBRATION_ENERGY_INDEX),
         );
-        res[3][slot] = v.min_vibration_position;
-        res[4][slot] = v.min_vibration_amplitude;
-        res[5][slot] = v.min_vibration_energy_position;
-    }
-    res
+        [
+            s.map_or(f64::NAN, |s| s.position),
+            s.map_or(f64::NAN, |s| s.exit_speed),
+            s.map_or(f64::NAN, |s| s.width),
+            v.min_vibration_position,
+            v.min_vibration_amplitude,
+            v.min_vibration_energy_position,
+        ]
+    };
+    let rows: Vec<[f64; 6]> = (0..outer).map(curve).collect();
+    std::array::from_fn(|k| rows.iter().map(|r| r[k]).collect())
 }
 
 fn without<T: Copy>(v: &[T], skip: usize) -> Vec<T> {
