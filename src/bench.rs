@@ -155,6 +155,13 @@ pub struct WriteShare {
     pub rss_before_bytes: Option<u64>,
     /// Size of all the study's histories held as f64 (0 for summary-only).
     pub history_bytes_in_memory: u64,
+    /// What writing costs the user: the same plan run with a sink that keeps nothing,
+    /// back to back with the store run (median wall seconds), and the median over repeats of
+    /// (wall − null wall) / wall. `None` where not measured (the history case: one long run).
+    pub null_wall_seconds: Option<f64>,
+    pub wall_overhead: Option<f64>,
+    /// Store runs behind the medians (the other fields are from the run of median wall time).
+    pub repeats: usize,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -166,8 +173,14 @@ pub struct MemoryBench {
     pub plan_rss_before_bytes: Option<u64>,
     /// Channel capacity of the driver (records in flight).
     pub channel_capacity: usize,
-    /// A summary-only study through the driver and the real store (rigid model): the store
-    /// keeps a small index per point (done ids while running, record locations at the end).
+    /// Summary-only studies through the driver and the real store (rigid model), a quarter
+    /// size and full size: the store keeps one bit per point, and the final file's build holds
+    /// at most `build_memory` bytes of summary values (more points → more passes, not more
+    /// memory).
+    pub build_memory: usize,
+    pub store_small_points: usize,
+    pub store_small_peak_rss_bytes: Option<u64>,
+    pub store_small_rss_before_bytes: Option<u64>,
     pub store_points: usize,
     pub store_seconds: f64,
     pub store_peak_rss_bytes: Option<u64>,
@@ -200,6 +213,8 @@ struct Sizes {
     history_omegas: usize,
     plan_points: [usize; 3],
     store_points: [usize; 3],
+    /// Store + null-sink pairs of the summary case.
+    write_repeats: usize,
 }
 
 impl Sizes {
@@ -215,6 +230,7 @@ impl Sizes {
                 history_omegas: 1,
                 plan_points: [100, 10, 10],
                 store_points: [100, 10, 10],
+                write_repeats: 1,
             }
         } else {
             Sizes {
@@ -227,6 +243,7 @@ impl Sizes {
                 history_omegas: 40,
                 plan_points: [1000, 100, 100],
                 store_points: [1000, 100, 10],
+                write_repeats: 5,
             }
         }
     }
@@ -635,11 +652,71 @@ fn bench_write(
     dir: &Path,
     threads: usize,
 ) -> Result<WriteShare, String> {
+    bench_write_to(case, case, study, dir, threads)
+}
+
+/// The same plan through the driver with a sink that keeps nothing: wall seconds.
+fn bench_null_wall(study: &Study, threads: usize) -> Result<f64, String> {
+    let pool = run::build_pool(threads).map_err(err("pool"))?;
+    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
+    let history = study.history_request(bats.max_length());
+    let stop = AtomicBool::new(false);
+    let opts = RunOptions {
+        jobs: threads,
+        ..RunOptions::default()
+    };
+    let t0 = Instant::now();
+    run::run_plan(
+        &study.plan,
+        &ModelSimulator,
+        &bats,
+        history.as_ref(),
+        NullSink,
+        &pool,
+        &opts,
+        &stop,
+    )
+    .map_err(err("run"))?;
+    Ok(t0.elapsed().as_secs_f64())
+}
+
+/// `repeats` store runs, each right after a null-sink run of the same plan: the store run of
+/// median wall time, with the medians of the null walls and of the overheads.
+fn bench_write_vs_null(
+    case: &str,
+    study: &Study,
+    dir: &Path,
+    threads: usize,
+    repeats: usize,
+) -> Result<WriteShare, String> {
+    let (mut runs, mut nulls, mut overheads) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..repeats.max(1) {
+        let null = bench_null_wall(study, threads)?;
+        let w = bench_write_to(case, &format!("{case}-{k}"), study, dir, threads)?;
+        overheads.push((w.wall_seconds - null) / w.wall_seconds);
+        nulls.push(null);
+        runs.push(w);
+    }
+    runs.sort_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds));
+    let mut w = runs.swap_remove(runs.len() / 2);
+    w.null_wall_seconds = Some(median(nulls));
+    w.wall_overhead = Some(median(overheads));
+    w.repeats = repeats.max(1);
+    Ok(w)
+}
+
+fn bench_write_to(
+    case: &str,
+    file: &str,
+    study: &Study,
+    dir: &Path,
+    threads: usize,
+) -> Result<WriteShare, String> {
     let pool = run::build_pool(threads).map_err(err("pool"))?;
     let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
     let history = study.history_request(bats.max_length());
     let info = study.info(bats.variants.clone(), history.clone());
-    let out: PathBuf = dir.join(format!("{case}.h5"));
+    let out: PathBuf = dir.join(format!("{file}.h5"));
     let rss_before = reset_peak();
     let c0 = process_cpu_seconds();
     let t0 = Instant::now();
@@ -687,6 +764,9 @@ fn bench_write(
         peak_rss_bytes: peak,
         rss_before_bytes: rss_before,
         history_bytes_in_memory: history.as_ref().map_or(0, history_bytes) * n as u64,
+        null_wall_seconds: None,
+        wall_overhead: None,
+        repeats: 1,
     })
 }
 
@@ -886,7 +966,13 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         &curve_study_text("bench-history", sz.history_omegas, hist),
         "bench-history",
     )?;
-    let ws = bench_write("summary", &summary_study, dir.path(), threads)?;
+    let ws = bench_write_vs_null(
+        "summary",
+        &summary_study,
+        dir.path(),
+        threads,
+        sz.write_repeats,
+    )?;
     let wh = bench_write("history", &history_study, dir.path(), threads)?;
     p(
         out,
@@ -896,19 +982,23 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         p(
             out,
             format!(
-                "{:8}: {} points in {:.3} s; journal {:.3} s + final file {:.3} s = {:.2} % of wall{}; \
+                "{:8}: {} points in {:.3} s{}; in store calls: journal {:.3} s + finish {:.3} s = {:.2} % of wall; \
                  CPU: {:.3} s, store {:.3} + {:.3} s = {:.2} % of CPU; file {:.1} MiB",
                 w.case,
                 w.points,
                 w.wall_seconds,
+                match (w.null_wall_seconds, w.wall_overhead) {
+                    (Some(null), Some(o)) => format!(
+                        " vs {null:.3} s with a null sink: writing adds {:.2} % of wall (median of {}; target ≤ 5 %: {})",
+                        o * 100.0,
+                        w.repeats,
+                        status(o <= HDF5_SHARE_TARGET)
+                    ),
+                    _ => String::new(),
+                },
                 w.journal_seconds,
                 w.final_file_seconds,
                 w.share * 100.0,
-                if w.case == "summary" {
-                    format!(" (target ≤ 5 %: {})", status(w.share <= HDF5_SHARE_TARGET))
-                } else {
-                    String::new()
-                },
                 w.cpu_seconds,
                 w.journal_cpu_seconds,
                 w.final_file_cpu_seconds,
@@ -928,6 +1018,16 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         ),
         "bench-store",
     )?;
+    let small_study = load_study(
+        &format!(
+            "name: bench-store-small\nmodel: rigid\nbase:\n  bat: {{preset: r161}}\n  ball: {{speed: 40}}\n  \
+             impact: {{z: 0.7}}\ngrid:\n  ball.speed: {{linspace: [30, 50, {c}]}}\n  \
+             swing.omega: {{linspace: [0, -50, {}]}}\n  impact.z: {{linspace: [0.40, 0.84, {a}]}}\n",
+            (b / 4).max(1)
+        ),
+        "bench-store-small",
+    )?;
+    let wsm = bench_write("store-small", &small_study, dir.path(), threads)?;
     let wst = bench_write("store", &store_study, dir.path(), threads)?;
     let mb = MemoryBench {
         plan_points,
@@ -938,6 +1038,10 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         history_points: wh.points,
         history_peak_rss_bytes: wh.peak_rss_bytes,
         history_bytes_in_memory: wh.history_bytes_in_memory,
+        build_memory: store::StoreOptions::default().build_memory,
+        store_small_points: wsm.points,
+        store_small_peak_rss_bytes: wsm.peak_rss_bytes,
+        store_small_rss_before_bytes: wsm.rss_before_bytes,
         store_points: wst.points,
         store_seconds: wst.wall_seconds,
         store_peak_rss_bytes: wst.peak_rss_bytes,
@@ -958,24 +1062,39 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
             mib(mb.plan_rss_before_bytes)
         ),
     );
-    let per_point = match (mb.store_peak_rss_bytes, mb.store_rss_before_bytes) {
+    let above = |peak: Option<u64>, before: Option<u64>, n: usize| match (peak, before) {
         (Some(p), Some(b)) => format!(
-            "{:.0} B/point",
-            p.saturating_sub(b) as f64 / mb.store_points as f64
+            "{} above the start ({:.0} B/point)",
+            mib(Some(p.saturating_sub(b))),
+            p.saturating_sub(b) as f64 / n as f64
         ),
         _ => "n/a".into(),
     };
-    p(
-        out,
-        format!(
-            "summary-only study of {} points with the store (rigid model, {threads} threads, {:.1} s): \
-             peak {} (before {}): {per_point} above the start",
-            mb.store_points,
-            mb.store_seconds,
-            mib(mb.store_peak_rss_bytes),
-            mib(mb.store_rss_before_bytes)
+    for (n, peak, before, secs) in [
+        (
+            mb.store_small_points,
+            mb.store_small_peak_rss_bytes,
+            mb.store_small_rss_before_bytes,
+            wsm.wall_seconds,
         ),
-    );
+        (
+            mb.store_points,
+            mb.store_peak_rss_bytes,
+            mb.store_rss_before_bytes,
+            mb.store_seconds,
+        ),
+    ] {
+        p(
+            out,
+            format!(
+                "summary-only study of {n} points with the store (rigid model, {threads} threads, {secs:.1} s): \
+                 peak {}: {}; build budget {}",
+                mib(peak),
+                above(peak, before, n),
+                mib(Some(mb.build_memory as u64))
+            ),
+        );
+    }
     p(
         out,
         format!(

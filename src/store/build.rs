@@ -16,7 +16,7 @@ use crate::results::{CoordValues, Dim, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
 use ndarray::{ArrayD, IxDyn};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Indices into [`l::HISTORY_VARS`] of the variables a request stores.
 pub fn history_vars(h: &HistoryRequest) -> Vec<usize> {
@@ -304,9 +304,27 @@ fn without<T: Copy>(v: &[T], skip: usize) -> Vec<T> {
         .collect()
 }
 
-/// Write the complete results file `out` from the scanned journal. Memory: `memory` bytes of
-/// summary values at most (a study larger than that takes several sequential passes over the
-/// journal), one history, the failed points' messages; nothing else grows with the study.
+/// The results file with everything that does not depend on the points' results: root
+/// attributes, groups, coordinates and dimension scales, every variable (empty), `/bat`. The
+/// store creates it on the writer thread while the workers compute, so that finishing a run
+/// only fills in the data (issue 7: most of a small study's HDF5 time was this fixed part).
+pub struct Skeleton {
+    f: hdf5::File,
+    out: PathBuf,
+    floats: Vec<Dataset>,
+    recontact: Dataset,
+    status: Dataset,
+    point_id: Dataset,
+    bat_index: Dataset,
+    /// `impact_z`'s position among the dims, the sweet-spot variables and the z values.
+    sweet: Option<(usize, Vec<Dataset>, Vec<f64>)>,
+    errors: Group,
+    /// Stored history variables: index into [`l::HISTORY_VARS`], dataset, full shape.
+    history: Vec<(usize, Dataset, Vec<usize>)>,
+}
+
+/// Write the complete results file `out` from the scanned journal: [`create_skeleton`], then
+/// [`fill`].
 pub fn write_file(
     journal: &Path,
     scan: &Scan,
@@ -315,7 +333,16 @@ pub fn write_file(
     out: &Path,
     memory: usize,
 ) -> Result<Summary, StoreError> {
-    let n_points = info.shape.n_points();
+    let sk = create_skeleton(info, meta, out)?;
+    fill(sk, journal, scan, info, &meta.created, memory)
+}
+
+/// Create `out` with everything but the results (see [`Skeleton`]).
+pub fn create_skeleton(
+    info: &StudyInfo,
+    meta: &RunMeta,
+    out: &Path,
+) -> Result<Skeleton, StoreError> {
     let f = hdf5::File::create(out).ctx(out, "create the results file")?;
     root_attrs(&f, info, meta, out)?;
 
@@ -410,6 +437,46 @@ pub fn write_file(
         None => None,
     };
 
+    let errors = f
+        .create_group(l::GROUP_ERRORS)
+        .ctx(out, "create group errors")?;
+    let history = match &info.history {
+        Some(h) => create_history(&f, h, info, out)?,
+        None => Vec::new(),
+    };
+    write_bats(&f, info, out)?;
+    // hand the metadata to the OS now, not on the critical path at the end
+    f.flush().ctx(out, "flush the results file")?;
+    Ok(Skeleton {
+        f,
+        out: out.to_path_buf(),
+        floats,
+        recontact,
+        status,
+        point_id,
+        bat_index,
+        sweet,
+        errors,
+        history,
+    })
+}
+
+/// Fill a skeleton with the journal's records, write the counts and `created`, and close
+/// the file. Memory: `memory` bytes of summary values at most (a study larger than that takes
+/// several sequential passes over the journal), one history, the failed points' messages;
+/// nothing else grows with the study.
+pub fn fill(
+    sk: Skeleton,
+    journal: &Path,
+    scan: &Scan,
+    info: &StudyInfo,
+    created: &str,
+    memory: usize,
+) -> Result<Summary, StoreError> {
+    let out = sk.out.as_path();
+    let n_points = info.shape.n_points();
+    let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
+    let chunk = summary_chunk(&info.shape.dims);
     let (mut n_done, mut n_failed) = (0, 0);
     let mut errors: Vec<(u64, u64, String)> = Vec::new();
     let blocks = BlockGrid::new(&shape, &chunk);
@@ -466,7 +533,7 @@ pub fn write_file(
             let (start, count) = blocks.block(b);
             let r = w.offsets[b - b0]..w.offsets[b - b0 + 1];
             let fv: Vec<&[f64]> = w.floats.iter().map(|v| &v[r.clone()]).collect();
-            if let Some((iz, vars, z)) = &sweet {
+            if let Some((iz, vars, z)) = &sk.sweet {
                 let zc = &z[start[*iz]..start[*iz] + count[*iz]];
                 let res = block_sweet_spots(&fv, &count, *iz, zc);
                 let (rs, rcnt) = (without(&start, *iz), without(&count, *iz));
@@ -474,69 +541,65 @@ pub fn write_file(
                     write_block(ds, &rs, &rcnt, data, out)?;
                 }
             }
-            for (ds, data) in floats.iter().zip(&fv) {
+            for (ds, data) in sk.floats.iter().zip(&fv) {
                 write_block(ds, &start, &count, data.to_vec(), out)?;
             }
-            write_block(
-                &recontact,
-                &start,
-                &count,
+            let (rc, st) = (
                 w.recontact[r.clone()].to_vec(),
-                out,
-            )?;
-            write_block(&status, &start, &count, w.status[r.clone()].to_vec(), out)?;
+                w.status[r.clone()].to_vec(),
+            );
+            write_block(&sk.recontact, &start, &count, rc, out)?;
+            write_block(&sk.status, &start, &count, st, out)?;
             write_block(
-                &point_id,
+                &sk.point_id,
                 &start,
                 &count,
                 w.point_id[r.clone()].to_vec(),
                 out,
             )?;
-            write_block(&bat_index, &start, &count, w.bat_index[r].to_vec(), out)?;
+            write_block(&sk.bat_index, &start, &count, w.bat_index[r].to_vec(), out)?;
         }
         b0 = b1;
     }
 
     // ---- /errors
     errors.sort_by_key(|e| e.0);
-    let eg = f
-        .create_group(l::GROUP_ERRORS)
-        .ctx(out, "create group errors")?;
+    let eg = &sk.errors;
     let eidx: Vec<i64> = (0..errors.len() as i64).collect();
     let edef = VarDef {
         name: l::ERR_DIM,
         units: "1",
         long_name: "failed point number",
     };
-    let escale = h5u::scale_coord(&eg, l::ERR_DIM, &eidx, &edef).ctx(out, "write errors")?;
+    let escale = h5u::scale_coord(eg, l::ERR_DIM, &eidx, &edef).ctx(out, "write errors")?;
     let cols: [(&VarDef, Vec<u64>); 2] = [
         (&l::ERR_FLAT_INDEX, errors.iter().map(|e| e.0).collect()),
         (&l::ERR_POINT_ID, errors.iter().map(|e| e.1).collect()),
     ];
     for (def, data) in cols {
-        let ds = h5u::write_1d(&eg, def.name, &data).ctx(out, "write errors")?;
+        let ds = h5u::write_1d(eg, def.name, &data).ctx(out, "write errors")?;
         describe(&ds, def).ctx(out, "write errors")?;
         attach_scales(&ds, &[&escale]).ctx(out, "write errors")?;
     }
     let msgs: Vec<VarLenUnicode> = errors.iter().map(|e| h5u::vlstr(&e.2)).collect();
-    let ds = h5u::write_1d(&eg, l::ERR_MESSAGE.name, &msgs).ctx(out, "write errors")?;
+    let ds = h5u::write_1d(eg, l::ERR_MESSAGE.name, &msgs).ctx(out, "write errors")?;
     describe(&ds, &l::ERR_MESSAGE).ctx(out, "write errors")?;
     attach_scales(&ds, &[&escale]).ctx(out, "write errors")?;
     drop(errors);
 
     // ---- /history
     if let Some(h) = &info.history {
-        write_history(&f, h, info, journal, scan, out)?;
+        write_histories(&sk.history, h, info, journal, scan, out)?;
     }
 
-    // ---- /bat
-    write_bats(&f, info, out)?;
-    let n = |k: &str, v: i64| attr_num(&f, k, v).ctx(out, "write root attributes");
+    let f = &sk.f;
+    attr_str(f, "created", created).ctx(out, "write root attributes")?;
+    let n = |k: &str, v: i64| attr_num(f, k, v).ctx(out, "write root attributes");
     n("n_done", n_done as i64)?;
     n("n_failed", n_failed as i64)?;
     n("complete", (n_done == n_points) as i64)?;
     f.flush().ctx(out, "flush the results file")?;
-    drop(f);
+    drop(sk);
     Ok(Summary {
         n_points,
         n_done,
@@ -544,8 +607,8 @@ pub fn write_file(
     })
 }
 
-/// Root attributes known before the data are read (`n_done`, `n_failed` and `complete` are
-/// written after the summary passes).
+/// Root attributes known before the data are read (`created`, `n_done`, `n_failed` and
+/// `complete` are written by [`fill`]).
 fn root_attrs(
     f: &hdf5::File,
     info: &StudyInfo,
@@ -562,7 +625,6 @@ fn root_attrs(
     s("study_path", &info.study_path)?;
     s("batstudy_version", &meta.batstudy_version)?;
     s("git_commit", &meta.git_commit)?;
-    s("created", &meta.created)?;
     s("host", &meta.host)?;
     s("command_line", &meta.command_line)?;
     s("shard", meta.shard.as_deref().unwrap_or(""))?;
@@ -583,14 +645,13 @@ fn root_attrs(
     Ok(())
 }
 
-fn write_history(
+/// The `/history` group and its (empty) variables.
+fn create_history(
     f: &hdf5::File,
     h: &HistoryRequest,
     info: &StudyInfo,
-    journal: &Path,
-    scan: &Scan,
     out: &Path,
-) -> Result<(), StoreError> {
+) -> Result<Vec<(usize, Dataset, Vec<usize>)>, StoreError> {
     let dims = &info.shape.dims;
     let g = f
         .create_group(l::GROUP_HISTORY)
@@ -635,6 +696,19 @@ fn write_history(
         .ctx(out, "describe history")?;
         created.push((k, ds, s));
     }
+    Ok(created)
+}
+
+/// Write every stored history into the variables of [`create_history`].
+fn write_histories(
+    created: &[(usize, Dataset, Vec<usize>)],
+    h: &HistoryRequest,
+    info: &StudyInfo,
+    journal: &Path,
+    scan: &Scan,
+    out: &Path,
+) -> Result<(), StoreError> {
+    let dims = &info.shape.dims;
     // One sequential pass; every history is one whole chunk, so writing them in journal
     // order keeps the chunk cache out of the way. The first record of a point wins, as in
     // the summary.
@@ -647,7 +721,7 @@ fn write_history(
         let Ok(o) = rr.whole()?.result else { continue };
         let Some(hist) = o.history else { continue };
         let idx = info.shape.unravel(rec.index);
-        for (k, ds, s) in &created {
+        for (k, ds, s) in created {
             let a = l::history_array(&hist, *k);
             let tail = &s[dims.len()..];
             if a.len() != tail.iter().product::<usize>() || a.is_empty() {

@@ -167,6 +167,8 @@ pub struct Session {
     done: PointSet,
     /// Memory budget of the final file's build (bytes of summary values held at once).
     build_memory: usize,
+    /// `OUT.h5.partial` with everything but the results, made while the workers compute.
+    skeleton: Option<build::Skeleton>,
     history_keep: Option<Vec<usize>>,
     flush_interval: Duration,
     sync_interval: Duration,
@@ -225,6 +227,7 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
         journal: None,
         done: PointSet::new(n_points),
         build_memory: opts.build_memory,
+        skeleton: None,
         history_keep: info.history.as_ref().map(build::history_vars),
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
@@ -430,6 +433,17 @@ impl Session {
         }
     }
 
+    /// Create the final file's skeleton (`OUT.h5.partial`: coordinates, variables, `/bat`)
+    /// if it is not there yet. The writer thread does this with its first record, while the
+    /// workers compute, so that [`Self::finish`] only has the data left to write.
+    fn prepare_final_file(&mut self) -> Result<(), StoreError> {
+        if self.skeleton.is_none() {
+            let partial = partial_path(&self.path);
+            self.skeleton = Some(build::create_skeleton(&self.info, &self.meta, &partial)?);
+        }
+        Ok(())
+    }
+
     /// Store one finished point (buffered; see the module docs for when it becomes durable).
     /// A point already stored is ignored.
     pub fn write(&mut self, mut rec: PointRecord) -> Result<(), StoreError> {
@@ -483,7 +497,8 @@ impl Session {
             j.flush()?;
             self.last_flush = Instant::now();
         }
-        self.sync_if_due()
+        self.sync_if_due()?;
+        self.prepare_final_file()
     }
 
     /// fsync the journal when `sync_interval` has passed since the last time.
@@ -504,7 +519,8 @@ impl Session {
         let j = self.journal.as_mut().expect("open session has a journal");
         j.flush()?;
         self.last_flush = Instant::now();
-        self.sync_if_due()
+        self.sync_if_due()?;
+        self.prepare_final_file()
     }
 
     /// Make everything written so far durable (e.g. on Ctrl-C, before exiting to resume later).
@@ -536,13 +552,14 @@ impl Session {
             return Err(e);
         }
         let partial = partial_path(&self.path);
-        self.meta.created = iso8601_now();
-        let summary = build::write_file(
+        self.prepare_final_file()?;
+        let skeleton = self.skeleton.take().expect("prepared above");
+        let summary = build::fill(
+            skeleton,
             &self.journal_path,
             &scan,
             &self.info,
-            &self.meta,
-            &partial,
+            &iso8601_now(),
             self.build_memory,
         )?;
         std::fs::File::open(&partial)
@@ -561,6 +578,10 @@ impl Drop for Session {
     fn drop(&mut self) {
         if let Some(j) = self.journal.as_mut() {
             let _ = j.sync();
+        }
+        // a session dropped without finishing leaves no half-made final file behind
+        if self.skeleton.take().is_some() {
+            let _ = std::fs::remove_file(partial_path(&self.path));
         }
     }
 }
