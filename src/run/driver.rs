@@ -9,6 +9,7 @@ use super::shard::Shard;
 use super::traits::{Simulator, Sink};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::ModelKind;
+use crate::pointset::PointSet;
 use crate::results::{BatVariant, PointRecord};
 use crate::study::Plan;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -232,6 +233,16 @@ pub fn run_plan<S: Simulator, K: Sink>(
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    // The points to skip, asked of the sink once, before any worker starts: the workers then
+    // never wait for the sink's lock, which the writer holds while it writes (issue 7: the
+    // final file's skeleton, made on the writer's first record, stalled every worker).
+    let mut skip = PointSet::new(n);
+    for i in range.clone() {
+        if sink.is_done(i) {
+            skip.insert(i);
+        }
+    }
+    let skip = &skip;
     let sink = Mutex::new(sink);
     let (tx, rx) = crossbeam_channel::bounded::<PointRecord>(opts.channel_capacity.max(1));
     let abort = AtomicBool::new(false);
@@ -280,7 +291,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
                 if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
                     return;
                 }
-                if sink.lock().unwrap_or_else(|p| p.into_inner()).is_done(i) {
+                if skip.contains(i) {
                     skipped.fetch_add(1, Ordering::Relaxed);
                     pb.inc(1);
                     return;

@@ -25,11 +25,12 @@ pub trait Simulator: Sync {
     ) -> Result<Outcome, String>;
 }
 
-/// Receives finished points; owned by the single writer thread (the driver also asks it,
-/// under a lock, which points are done).
+/// Receives finished points; owned by the single writer thread (the driver asks it which
+/// points are done before the run starts).
 pub trait Sink: Send {
-    /// Is the point at this flat index already in the output (resume)? Asked before the
-    /// point is resolved, so a resumed run spends nothing on the points it skips.
+    /// Is the point at this flat index already in the output (resume)? The driver asks for
+    /// every point of its range once, before the workers start, and skips those points
+    /// without resolving them.
     fn is_done(&self, index: usize) -> bool;
     /// Store one finished point (at `rec.index`; arrival order is arbitrary).
     fn write(&mut self, rec: PointRecord) -> Result<(), String>;

@@ -6,12 +6,12 @@ use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, 
 use super::error::{H5Ctx, StoreError};
 use super::journal::{RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
-use super::pointset::PointSet;
 use super::{RunMeta, Summary};
 use crate::model::metrics::BatMetrics;
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
 use crate::model::sweet::find_sweet_spot;
 use crate::model::sweet_defs::vibration_sweet_spot;
+use crate::pointset::PointSet;
 use crate::results::{CoordValues, Dim, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};

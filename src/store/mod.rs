@@ -18,7 +18,6 @@ pub mod dimscale;
 pub mod error;
 pub mod journal;
 pub mod layout;
-pub mod pointset;
 pub mod read;
 
 pub use error::StoreError;
@@ -26,9 +25,9 @@ pub use read::{
     file_info, for_each_record, inspect, present_points, read_results, FileInfo, ReadBack,
 };
 
+use crate::pointset::PointSet;
 use crate::results::{PointRecord, StudyInfo};
 use journal::{JournalHeader, JournalWriter};
-use pointset::PointSet;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
