@@ -261,13 +261,25 @@ fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
-/// CPU seconds this thread has run (`/proc/thread-self/schedstat`, ns; NaN elsewhere). On a
-/// shared machine a thread waits for a core part of the wall time; its CPU time does not.
+/// CPU seconds of a POSIX CPU-time clock (NaN if it cannot be read).
+fn cpu_clock_seconds(clock: libc::clockid_t) -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one timespec through a valid pointer.
+    if unsafe { libc::clock_gettime(clock, &mut t) } != 0 {
+        return f64::NAN;
+    }
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
+/// CPU seconds this thread has run (ns resolution). On a shared machine a thread waits for a
+/// core part of the wall time; its CPU time does not. A clock call, not a /proc read: the
+/// store's calls are timed one by one, and reading /proc for each cost ~15 µs, more than a
+/// journal write (issue 7: it inflated the measured store share).
 fn thread_cpu_seconds() -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or(f64::NAN, |ns| ns * 1e-9)
+    cpu_clock_seconds(libc::CLOCK_THREAD_CPUTIME_ID)
 }
 
 /// (wall, CPU) seconds per call of `f`, calling it until at least `min_time` of wall time has
@@ -540,17 +552,9 @@ fn load_study(text: &str, name: &str) -> Result<Study, String> {
     .map_err(|e| format!("bench study {name}: {e}"))
 }
 
-/// CPU seconds (user + system) of this process so far, from /proc/self/stat (0 elsewhere).
+/// CPU seconds (user + system) of this process so far, all threads (ns resolution).
 fn process_cpu_seconds() -> f64 {
-    let Ok(s) = std::fs::read_to_string("/proc/self/stat") else {
-        return 0.0;
-    };
-    // fields after the command name (which may hold spaces) start at field 3 (state)
-    let rest = s.rsplit_once(')').map_or("", |(_, r)| r);
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let tick = |i: usize| f.get(i).and_then(|x| x.parse::<f64>().ok()).unwrap_or(0.0);
-    // utime, stime are fields 14, 15 (1-based) = indices 11, 12 here; USER_HZ is 100 on Linux
-    (tick(11) + tick(12)) / 100.0
+    cpu_clock_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
 
 /// Wall and CPU seconds of one null-sink run.
@@ -655,31 +659,6 @@ fn bench_write(
     bench_write_to(case, case, study, dir, threads)
 }
 
-/// The same plan through the driver with a sink that keeps nothing: wall seconds.
-fn bench_null_wall(study: &Study, threads: usize) -> Result<f64, String> {
-    let pool = run::build_pool(threads).map_err(err("pool"))?;
-    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
-    let history = study.history_request(bats.max_length());
-    let stop = AtomicBool::new(false);
-    let opts = RunOptions {
-        jobs: threads,
-        ..RunOptions::default()
-    };
-    let t0 = Instant::now();
-    run::run_plan(
-        &study.plan,
-        &ModelSimulator,
-        &bats,
-        history.as_ref(),
-        NullSink,
-        &pool,
-        &opts,
-        &stop,
-    )
-    .map_err(err("run"))?;
-    Ok(t0.elapsed().as_secs_f64())
-}
-
 /// `repeats` store runs, each right after a null-sink run of the same plan: the store run of
 /// median wall time, with the medians of the null walls and of the overheads.
 fn bench_write_vs_null(
@@ -689,9 +668,11 @@ fn bench_write_vs_null(
     threads: usize,
     repeats: usize,
 ) -> Result<WriteShare, String> {
+    let pool = run::build_pool(threads).map_err(err("pool"))?;
+    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
     let (mut runs, mut nulls, mut overheads) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..repeats.max(1) {
-        let null = bench_null_wall(study, threads)?;
+        let (null, _) = run_null(study, &bats, &pool)?;
         let w = bench_write_to(case, &format!("{case}-{k}"), study, dir, threads)?;
         overheads.push((w.wall_seconds - null) / w.wall_seconds);
         nulls.push(null);

@@ -4,7 +4,7 @@
 
 use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
 use super::error::{H5Ctx, StoreError};
-use super::journal::{RecordReader, Scan};
+use super::journal::{decode_record, encode_record, RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
 use super::{RunMeta, Summary};
 use crate::model::metrics::BatMetrics;
@@ -12,10 +12,13 @@ use crate::model::outcome::{HistoryPrecision, HistoryRequest};
 use crate::model::sweet::find_sweet_spot;
 use crate::model::sweet_defs::vibration_sweet_spot;
 use crate::pointset::PointSet;
+use crate::results::PointRecord;
 use crate::results::{CoordValues, Dim, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
 use ndarray::{ArrayD, IxDyn};
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
 /// Indices into [`l::HISTORY_VARS`] of the variables a request stores.
@@ -244,6 +247,165 @@ struct Window {
 
 /// Bytes a window holds per point.
 const WINDOW_BYTES_PER_POINT: usize = 8 * N_SUMMARY_FLOATS + 1 + 1 + 8 + 4;
+
+/// Most windows (spill files open at once); a bigger study gets bigger windows.
+const MAX_WINDOWS: usize = 256;
+
+/// Runs `[b0, b1)` of whole blocks, in order, each within the memory budget (at least one
+/// block each, at most [`MAX_WINDOWS`] runs).
+fn plan_windows(blocks: &BlockGrid, memory: usize) -> Vec<(usize, usize)> {
+    let n_blocks = blocks.n_blocks();
+    let total: usize = (0..n_blocks).map(|b| blocks.block_len(b)).sum();
+    let window_points = (memory / WINDOW_BYTES_PER_POINT)
+        .max(total.div_ceil(MAX_WINDOWS))
+        .max(1);
+    let mut windows = Vec::new();
+    let mut b0 = 0;
+    while b0 < n_blocks {
+        let (mut b1, mut m) = (b0, 0);
+        while b1 < n_blocks && (b1 == b0 || m + blocks.block_len(b1) <= window_points) {
+            m += blocks.block_len(b1);
+            b1 += 1;
+        }
+        windows.push((b0, b1));
+        b0 = b1;
+    }
+    windows
+}
+
+/// Where a window's records come from.
+enum Source {
+    Journal(RecordReader),
+    Spill(SpillReader),
+}
+
+impl Source {
+    fn next(&mut self) -> Result<Option<PointRecord>, StoreError> {
+        match self {
+            Source::Journal(r) => r.next_summary(),
+            Source::Spill(r) => r.next(),
+        }
+    }
+}
+
+/// Path of spill file `k` of the final file `out` (`OUT.h5.partial.spill-K`).
+fn spill_path(out: &Path, k: usize) -> PathBuf {
+    let mut o = out.as_os_str().to_owned();
+    o.push(format!(".spill-{k}"));
+    PathBuf::from(o)
+}
+
+/// Remove spill files a killed build left next to `out` (best effort).
+pub fn remove_stale_spills(out: &Path) {
+    let (Some(dir), Some(name)) = (out.parent(), out.file_name()) else {
+        return;
+    };
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let prefix = format!("{}.spill-", name.to_string_lossy());
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for e in entries.flatten() {
+            if e.file_name().to_string_lossy().starts_with(&prefix) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// The journal's summary records split into one file per window by one sequential pass
+/// (journal order kept within each file). Removed when dropped.
+struct Spill {
+    paths: Vec<PathBuf>,
+}
+
+impl Spill {
+    fn split(
+        journal: &Path,
+        scan: &Scan,
+        out: &Path,
+        blocks: &BlockGrid,
+        windows: &[(usize, usize)],
+    ) -> Result<Spill, StoreError> {
+        let spill = Spill {
+            paths: (0..windows.len()).map(|k| spill_path(out, k)).collect(),
+        };
+        let mut files = Vec::with_capacity(windows.len());
+        for p in &spill.paths {
+            let f = File::create(p).map_err(|e| StoreError::io(p, "create a spill file", e))?;
+            files.push(BufWriter::with_capacity(1 << 16, f));
+        }
+        let n_points: usize = blocks.shape.iter().product();
+        let mut rr = RecordReader::open(journal, scan)?;
+        let mut buf = Vec::new();
+        while let Some(rec) = rr.next_summary()? {
+            if rec.index >= n_points {
+                continue;
+            }
+            let (b, _) = blocks.locate(rec.index);
+            let k = windows.partition_point(|&(b0, _)| b0 <= b) - 1;
+            buf.clear();
+            encode_record(&rec, &mut buf);
+            files[k]
+                .write_all(&(buf.len() as u32).to_le_bytes())
+                .and_then(|_| files[k].write_all(&buf))
+                .map_err(|e| StoreError::io(&spill.paths[k], "write a spill file", e))?;
+        }
+        for (f, p) in files.into_iter().zip(&spill.paths) {
+            f.into_inner()
+                .map_err(|e| StoreError::io(p, "write a spill file", e.into_error()))?;
+        }
+        Ok(spill)
+    }
+
+    fn reader(&self, k: usize) -> Result<SpillReader, StoreError> {
+        let p = &self.paths[k];
+        let f = File::open(p).map_err(|e| StoreError::io(p, "open a spill file", e))?;
+        Ok(SpillReader {
+            r: BufReader::with_capacity(1 << 20, f),
+            path: p.clone(),
+            buf: Vec::new(),
+        })
+    }
+}
+
+impl Drop for Spill {
+    fn drop(&mut self) {
+        for p in &self.paths {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+}
+
+/// Sequential reading of one spill file.
+struct SpillReader {
+    r: BufReader<File>,
+    path: PathBuf,
+    buf: Vec<u8>,
+}
+
+impl SpillReader {
+    fn next(&mut self) -> Result<Option<PointRecord>, StoreError> {
+        let mut len = [0u8; 4];
+        match self.r.read_exact(&mut len) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => return Ok(None),
+            Err(e) => return Err(StoreError::io(&self.path, "read a spill file", e)),
+        }
+        self.buf.resize(u32::from_le_bytes(len) as usize, 0);
+        self.r
+            .read_exact(&mut self.buf)
+            .map_err(|e| StoreError::io(&self.path, "read a spill file", e))?;
+        decode_record(&self.buf, true)
+            .map(Some)
+            .ok_or_else(|| StoreError::BadRecord {
+                path: self.path.clone(),
+                what: "undecodable spill record".into(),
+            })
+    }
+}
 
 impl Window {
     fn new(offsets: Vec<usize>) -> Self {
@@ -480,26 +642,26 @@ pub fn fill(
     let (mut n_done, mut n_failed) = (0, 0);
     let mut errors: Vec<(u64, u64, String)> = Vec::new();
     let blocks = BlockGrid::new(&shape, &chunk);
-    let n_blocks = blocks.n_blocks();
-    let window_points = (memory / WINDOW_BYTES_PER_POINT).max(1);
-    let mut b0 = 0;
-    while b0 < n_blocks {
-        // the next run of whole blocks within the budget (at least one block)
+    let windows = plan_windows(&blocks, memory);
+    // One window: read the journal directly. Several: route the records to one spill file
+    // per window in a single pass, so that the journal is read once, not once per window.
+    let spill = if windows.len() > 1 {
+        Some(Spill::split(journal, scan, out, &blocks, &windows)?)
+    } else {
+        None
+    };
+    for (k, &(b0, b1)) in windows.iter().enumerate() {
         let mut offsets = vec![0];
-        let mut b1 = b0;
-        while b1 < n_blocks {
-            let m = blocks.block_len(b1);
-            let total = *offsets.last().unwrap();
-            if b1 > b0 && total + m > window_points {
-                break;
-            }
-            offsets.push(total + m);
-            b1 += 1;
+        for b in b0..b1 {
+            offsets.push(offsets[b - b0] + blocks.block_len(b));
         }
         let mut w = Window::new(offsets);
-        // one sequential pass over the journal; the first record of a point wins
-        let mut rr = RecordReader::open(journal, scan)?;
-        while let Some(rec) = rr.next_summary()? {
+        let mut source = match &spill {
+            Some(sp) => Source::Spill(sp.reader(k)?),
+            None => Source::Journal(RecordReader::open(journal, scan)?),
+        };
+        // in journal order: the first record of a point wins
+        while let Some(rec) = source.next()? {
             if rec.index >= n_points {
                 continue;
             }
@@ -559,8 +721,8 @@ pub fn fill(
             )?;
             write_block(&sk.bat_index, &start, &count, w.bat_index[r].to_vec(), out)?;
         }
-        b0 = b1;
     }
+    drop(spill);
 
     // ---- /errors
     errors.sort_by_key(|e| e.0);

@@ -217,6 +217,7 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
     let jpath = journal_path(path);
     let want = JournalHeader::of(info);
     remove_if_exists(&partial_path(path))?;
+    build::remove_stale_spills(&partial_path(path));
     let n_points = info.shape.n_points();
     let mut s = Session {
         path: path.to_path_buf(),
