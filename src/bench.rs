@@ -173,8 +173,8 @@ pub struct MemoryBench {
     pub plan_rss_before_bytes: Option<u64>,
     /// Channel capacity of the driver (records in flight).
     pub channel_capacity: usize,
-    /// Summary-only studies through the driver and the real store (rigid model), a quarter
-    /// size and full size: the store keeps one bit per point, and the final file's build holds
+    /// Summary-only studies through the driver and the real store (rigid model), full size and
+    /// four times that: the store keeps one bit per point, and the final file's build holds
     /// at most `build_memory` bytes of summary values (more points → more passes, not more
     /// memory).
     pub build_memory: usize,
@@ -198,6 +198,7 @@ pub struct BenchReport {
     pub integrators: IntegratorBench,
     pub curve: CurveBench,
     pub parallel: ParallelBench,
+    /// Summary-only, history, summary-only with ten times the points.
     pub hdf5: Vec<WriteShare>,
     pub memory: MemoryBench,
 }
@@ -955,15 +956,27 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         sz.write_repeats,
     )?;
     let wh = bench_write("history", &history_study, dir.path(), threads)?;
+    // ten times the points: the store's fixed cost (file skeleton, fsyncs) spread thinner
+    let large_study = load_study(
+        &curve_study_text("bench-summary-large", 10 * sz.summary_omegas, ""),
+        "bench-summary-large",
+    )?;
+    let wl = bench_write_vs_null(
+        "summary-large",
+        &large_study,
+        dir.path(),
+        threads,
+        sz.write_repeats.div_ceil(2),
+    )?;
     p(
         out,
         format!("\n== HDF5 writing: real driver + store, {threads} threads"),
     );
-    for w in [&ws, &wh] {
+    for w in [&ws, &wl, &wh] {
         p(
             out,
             format!(
-                "{:8}: {} points in {:.3} s{}; in store calls: journal {:.3} s + finish {:.3} s = {:.2} % of wall; \
+                "{:13}: {} points in {:.3} s{}; in store calls: journal {:.3} s + finish {:.3} s = {:.2} % of wall; \
                  CPU: {:.3} s, store {:.3} + {:.3} s = {:.2} % of CPU; file {:.1} MiB",
                 w.case,
                 w.points,
@@ -991,23 +1004,20 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
 
     let (plan_points, plan_seconds, plan_peak, plan_before) = bench_plan_memory(&sz, threads)?;
     let [a, b, c] = sz.store_points;
-    let store_study = load_study(
-        &format!(
-            "name: bench-store\nmodel: rigid\nbase:\n  bat: {{preset: r161}}\n  ball: {{speed: 40}}\n  \
-             impact: {{z: 0.7}}\ngrid:\n  ball.speed: {{linspace: [30, 50, {c}]}}\n  \
-             swing.omega: {{linspace: [0, -50, {b}]}}\n  impact.z: {{linspace: [0.40, 0.84, {a}]}}\n"
-        ),
-        "bench-store",
-    )?;
-    let small_study = load_study(
-        &format!(
-            "name: bench-store-small\nmodel: rigid\nbase:\n  bat: {{preset: r161}}\n  ball: {{speed: 40}}\n  \
-             impact: {{z: 0.7}}\ngrid:\n  ball.speed: {{linspace: [30, 50, {c}]}}\n  \
-             swing.omega: {{linspace: [0, -50, {}]}}\n  impact.z: {{linspace: [0.40, 0.84, {a}]}}\n",
-            (b / 4).max(1)
-        ),
-        "bench-store-small",
-    )?;
+    let store_study = |name: &str, omegas: usize| {
+        load_study(
+            &format!(
+                "name: {name}\nmodel: rigid\nbase:\n  bat: {{preset: r161}}\n  ball: {{speed: 40}}\n  \
+                 impact: {{z: 0.7}}\ngrid:\n  ball.speed: {{linspace: [30, 50, {c}]}}\n  \
+                 swing.omega: {{linspace: [0, -50, {omegas}]}}\n  impact.z: {{linspace: [0.40, 0.84, {a}]}}\n"
+            ),
+            name,
+        )
+    };
+    // the study at full size and at four times that: the build's window is capped, so the
+    // store's memory above the start should not grow between the two
+    let small_study = store_study("bench-store", b)?;
+    let store_study = store_study("bench-store-large", 4 * b)?;
     let wsm = bench_write("store-small", &small_study, dir.path(), threads)?;
     let wst = bench_write("store", &store_study, dir.path(), threads)?;
     let mb = MemoryBench {
@@ -1098,7 +1108,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         integrators: ib,
         curve: cb,
         parallel: pb,
-        hdf5: vec![ws, wh],
+        hdf5: vec![ws, wh, wl],
         memory: mb,
     })
 }

@@ -44,9 +44,15 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
     assert_eq!(r.curve.points, 45);
     assert!(r.curve.curve_seconds > 0.0 && r.curve.prepare_seconds > 0.0);
     assert!(r.parallel.points > 0 && r.parallel.efficiency > 0.0);
-    assert_eq!(r.hdf5.len(), 2);
+    assert_eq!(r.hdf5.len(), 3);
     assert_eq!(r.hdf5[0].case, "summary");
     assert_eq!(r.hdf5[1].case, "history");
+    assert_eq!(r.hdf5[2].case, "summary-large");
+    assert_eq!(r.hdf5[2].points, 10 * r.hdf5[0].points);
+    // the summary cases are measured against a null sink
+    for w in [&r.hdf5[0], &r.hdf5[2]] {
+        assert!(w.null_wall_seconds.is_some_and(|t| t > 0.0) && w.wall_overhead.is_some());
+    }
     assert!(r.hdf5.iter().all(|w| w.file_bytes > 0 && w.share > 0.0));
     assert!(r.hdf5[1].history_bytes_in_memory > 0);
     assert!(r.memory.plan_points >= 10_000);
