@@ -2,6 +2,7 @@
 //! Memory: a bounded window of summary values (see [`write_file`]), one history, and the
 //! failed points' messages.
 
+use super::chunks::{self, ChunkValue};
 use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
 use super::error::{H5Ctx, StoreError};
 use super::journal::{decode_record, encode_record, RecordReader, Scan};
@@ -17,6 +18,7 @@ use crate::results::{CoordValues, Dim, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
 use ndarray::{ArrayD, IxDyn};
+use rayon::prelude::*;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
@@ -466,6 +468,109 @@ fn without<T: Copy>(v: &[T], skip: usize) -> Vec<T> {
         .collect()
 }
 
+/// Values of one block for a dataset that is not chunked (a scalar: a study without dims, or
+/// the sweet spot of a study over `impact_z` alone).
+enum Values {
+    F64(Vec<f64>),
+    I8(Vec<i8>),
+    I32(Vec<i32>),
+    U64(Vec<u64>),
+}
+
+/// One block's contribution to one dataset (`targets[target]` in [`fill`]).
+enum Piece {
+    /// A whole chunk, filtered (see [`chunks::filtered`]), at its start.
+    Chunk(usize, Vec<usize>, Vec<u8>),
+    /// A block of raw values at `start` with extent `count`.
+    Block(usize, Vec<usize>, Vec<usize>, Values),
+}
+
+impl Piece {
+    /// A block of `values` (row-major over `count`) for `target`, chunk shape `chunk` (empty:
+    /// not chunked).
+    fn of<T: ChunkValue>(
+        target: usize,
+        (start, count, chunk): (&[usize], &[usize], &[usize]),
+        values: &[T],
+        fill: T,
+        wrap: fn(Vec<T>) -> Values,
+    ) -> Piece {
+        if chunk.is_empty() {
+            Piece::Block(
+                target,
+                start.to_vec(),
+                count.to_vec(),
+                wrap(values.to_vec()),
+            )
+        } else {
+            let bytes = chunks::filtered(values, count, chunk, fill, l::DEFLATE_LEVEL);
+            Piece::Chunk(target, start.to_vec(), bytes)
+        }
+    }
+
+    fn write(self, targets: &[&Dataset], out: &Path) -> Result<(), StoreError> {
+        match self {
+            Piece::Chunk(t, start, bytes) => chunks::write_chunk(targets[t], &start, &bytes)
+                .ctx(out, &format!("write a chunk of {}", targets[t].name())),
+            Piece::Block(t, start, count, v) => {
+                let ds = targets[t];
+                match v {
+                    Values::F64(v) => write_block(ds, &start, &count, v, out),
+                    Values::I8(v) => write_block(ds, &start, &count, v, out),
+                    Values::I32(v) => write_block(ds, &start, &count, v, out),
+                    Values::U64(v) => write_block(ds, &start, &count, v, out),
+                }
+            }
+        }
+    }
+}
+
+/// Everything block `b` (the `q`-th of window `w`) writes: its summary variables and, with an
+/// `impact_z` dim, the sweet spots of its curves. Pure: runs on any thread.
+fn block_pieces(
+    w: &Window,
+    q: usize,
+    blocks: &BlockGrid,
+    chunk: &[usize],
+    b: usize,
+    sweet: Option<&(usize, Vec<Dataset>, Vec<f64>)>,
+) -> Vec<Piece> {
+    let (start, count) = blocks.block(b);
+    let r = w.offsets[q]..w.offsets[q + 1];
+    let fv: Vec<&[f64]> = w.floats.iter().map(|v| &v[r.clone()]).collect();
+    let at = (&start[..], &count[..], chunk);
+    let mut pieces = Vec::with_capacity(N_SUMMARY_FLOATS + 10);
+    for (k, v) in fv.iter().enumerate() {
+        pieces.push(Piece::of(k, at, v, f64::NAN, Values::F64));
+    }
+    let k = N_SUMMARY_FLOATS;
+    pieces.push(Piece::of(k, at, &w.recontact[r.clone()], -1, Values::I8));
+    let not_computed = l::STATUS_NOT_COMPUTED;
+    pieces.push(Piece::of(
+        k + 1,
+        at,
+        &w.status[r.clone()],
+        not_computed,
+        Values::I8,
+    ));
+    pieces.push(Piece::of(k + 2, at, &w.point_id[r.clone()], 0, Values::U64));
+    pieces.push(Piece::of(k + 3, at, &w.bat_index[r], -1, Values::I32));
+    if let Some((iz, _, z)) = sweet {
+        let zc = &z[start[*iz]..start[*iz] + count[*iz]];
+        let res = block_sweet_spots(&fv, &count, *iz, zc);
+        let (rs, rcnt, rchunk) = (
+            without(&start, *iz),
+            without(&count, *iz),
+            without(chunk, *iz),
+        );
+        for (j, data) in res.iter().enumerate() {
+            let at = (&rs[..], &rcnt[..], &rchunk[..]);
+            pieces.push(Piece::of(k + 4 + j, at, data, f64::NAN, Values::F64));
+        }
+    }
+    pieces
+}
+
 /// The results file with everything that does not depend on the points' results: root
 /// attributes, groups, coordinates and dimension scales, every variable (empty), `/bat`. The
 /// store creates it on the writer thread while the workers compute, so that finishing a run
@@ -643,6 +748,12 @@ pub fn fill(
     let mut errors: Vec<(u64, u64, String)> = Vec::new();
     let blocks = BlockGrid::new(&shape, &chunk);
     let windows = plan_windows(&blocks, memory);
+    // the datasets a block writes to, in the order of [`block_pieces`]
+    let mut targets: Vec<&Dataset> = sk.floats.iter().collect();
+    targets.extend([&sk.recontact, &sk.status, &sk.point_id, &sk.bat_index]);
+    if let Some((_, vars, _)) = &sk.sweet {
+        targets.extend(vars.iter());
+    }
     // One window: read the journal directly. Several: route the records to one spill file
     // per window in a single pass, so that the journal is read once, not once per window.
     let spill = if windows.len() > 1 {
@@ -691,35 +802,13 @@ pub fn fill(
                 }
             }
         }
-        for b in b0..b1 {
-            let (start, count) = blocks.block(b);
-            let r = w.offsets[b - b0]..w.offsets[b - b0 + 1];
-            let fv: Vec<&[f64]> = w.floats.iter().map(|v| &v[r.clone()]).collect();
-            if let Some((iz, vars, z)) = &sk.sweet {
-                let zc = &z[start[*iz]..start[*iz] + count[*iz]];
-                let res = block_sweet_spots(&fv, &count, *iz, zc);
-                let (rs, rcnt) = (without(&start, *iz), without(&count, *iz));
-                for (ds, data) in vars.iter().zip(res) {
-                    write_block(ds, &rs, &rcnt, data, out)?;
-                }
-            }
-            for (ds, data) in sk.floats.iter().zip(&fv) {
-                write_block(ds, &start, &count, data.to_vec(), out)?;
-            }
-            let (rc, st) = (
-                w.recontact[r.clone()].to_vec(),
-                w.status[r.clone()].to_vec(),
-            );
-            write_block(&sk.recontact, &start, &count, rc, out)?;
-            write_block(&sk.status, &start, &count, st, out)?;
-            write_block(
-                &sk.point_id,
-                &start,
-                &count,
-                w.point_id[r.clone()].to_vec(),
-                out,
-            )?;
-            write_block(&sk.bat_index, &start, &count, w.bat_index[r].to_vec(), out)?;
+        // every block's chunks compressed on all cores, then written in block order
+        let pieces: Vec<Vec<Piece>> = (b0..b1)
+            .into_par_iter()
+            .map(|b| block_pieces(&w, b - b0, &blocks, &chunk, b, sk.sweet.as_ref()))
+            .collect();
+        for p in pieces.into_iter().flatten() {
+            p.write(&targets, out)?;
         }
     }
     drop(spill);

@@ -14,6 +14,7 @@
 //! [`sweet_spot`].
 
 pub mod build;
+pub mod chunks;
 pub mod dimscale;
 pub mod error;
 pub mod journal;

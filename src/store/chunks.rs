@@ -1,0 +1,142 @@
+//! Summary chunks compressed on every core and written whole (`H5Dwrite_chunk`): the bytes
+//! HDF5's shuffle + deflate filters would store, made in parallel instead of by the library
+//! one chunk at a time on the writer thread (issue 7: deflate was most of the time it took to
+//! finish a run, and that time is serial).
+
+use hdf5::Dataset;
+use hdf5_sys::h5::{herr_t, hsize_t};
+use hdf5_sys::h5i::hid_t;
+use std::ffi::c_void;
+use std::io::Write;
+
+extern "C" {
+    // libhdf5 ≥ 1.10.2; declared here so as not to depend on the -sys crate's version gates
+    fn H5Dwrite_chunk(
+        dset_id: hid_t,
+        dxpl_id: hid_t,
+        filters: u32,
+        offset: *const hsize_t,
+        data_size: usize,
+        buf: *const c_void,
+    ) -> herr_t;
+}
+
+/// A value stored in a summary chunk: its little-endian bytes (HDF5's native types here).
+pub trait ChunkValue: Copy + Send + Sync {
+    const SIZE: usize;
+    fn put_le(self, out: &mut Vec<u8>);
+}
+
+macro_rules! chunk_value {
+    ($($t:ty),*) => {$(
+        impl ChunkValue for $t {
+            const SIZE: usize = std::mem::size_of::<$t>();
+            fn put_le(self, out: &mut Vec<u8>) {
+                out.extend_from_slice(&self.to_le_bytes());
+            }
+        }
+    )*};
+}
+chunk_value!(f64, i8, i32, u64);
+
+/// A block's values (row-major over `count`) laid out as a whole chunk (row-major over
+/// `chunk`, `count ≤ chunk`): an edge block is padded with `fill`, as HDF5 stores it.
+fn padded<T: Copy>(values: &[T], count: &[usize], chunk: &[usize], fill: T) -> Vec<T> {
+    if count == chunk {
+        return values.to_vec();
+    }
+    let n: usize = chunk.iter().product();
+    let mut out = vec![fill; n];
+    let mut idx = vec![0usize; count.len()];
+    for &v in values {
+        let at = idx.iter().zip(chunk).fold(0, |a, (&i, &c)| a * c + i);
+        out[at] = v;
+        for k in (0..idx.len()).rev() {
+            idx[k] += 1;
+            if idx[k] < count[k] {
+                break;
+            }
+            idx[k] = 0;
+        }
+    }
+    out
+}
+
+/// HDF5's shuffle filter: byte `j` of element `i` goes to `j * n + i`.
+fn shuffle(bytes: &[u8], size: usize) -> Vec<u8> {
+    if size <= 1 {
+        return bytes.to_vec();
+    }
+    let n = bytes.len() / size;
+    let mut out = vec![0u8; bytes.len()];
+    for (i, e) in bytes.chunks_exact(size).enumerate() {
+        for (j, &b) in e.iter().enumerate() {
+            out[j * n + i] = b;
+        }
+    }
+    out
+}
+
+/// The bytes HDF5 stores for one chunk of a dataset created with shuffle then deflate(`level`).
+pub fn filtered<T: ChunkValue>(
+    values: &[T],
+    count: &[usize],
+    chunk: &[usize],
+    fill: T,
+    level: u8,
+) -> Vec<u8> {
+    let whole = padded(values, count, chunk, fill);
+    let mut raw = Vec::with_capacity(whole.len() * T::SIZE);
+    for v in whole {
+        v.put_le(&mut raw);
+    }
+    let shuffled = shuffle(&raw, T::SIZE);
+    let mut z = flate2::write::ZlibEncoder::new(
+        Vec::with_capacity(shuffled.len() / 4),
+        flate2::Compression::new(level.into()),
+    );
+    z.write_all(&shuffled)
+        .and_then(|_| z.finish())
+        .expect("compressing into memory cannot fail")
+}
+
+/// Write a chunk's filtered bytes at its (chunk-aligned) start.
+pub fn write_chunk(ds: &Dataset, start: &[usize], bytes: &[u8]) -> hdf5::Result<()> {
+    let offset: Vec<hsize_t> = start.iter().map(|&s| s as hsize_t).collect();
+    let r = hdf5::sync::sync(|| unsafe {
+        H5Dwrite_chunk(
+            ds.id(),
+            hdf5_sys::h5p::H5P_DEFAULT,
+            0,
+            offset.as_ptr(),
+            bytes.len(),
+            bytes.as_ptr().cast(),
+        )
+    });
+    if r < 0 {
+        return Err(hdf5::Error::from(
+            format!("H5Dwrite_chunk failed on {}", ds.name()).as_str(),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // HDF5's shuffle transposes bytes (H5Zshuffle.c): for two 2-byte elements AB CD the
+    // stored bytes are A C B D.
+    #[test]
+    fn shuffle_transposes_bytes() {
+        assert_eq!(shuffle(&[1, 2, 3, 4], 2), vec![1, 3, 2, 4]);
+        assert_eq!(shuffle(&[1, 2, 3], 1), vec![1, 2, 3]);
+    }
+
+    // An edge block keeps its values at their places in the whole chunk; the rest is fill.
+    #[test]
+    fn edge_block_is_padded_in_place() {
+        let v = padded(&[1, 2, 3, 4], &[2, 2], &[3, 3], 0);
+        assert_eq!(v, vec![1, 2, 0, 3, 4, 0, 0, 0, 0]);
+    }
+}
