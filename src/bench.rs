@@ -244,7 +244,7 @@ impl Sizes {
                 history_omegas: 40,
                 plan_points: [1000, 100, 100],
                 store_points: [1000, 100, 10],
-                write_repeats: 5,
+                write_repeats: 11,
             }
         }
     }
@@ -966,7 +966,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         &large_study,
         dir.path(),
         threads,
-        sz.write_repeats.div_ceil(2),
+        sz.write_repeats.div_ceil(2).min(5),
     )?;
     p(
         out,
