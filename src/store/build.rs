@@ -2,7 +2,7 @@
 //! Memory: a bounded window of summary values (see [`write_file`]), one history, and the
 //! failed points' messages.
 
-use super::chunks::{self, ChunkValue};
+use super::chunks;
 use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
 use super::error::{H5Ctx, StoreError};
 use super::journal::{decode_record, encode_record, RecordReader, Scan};
@@ -468,65 +468,102 @@ fn without<T: Copy>(v: &[T], skip: usize) -> Vec<T> {
         .collect()
 }
 
-/// Values of one block for a dataset that is not chunked (a scalar: a study without dims, or
-/// the sweet spot of a study over `impact_z` alone).
+/// One block's values for one dataset, with the dataset's fill value (which pads an edge
+/// chunk).
 enum Values {
-    F64(Vec<f64>),
-    I8(Vec<i8>),
-    I32(Vec<i32>),
-    U64(Vec<u64>),
+    F64(Vec<f64>, f64),
+    I8(Vec<i8>, i8),
+    I32(Vec<i32>, i32),
+    U64(Vec<u64>, u64),
 }
 
 /// One block's contribution to one dataset (`targets[target]` in [`fill`]).
 enum Piece {
+    /// Raw values at `start` with extent `count`, for a dataset of chunk shape `chunk` (empty:
+    /// not chunked, e.g. a scalar).
+    Block {
+        target: usize,
+        start: Vec<usize>,
+        count: Vec<usize>,
+        chunk: Vec<usize>,
+        values: Values,
+    },
     /// A whole chunk, filtered (see [`chunks::filtered`]), at its start.
     Chunk(usize, Vec<usize>, Vec<u8>),
-    /// A block of raw values at `start` with extent `count`.
-    Block(usize, Vec<usize>, Vec<usize>, Values),
 }
 
 impl Piece {
-    /// A block of `values` (row-major over `count`) for `target`, chunk shape `chunk` (empty:
-    /// not chunked).
-    fn of<T: ChunkValue>(
+    fn block(
         target: usize,
         (start, count, chunk): (&[usize], &[usize], &[usize]),
-        values: &[T],
-        fill: T,
-        wrap: fn(Vec<T>) -> Values,
+        values: Values,
     ) -> Piece {
-        if chunk.is_empty() {
-            Piece::Block(
-                target,
-                start.to_vec(),
-                count.to_vec(),
-                wrap(values.to_vec()),
-            )
-        } else {
-            let bytes = chunks::filtered(values, count, chunk, fill, l::DEFLATE_LEVEL);
-            Piece::Chunk(target, start.to_vec(), bytes)
+        Piece::Block {
+            target,
+            start: start.to_vec(),
+            count: count.to_vec(),
+            chunk: chunk.to_vec(),
+            values,
         }
+    }
+
+    /// The chunk's bytes as HDF5 stores them (a block of a dataset that is not chunked stays
+    /// as it is). Pure: runs on any thread.
+    fn compress(self) -> Piece {
+        let Piece::Block {
+            target,
+            start,
+            count,
+            chunk,
+            values,
+        } = self
+        else {
+            return self;
+        };
+        if chunk.is_empty() {
+            return Piece::Block {
+                target,
+                start,
+                count,
+                chunk,
+                values,
+            };
+        }
+        let level = l::DEFLATE_LEVEL;
+        let bytes = match &values {
+            Values::F64(v, f) => chunks::filtered(v, &count, &chunk, *f, level),
+            Values::I8(v, f) => chunks::filtered(v, &count, &chunk, *f, level),
+            Values::I32(v, f) => chunks::filtered(v, &count, &chunk, *f, level),
+            Values::U64(v, f) => chunks::filtered(v, &count, &chunk, *f, level),
+        };
+        Piece::Chunk(target, start, bytes)
     }
 
     fn write(self, targets: &[&Dataset], out: &Path) -> Result<(), StoreError> {
         match self {
             Piece::Chunk(t, start, bytes) => chunks::write_chunk(targets[t], &start, &bytes)
                 .ctx(out, &format!("write a chunk of {}", targets[t].name())),
-            Piece::Block(t, start, count, v) => {
-                let ds = targets[t];
-                match v {
-                    Values::F64(v) => write_block(ds, &start, &count, v, out),
-                    Values::I8(v) => write_block(ds, &start, &count, v, out),
-                    Values::I32(v) => write_block(ds, &start, &count, v, out),
-                    Values::U64(v) => write_block(ds, &start, &count, v, out),
+            Piece::Block {
+                target,
+                start,
+                count,
+                values,
+                ..
+            } => {
+                let ds = targets[target];
+                match values {
+                    Values::F64(v, _) => write_block(ds, &start, &count, v, out),
+                    Values::I8(v, _) => write_block(ds, &start, &count, v, out),
+                    Values::I32(v, _) => write_block(ds, &start, &count, v, out),
+                    Values::U64(v, _) => write_block(ds, &start, &count, v, out),
                 }
             }
         }
     }
 }
 
-/// Everything block `b` (the `q`-th of window `w`) writes: its summary variables and, with an
-/// `impact_z` dim, the sweet spots of its curves. Pure: runs on any thread.
+/// Everything block `b` (the `q`-th of window `w`) writes, uncompressed: its summary variables
+/// and, with an `impact_z` dim, the sweet spots of its curves. Pure: runs on any thread.
 fn block_pieces(
     w: &Window,
     q: usize,
@@ -541,20 +578,19 @@ fn block_pieces(
     let at = (&start[..], &count[..], chunk);
     let mut pieces = Vec::with_capacity(N_SUMMARY_FLOATS + 10);
     for (k, v) in fv.iter().enumerate() {
-        pieces.push(Piece::of(k, at, v, f64::NAN, Values::F64));
+        pieces.push(Piece::block(k, at, Values::F64(v.to_vec(), f64::NAN)));
     }
     let k = N_SUMMARY_FLOATS;
-    pieces.push(Piece::of(k, at, &w.recontact[r.clone()], -1, Values::I8));
-    let not_computed = l::STATUS_NOT_COMPUTED;
-    pieces.push(Piece::of(
-        k + 1,
-        at,
-        &w.status[r.clone()],
-        not_computed,
-        Values::I8,
-    ));
-    pieces.push(Piece::of(k + 2, at, &w.point_id[r.clone()], 0, Values::U64));
-    pieces.push(Piece::of(k + 3, at, &w.bat_index[r], -1, Values::I32));
+    let recontact = Values::I8(w.recontact[r.clone()].to_vec(), -1);
+    let status = Values::I8(w.status[r.clone()].to_vec(), l::STATUS_NOT_COMPUTED);
+    let point_id = Values::U64(w.point_id[r.clone()].to_vec(), 0);
+    let bat_index = Values::I32(w.bat_index[r].to_vec(), -1);
+    for (j, v) in [recontact, status, point_id, bat_index]
+        .into_iter()
+        .enumerate()
+    {
+        pieces.push(Piece::block(k + j, at, v));
+    }
     if let Some((iz, _, z)) = sweet {
         let zc = &z[start[*iz]..start[*iz] + count[*iz]];
         let res = block_sweet_spots(&fv, &count, *iz, zc);
@@ -563,9 +599,9 @@ fn block_pieces(
             without(&count, *iz),
             without(chunk, *iz),
         );
-        for (j, data) in res.iter().enumerate() {
+        for (j, data) in res.into_iter().enumerate() {
             let at = (&rs[..], &rcnt[..], &rchunk[..]);
-            pieces.push(Piece::of(k + 4 + j, at, data, f64::NAN, Values::F64));
+            pieces.push(Piece::block(k + 4 + j, at, Values::F64(data, f64::NAN)));
         }
     }
     pieces
@@ -803,11 +839,15 @@ pub fn fill(
             }
         }
         // every block's chunks compressed on all cores, then written in block order
-        let pieces: Vec<Vec<Piece>> = (b0..b1)
+        // a small study is one block: parallel over (block, variable), not blocks alone
+        let pieces: Vec<Piece> = (b0..b1)
             .into_par_iter()
-            .map(|b| block_pieces(&w, b - b0, &blocks, &chunk, b, sk.sweet.as_ref()))
+            .flat_map_iter(|b| block_pieces(&w, b - b0, &blocks, &chunk, b, sk.sweet.as_ref()))
+            .collect::<Vec<Piece>>()
+            .into_par_iter()
+            .map(Piece::compress)
             .collect();
-        for p in pieces.into_iter().flatten() {
+        for p in pieces {
             p.write(&targets, out)?;
         }
     }
