@@ -9,7 +9,7 @@ use super::journal::{decode_record, encode_record, RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
 use super::{RunMeta, Summary};
 use crate::model::metrics::BatMetrics;
-use crate::model::outcome::{HistoryPrecision, HistoryRequest};
+use crate::model::outcome::{History, HistoryPrecision, HistoryRequest, Outcome};
 use crate::model::sweet::find_sweet_spot;
 use crate::model::sweet_defs::vibration_sweet_spot;
 use crate::pointset::PointSet;
@@ -999,44 +999,73 @@ fn write_histories(
     scan: &Scan,
     out: &Path,
 ) -> Result<(), StoreError> {
-    let dims = &info.shape.dims;
-    // One sequential pass; every history is one whole chunk, so writing them in journal
-    // order keeps the chunk cache out of the way. The first record of a point wins, as in
-    // the summary.
+    let rank = info.shape.dims.len();
+    // One sequential pass. Every history is one whole chunk: batches of histories are
+    // shuffled and deflated on all cores and written whole, in journal order (issue 7: this
+    // was most of a history study's time). The first record of a point wins, as in the
+    // summary.
+    const BATCH: usize = 64;
     let mut written = PointSet::new(info.shape.n_points());
     let mut rr = RecordReader::open(journal, scan)?;
-    while let Some(rec) = rr.next_summary()? {
-        if rec.index >= written.len() || !written.insert(rec.index) || rec.result.is_err() {
-            continue;
+    let mut batch: Vec<(usize, History)> = Vec::with_capacity(BATCH);
+    loop {
+        let rec = rr.next_summary()?;
+        let end = rec.is_none();
+        if let Some(rec) = rec {
+            if rec.index < written.len() && written.insert(rec.index) && rec.result.is_ok() {
+                if let Ok(Outcome {
+                    history: Some(hist),
+                    ..
+                }) = rr.whole()?.result
+                {
+                    batch.push((rec.index, hist));
+                }
+            }
         }
-        let Ok(o) = rr.whole()?.result else { continue };
-        let Some(hist) = o.history else { continue };
-        let idx = info.shape.unravel(rec.index);
-        for (k, ds, s) in created {
-            let a = l::history_array(&hist, *k);
-            let tail = &s[dims.len()..];
-            if a.len() != tail.iter().product::<usize>() || a.is_empty() {
-                continue;
+        if batch.len() == BATCH || (end && !batch.is_empty()) {
+            let pieces: Vec<(usize, Vec<usize>, Vec<u8>)> = batch
+                .par_iter()
+                .flat_map_iter(|(index, hist)| {
+                    let idx = info.shape.unravel(*index);
+                    created
+                        .iter()
+                        .enumerate()
+                        .filter_map(move |(c, (k, _, shape))| {
+                            let a = l::history_array(hist, *k);
+                            let tail = &shape[rank..];
+                            if a.is_empty() || a.len() != tail.iter().product::<usize>() {
+                                return None;
+                            }
+                            let mut start = idx.clone();
+                            start.extend(std::iter::repeat_n(0, tail.len()));
+                            let mut chunk = vec![1; rank];
+                            chunk.extend_from_slice(tail);
+                            let level = l::HISTORY_DEFLATE_LEVEL;
+                            let bytes = match h.precision {
+                                HistoryPrecision::F64 => {
+                                    chunks::filtered(a, &chunk, &chunk, f64::NAN, level)
+                                }
+                                HistoryPrecision::F32 => {
+                                    let a: Vec<f32> = a.iter().map(|&x| x as f32).collect();
+                                    chunks::filtered(&a, &chunk, &chunk, f32::NAN, level)
+                                }
+                            };
+                            Some((c, start, bytes))
+                        })
+                        .collect::<Vec<_>>()
+                })
+                .collect();
+            for (c, start, bytes) in pieces {
+                let ds = &created[c].1;
+                chunks::write_chunk(ds, &start, &bytes)
+                    .ctx(out, &format!("write a history of {}", ds.name()))?;
             }
-            let mut start = idx.clone();
-            let mut count = vec![1; idx.len()];
-            for &n in tail {
-                start.push(0);
-                count.push(n);
-            }
-            match h.precision {
-                HistoryPrecision::F64 => write_block(ds, &start, &count, a.clone(), out)?,
-                HistoryPrecision::F32 => write_block(
-                    ds,
-                    &start,
-                    &count,
-                    a.iter().map(|&x| x as f32).collect(),
-                    out,
-                )?,
-            }
+            batch.clear();
+        }
+        if end {
+            return Ok(());
         }
     }
-    Ok(())
 }
 
 fn padded<T: Clone>(rows: &[Vec<T>], fill: T) -> (Vec<T>, usize) {

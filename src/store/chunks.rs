@@ -37,7 +37,7 @@ macro_rules! chunk_value {
         }
     )*};
 }
-chunk_value!(f64, i8, i32, u64);
+chunk_value!(f64, f32, i8, i32, u64);
 
 /// A block's values (row-major over `count`) laid out as a whole chunk (row-major over
 /// `chunk`, `count ≤ chunk`): an edge block is padded with `fill`, as HDF5 stores it.
