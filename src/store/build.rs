@@ -19,6 +19,7 @@ use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
 use ndarray::{ArrayD, IxDyn};
 use rayon::prelude::*;
+use std::borrow::Cow;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
@@ -468,17 +469,17 @@ fn without<T: Copy>(v: &[T], skip: usize) -> Vec<T> {
         .collect()
 }
 
-/// One block's values for one dataset, with the dataset's fill value (which pads an edge
-/// chunk).
-enum Values {
-    F64(Vec<f64>, f64),
-    I8(Vec<i8>, i8),
-    I32(Vec<i32>, i32),
-    U64(Vec<u64>, u64),
+/// One block's values for one dataset (borrowed from the window: no copy of the window is
+/// made), with the dataset's fill value (which pads an edge chunk).
+enum Values<'a> {
+    F64(Cow<'a, [f64]>, f64),
+    I8(&'a [i8], i8),
+    I32(&'a [i32], i32),
+    U64(&'a [u64], u64),
 }
 
 /// One block's contribution to one dataset (`targets[target]` in [`fill`]).
-enum Piece {
+enum Piece<'a> {
     /// Raw values at `start` with extent `count`, for a dataset of chunk shape `chunk` (empty:
     /// not chunked, e.g. a scalar).
     Block {
@@ -486,18 +487,18 @@ enum Piece {
         start: Vec<usize>,
         count: Vec<usize>,
         chunk: Vec<usize>,
-        values: Values,
+        values: Values<'a>,
     },
     /// A whole chunk, filtered (see [`chunks::filtered`]), at its start.
     Chunk(usize, Vec<usize>, Vec<u8>),
 }
 
-impl Piece {
+impl<'a> Piece<'a> {
     fn block(
         target: usize,
         (start, count, chunk): (&[usize], &[usize], &[usize]),
-        values: Values,
-    ) -> Piece {
+        values: Values<'a>,
+    ) -> Piece<'a> {
         Piece::Block {
             target,
             start: start.to_vec(),
@@ -509,7 +510,7 @@ impl Piece {
 
     /// The chunk's bytes as HDF5 stores them (a block of a dataset that is not chunked stays
     /// as it is). Pure: runs on any thread.
-    fn compress(self) -> Piece {
+    fn compress(self) -> Piece<'a> {
         let Piece::Block {
             target,
             start,
@@ -552,10 +553,10 @@ impl Piece {
             } => {
                 let ds = targets[target];
                 match values {
-                    Values::F64(v, _) => write_block(ds, &start, &count, v, out),
-                    Values::I8(v, _) => write_block(ds, &start, &count, v, out),
-                    Values::I32(v, _) => write_block(ds, &start, &count, v, out),
-                    Values::U64(v, _) => write_block(ds, &start, &count, v, out),
+                    Values::F64(v, _) => write_block(ds, &start, &count, v.into_owned(), out),
+                    Values::I8(v, _) => write_block(ds, &start, &count, v.to_vec(), out),
+                    Values::I32(v, _) => write_block(ds, &start, &count, v.to_vec(), out),
+                    Values::U64(v, _) => write_block(ds, &start, &count, v.to_vec(), out),
                 }
             }
         }
@@ -564,27 +565,27 @@ impl Piece {
 
 /// Everything block `b` (the `q`-th of window `w`) writes, uncompressed: its summary variables
 /// and, with an `impact_z` dim, the sweet spots of its curves. Pure: runs on any thread.
-fn block_pieces(
-    w: &Window,
+fn block_pieces<'a>(
+    w: &'a Window,
     q: usize,
     blocks: &BlockGrid,
     chunk: &[usize],
     b: usize,
     sweet: Option<&(usize, Vec<Dataset>, Vec<f64>)>,
-) -> Vec<Piece> {
+) -> Vec<Piece<'a>> {
     let (start, count) = blocks.block(b);
     let r = w.offsets[q]..w.offsets[q + 1];
-    let fv: Vec<&[f64]> = w.floats.iter().map(|v| &v[r.clone()]).collect();
+    let fv: Vec<&'a [f64]> = w.floats.iter().map(|v| &v[r.clone()]).collect();
     let at = (&start[..], &count[..], chunk);
     let mut pieces = Vec::with_capacity(N_SUMMARY_FLOATS + 10);
     for (k, v) in fv.iter().enumerate() {
-        pieces.push(Piece::block(k, at, Values::F64(v.to_vec(), f64::NAN)));
+        pieces.push(Piece::block(k, at, Values::F64(Cow::Borrowed(v), f64::NAN)));
     }
     let k = N_SUMMARY_FLOATS;
-    let recontact = Values::I8(w.recontact[r.clone()].to_vec(), -1);
-    let status = Values::I8(w.status[r.clone()].to_vec(), l::STATUS_NOT_COMPUTED);
-    let point_id = Values::U64(w.point_id[r.clone()].to_vec(), 0);
-    let bat_index = Values::I32(w.bat_index[r].to_vec(), -1);
+    let recontact = Values::I8(&w.recontact[r.clone()], -1);
+    let status = Values::I8(&w.status[r.clone()], l::STATUS_NOT_COMPUTED);
+    let point_id = Values::U64(&w.point_id[r.clone()], 0);
+    let bat_index = Values::I32(&w.bat_index[r], -1);
     for (j, v) in [recontact, status, point_id, bat_index]
         .into_iter()
         .enumerate()
@@ -601,7 +602,11 @@ fn block_pieces(
         );
         for (j, data) in res.into_iter().enumerate() {
             let at = (&rs[..], &rcnt[..], &rchunk[..]);
-            pieces.push(Piece::block(k + 4 + j, at, Values::F64(data, f64::NAN)));
+            pieces.push(Piece::block(
+                k + 4 + j,
+                at,
+                Values::F64(Cow::Owned(data), f64::NAN),
+            ));
         }
     }
     pieces
