@@ -234,9 +234,10 @@ class Results:
         unit = "" if unit in ("", "1") else " " + unit
         return f"{pretty} = {value:.4g}{unit}"
 
-    def label(self, curve: Curve, base: Curve | None = None) -> str:
+    def label(self, curve: Curve, base: Curve | None = None, always: tuple[str, ...] = ()) -> str:
         """The curve's ``case_label`` if it has one, else its parameters differing from
-        ``base`` (default: the base curve of its model)."""
+        ``base`` (default: the base curve of its model). Parameters in ``always`` are shown
+        even where they equal the base (e.g. ω = 0 among curves at several ω)."""
         if curve.label:
             return curve.label
         if base is None:
@@ -244,9 +245,13 @@ class Results:
                 base = self.base(curve.params[MODEL])
             except Skip:
                 base = None
-        if base is None or curve == base or not differing(curve, base):
-            return "base case"
-        return ", ".join(self.format_param(k, curve.params.get(k)) for k in differing(curve, base))
+        shown = [k for k in always if k in curve.params]
+        is_base = base is None or curve == base or not differing(curve, base)
+        names = shown + ([] if is_base else [k for k in differing(curve, base) if k not in shown])
+        text = ", ".join(self.format_param(k, curve.params.get(k)) for k in names)
+        if is_base:
+            return f"{text} (base case)" if text else "base case"
+        return text
 
     # --- curves
     def base(self, model: str | None = None) -> Curve:

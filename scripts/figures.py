@@ -79,7 +79,7 @@ def require(curves, what: str):
     return curves
 
 
-def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, twins=False):
+def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, twins=False, always=()):
     """One line per curve of ``value(res, curve)`` (default exit speed) vs impact position.
 
     ``base`` (if given and among the curves) is drawn black and solid, the others in colour
@@ -90,7 +90,7 @@ def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, t
     others = 0
     for i, c in enumerate(curves):
         y = value(res, c)
-        label = res.label(c, base)
+        label = res.label(c, base, always)
         if c == base and not twins:
             ax.plot(y[IMPACT], y, color="black", lw=2, label=label)
             continue
@@ -205,12 +205,12 @@ def _omega_curves(res, elastic=False):
 def fig06(res, path):
     curves = _omega_curves(res)
     curve_figure(res, path, "Fig. 6: exit speed vs impact position at several swing speeds ω",
-                 curves, twins=True)  # fmt: skip
+                 curves, twins=True, always=("swing_omega",))  # fmt: skip
 
 
 def _excess_figure(res, path, title, elastic):
     curves = _omega_curves(res, elastic)
-    curve_figure(res, path, title, curves, res.base(), value=excess_speed,
+    curve_figure(res, path, title, curves, res.base(), value=excess_speed, always=("swing_omega",),
                  ylabel="exit speed − approach speed (m/s)\napproach = v_ball − ω (z − z_cm)")  # fmt: skip
 
 
@@ -294,7 +294,7 @@ def _flex_histories(res):
 def fig14(res, path):
     found = _flex_histories(res)
     how = found[0][2].attrs["rigid_removal"]
-    fig, ax = new_axes(f"Fig. 14: displacement along the bat ({how}) — wood (solid) vs aluminum (dashed)",
+    fig, ax = new_axes(f"Fig. 14: displacement along the bat ({how})\nwood (solid) vs aluminum (dashed)",
                        "z (m from the knob)", "displacement − rigid motion (mm)", res)  # fmt: skip
     for (name, z_imp, flex), style in zip(found, ("-", "--")):
         for t, color in zip(SNAPSHOTS, COLORS):

@@ -94,6 +94,11 @@ def test_missing_data_is_skipped(tmp_path, capsys):
     with batplot.Results(path) as res:
         labels = [res.label(c) for c in res.curves]
     assert labels == ["base case", "ω = -20 rad/s", "ω = -40 rad/s"]
+    # in figures over ω the base curve says which ω it is (Figs. 6 and 7 once showed only
+    # "base case" beside "ω = -10 rad/s" ...)
+    with batplot.Results(path) as res:
+        labels = [res.label(c, always=("swing_omega",)) for c in res.curves]
+    assert labels == ["ω = 0 rad/s (base case)", "ω = -20 rad/s", "ω = -40 rad/s"]
 
 
 def _curve(i, **params):
