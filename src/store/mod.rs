@@ -112,8 +112,8 @@ pub struct StoreOptions {
     /// fsync the journal at least this often (protects against power loss).
     pub sync_interval: Duration,
     /// Bytes of summary values the final file's build holds at once (default 64 MiB, about
-    /// 380 000 points). A larger study is built in several passes over the journal, so the
-    /// store's memory does not grow with the study.
+    /// 380 000 points). A larger study is built window by window (its journal first split
+    /// into one spill file per window), so the store's memory does not grow with the study.
     pub build_memory: usize,
 }
 
