@@ -175,7 +175,7 @@ pub struct MemoryBench {
     pub channel_capacity: usize,
     /// Summary-only studies through the driver and the real store (rigid model), full size and
     /// four times that: the store keeps one bit per point, and the final file's build holds
-    /// at most `build_memory` bytes of summary values (more points → more passes, not more
+    /// at most `build_memory` bytes of summary values (more points → more windows, not more
     /// memory).
     pub build_memory: usize,
     pub store_small_points: usize,

@@ -1,6 +1,7 @@
 //! Writing the final HDF5 file from a journal (the only place that writes results to HDF5).
-//! Memory: a bounded window of summary values (see [`write_file`]), one history, and the
-//! failed points' messages.
+//! [`create_skeleton`] while the run computes, then [`fill`] from the journal. Memory: a
+//! bounded window of summary values (see [`fill`]), one history, and the failed points'
+//! messages.
 
 use super::chunks;
 use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
@@ -631,20 +632,6 @@ pub struct Skeleton {
     history: Vec<(usize, Dataset, Vec<usize>)>,
 }
 
-/// Write the complete results file `out` from the scanned journal: [`create_skeleton`], then
-/// [`fill`].
-pub fn write_file(
-    journal: &Path,
-    scan: &Scan,
-    info: &StudyInfo,
-    meta: &RunMeta,
-    out: &Path,
-    memory: usize,
-) -> Result<Summary, StoreError> {
-    let sk = create_skeleton(info, meta, out)?;
-    fill(sk, journal, scan, info, &meta.created, memory)
-}
-
 /// Create `out` with everything but the results (see [`Skeleton`]).
 pub fn create_skeleton(
     info: &StudyInfo,
@@ -770,9 +757,9 @@ pub fn create_skeleton(
 }
 
 /// Fill a skeleton with the journal's records, write the counts and `created`, and close
-/// the file. Memory: `memory` bytes of summary values at most (a study larger than that takes
-/// several sequential passes over the journal), one history, the failed points' messages;
-/// nothing else grows with the study.
+/// the file. Memory: `memory` bytes of summary values at most (a study larger than that is
+/// built window by window, its journal first split into one spill file per window), one
+/// history, the failed points' messages; nothing else grows with the study.
 pub fn fill(
     sk: Skeleton,
     journal: &Path,

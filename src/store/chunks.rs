@@ -6,6 +6,7 @@
 use hdf5::Dataset;
 use hdf5_sys::h5::{herr_t, hsize_t};
 use hdf5_sys::h5i::hid_t;
+use std::borrow::Cow;
 use std::ffi::c_void;
 use std::io::Write;
 
@@ -41,9 +42,9 @@ chunk_value!(f64, f32, i8, i32, u64);
 
 /// A block's values (row-major over `count`) laid out as a whole chunk (row-major over
 /// `chunk`, `count ≤ chunk`): an edge block is padded with `fill`, as HDF5 stores it.
-fn padded<T: Copy>(values: &[T], count: &[usize], chunk: &[usize], fill: T) -> Vec<T> {
+fn padded<'a, T: Copy>(values: &'a [T], count: &[usize], chunk: &[usize], fill: T) -> Cow<'a, [T]> {
     if count == chunk {
-        return values.to_vec();
+        return Cow::Borrowed(values);
     }
     let n: usize = chunk.iter().product();
     let mut out = vec![fill; n];
@@ -59,7 +60,7 @@ fn padded<T: Copy>(values: &[T], count: &[usize], chunk: &[usize], fill: T) -> V
             idx[k] = 0;
         }
     }
-    out
+    Cow::Owned(out)
 }
 
 /// HDF5's shuffle filter: byte `j` of element `i` goes to `j * n + i`.
@@ -87,7 +88,7 @@ pub fn filtered<T: ChunkValue>(
 ) -> Vec<u8> {
     let whole = padded(values, count, chunk, fill);
     let mut raw = Vec::with_capacity(whole.len() * T::SIZE);
-    for v in whole {
+    for &v in whole.iter() {
         v.put_le(&mut raw);
     }
     let shuffled = shuffle(&raw, T::SIZE);
@@ -137,6 +138,6 @@ mod tests {
     #[test]
     fn edge_block_is_padded_in_place() {
         let v = padded(&[1, 2, 3, 4], &[2, 2], &[3, 3], 0);
-        assert_eq!(v, vec![1, 2, 0, 3, 4, 0, 0, 0, 0]);
+        assert_eq!(&*v, &[1, 2, 0, 3, 4, 0, 0, 0, 0]);
     }
 }
