@@ -532,7 +532,7 @@ impl<K: Sink> Sink for TimedSink<K> {
 }
 
 /// A wave-model study: the 45-point curve × `omegas` swing speeds, optional history block.
-fn curve_study_text(name: &str, omegas: usize, history: &str) -> String {
+pub fn curve_study_text(name: &str, omegas: usize, history: &str) -> String {
     let omega = if omegas <= 1 {
         "[0]".to_string()
     } else {
@@ -544,7 +544,7 @@ fn curve_study_text(name: &str, omegas: usize, history: &str) -> String {
     )
 }
 
-fn load_study(text: &str, name: &str) -> Result<Study, String> {
+pub fn load_study(text: &str, name: &str) -> Result<Study, String> {
     study::load_str(
         text,
         Path::new(&format!("{name}.yaml")),
@@ -662,7 +662,7 @@ fn bench_write(
 
 /// `repeats` store runs, each right after a null-sink run of the same plan: the store run of
 /// median wall time, with the medians of the null walls and of the overheads.
-fn bench_write_vs_null(
+pub fn bench_write_vs_null(
     case: &str,
     study: &Study,
     dir: &Path,

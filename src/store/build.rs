@@ -1103,9 +1103,7 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
             .shape(shape.clone())
             .create(def.name)
             .ctx(out, &e(def.name))?;
-        if !data.is_empty() {
-            ds.write_raw(&data).ctx(out, &e(def.name))?;
-        }
+        h5u::write_small(&ds, &data).ctx(out, &e(def.name))?;
         describe(&ds, def).ctx(out, &e(def.name))?;
         attach_scales(&ds, sc).ctx(out, &e(def.name))
     };

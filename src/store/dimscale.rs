@@ -99,10 +99,39 @@ pub fn create_var_level<T: H5Type + Into<hdf5::types::OwnedDynValue>>(
 /// A 1-D dataset with data (small coordinate/bat variables; contiguous).
 pub fn write_1d<T: H5Type>(g: &Group, name: &str, data: &[T]) -> hdf5::Result<Dataset> {
     let ds = g.new_dataset::<T>().shape(data.len()).create(name)?;
-    if !data.is_empty() {
-        ds.write_raw(data)?;
-    }
+    write_small(&ds, data)?;
     Ok(ds)
+}
+
+/// Write all of a small dataset. HDF5's default transfer allocates and zeroes two 1 MiB
+/// conversion buffers per write when the types need converting (strings do); sizing them to
+/// the data keeps a small write small.
+pub fn write_small<T: H5Type>(ds: &Dataset, data: &[T]) -> hdf5::Result<()> {
+    use hdf5_sys::h5d::H5Dwrite;
+    use hdf5_sys::h5p::{H5Pclose, H5Pcreate, H5Pset_buffer, H5P_CLS_DATASET_XFER};
+    use hdf5_sys::h5s::H5S_ALL;
+    if data.is_empty() {
+        return Ok(());
+    }
+    let mem = hdf5::Datatype::from_type::<T>()?;
+    // at least one element of any type; the library needs room for one converted element
+    let size = (std::mem::size_of_val(data) * 4).max(4096);
+    let r = hdf5::sync::sync(|| unsafe {
+        let dxpl = H5Pcreate(*H5P_CLS_DATASET_XFER);
+        if dxpl < 0 {
+            return -1;
+        }
+        let mut r = H5Pset_buffer(dxpl, size, std::ptr::null_mut(), std::ptr::null_mut());
+        if r >= 0 {
+            r = H5Dwrite(ds.id(), mem.id(), H5S_ALL, H5S_ALL, dxpl, data.as_ptr().cast());
+        }
+        H5Pclose(dxpl);
+        r
+    });
+    if r < 0 {
+        return Err(fail(format!("H5Dwrite failed on {}", ds.name())));
+    }
+    Ok(())
 }
 
 /// Create a dimension-scale coordinate variable of numbers or labels.
