@@ -705,3 +705,74 @@ fn multi_pass_build_equals_single_pass_and_reads_back_in_slabs() {
     left.sort();
     assert_eq!(left, ["one_pass.h5", "per_block.h5"]);
 }
+
+/// Guards the finish without a second scan (issue 7): what the writer says it wrote is what
+/// a scan of the file finds, for a new journal and for one resumed after a torn tail.
+#[test]
+fn journal_writer_extent_equals_a_scan() {
+    use store::journal::{scan, JournalHeader, JournalWriter};
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F64);
+    let header = JournalHeader::of(&info);
+    let path = dir.path().join("o.h5.journal");
+    let check = |w: &JournalWriter| {
+        let mine = w.extent(header.clone());
+        let found = scan(&path, |_| {}).unwrap();
+        assert_eq!(mine.header, found.header);
+        assert_eq!(mine.header_len, found.header_len);
+        assert_eq!(mine.valid_len, found.valid_len);
+        assert_eq!(found.dropped_bytes, 0);
+    };
+    let mut w = JournalWriter::create(&path, &header).unwrap();
+    w.flush().unwrap();
+    check(&w);
+    // ok points with histories, a failed point with its message (index 3 fails in `outcome`)
+    for k in 0..9 {
+        w.append(&record(&info, k));
+    }
+    w.flush().unwrap();
+    check(&w);
+    drop(w);
+    let len = std::fs::metadata(&path).unwrap().len();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&path)
+        .unwrap()
+        .set_len(len - 5)
+        .unwrap();
+    let torn = scan(&path, |_| {}).unwrap();
+    assert!(torn.dropped_bytes > 0);
+    let mut w = JournalWriter::append_to(&path, &torn).unwrap();
+    for k in 9..14 {
+        w.append(&record(&info, k));
+    }
+    w.flush().unwrap();
+    check(&w);
+}
+
+/// Finishing reads every record against its checksum: a journal changed under a running
+/// session makes `finish` fail loudly instead of storing the changed values.
+#[test]
+fn finish_refuses_a_journal_changed_after_it_was_written() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    for history in [false, true] {
+        let info = study(history, HistoryPrecision::F64);
+        let path = dir.path().join(format!("o{history}.h5"));
+        let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+        for k in 0..5 {
+            s.write(record(&info, k)).unwrap();
+        }
+        s.flush().unwrap();
+        // flip one byte near the end of the journal: inside the last record's payload (its
+        // history when there is one)
+        let j = store::journal_path(&path);
+        let mut bytes = std::fs::read(&j).unwrap();
+        let at = bytes.len() - 3;
+        bytes[at] ^= 0x55;
+        std::fs::write(&j, &bytes).unwrap();
+        let e = s.finish().unwrap_err().to_string();
+        assert!(e.contains("checksum") || e.contains("changed"), "{e}");
+        assert!(!path.exists(), "no final file from a changed journal");
+    }
+}

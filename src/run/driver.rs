@@ -338,7 +338,8 @@ pub fn run_plan<S: Simulator, K: Sink>(
     pb.finish_and_clear();
     let mut sink = sink.into_inner().unwrap_or_else(|p| p.into_inner());
     let (ok, failed, failures) = written.map_err(RunError::Sink)?;
-    sink.finish().map_err(RunError::Sink)?;
+    // in the run's pool: the final file's parallel parts (deflate) start on warm threads
+    pool.install(|| sink.finish()).map_err(RunError::Sink)?;
     let report = RunReport {
         total,
         skipped: skipped.into_inner(),

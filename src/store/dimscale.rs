@@ -123,7 +123,14 @@ pub fn write_small<T: H5Type>(ds: &Dataset, data: &[T]) -> hdf5::Result<()> {
         }
         let mut r = H5Pset_buffer(dxpl, size, std::ptr::null_mut(), std::ptr::null_mut());
         if r >= 0 {
-            r = H5Dwrite(ds.id(), mem.id(), H5S_ALL, H5S_ALL, dxpl, data.as_ptr().cast());
+            r = H5Dwrite(
+                ds.id(),
+                mem.id(),
+                H5S_ALL,
+                H5S_ALL,
+                dxpl,
+                data.as_ptr().cast(),
+            );
         }
         H5Pclose(dxpl);
         r

@@ -391,6 +391,13 @@ impl RecordReader {
         if self.payload.get(20) == Some(&0) {
             self.extend(len as usize - self.payload.len())?;
         }
+        // a record read whole (every record of a summary-only study) is checked here; one
+        // with a history is checked when [`Self::whole`] reads the rest
+        if self.payload.len() as u64 == len && fnv1a(&self.payload) != sum {
+            return Err(self.bad(format!(
+                "record at byte {at} fails its checksum: the journal changed after it was written"
+            )));
+        }
         decode_record(&self.payload, true)
             .map(Some)
             .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))
@@ -428,6 +435,10 @@ pub struct JournalWriter {
     path: PathBuf,
     buf: Vec<u8>,
     payload: Vec<u8>,
+    /// Byte length of the header (records start here).
+    header_len: u64,
+    /// Bytes written and buffered: header and whole records only.
+    len: u64,
 }
 
 impl JournalWriter {
@@ -453,12 +464,15 @@ impl JournalWriter {
             path: path.to_path_buf(),
             buf: Vec::with_capacity(1 << 20),
             payload: Vec::new(),
+            header_len: b.len() as u64,
+            len: b.len() as u64,
         })
     }
 
     /// Open an existing, scanned journal for appending after its valid part (a torn tail is
     /// cut off first).
-    pub fn append_to(path: &Path, valid_len: u64) -> Result<Self, StoreError> {
+    pub fn append_to(path: &Path, scan: &Scan) -> Result<Self, StoreError> {
+        let valid_len = scan.valid_len;
         let mut file = std::fs::OpenOptions::new()
             .write(true)
             .open(path)
@@ -472,7 +486,21 @@ impl JournalWriter {
             path: path.to_path_buf(),
             buf: Vec::with_capacity(1 << 20),
             payload: Vec::new(),
+            header_len: scan.header_len,
+            len: valid_len,
         })
+    }
+
+    /// What a scan of this journal would find once it is flushed: the header it was created
+    /// (or scanned) with and every record appended. The writer knows its own extent, so
+    /// finishing a run need not read the journal twice (issue 7).
+    pub fn extent(&self, header: JournalHeader) -> Scan {
+        Scan {
+            header,
+            header_len: self.header_len,
+            valid_len: self.len,
+            dropped_bytes: 0,
+        }
     }
 
     /// Buffer one record.
@@ -485,6 +513,7 @@ impl JournalWriter {
         self.buf
             .extend_from_slice(&fnv1a(&self.payload).to_le_bytes());
         self.buf.extend_from_slice(&self.payload);
+        self.len += (REC_PREFIX + self.payload.len()) as u64;
     }
 
     pub fn buffered_bytes(&self) -> usize {

@@ -251,7 +251,7 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
         }
         s.resumed = s.done.count();
         s.dropped_bytes = scan.dropped_bytes;
-        s.journal = Some(JournalWriter::append_to(&jpath, scan.valid_len)?);
+        s.journal = Some(JournalWriter::append_to(&jpath, &scan)?);
         return Ok(s);
     }
     if opts.resume && out_exists {
@@ -541,17 +541,15 @@ impl Session {
         // To the OS, not fsync'd: the journal is removed only after the finished file is
         // fsync'd and renamed into place, and a power loss before that loses at most what an
         // unfinished run would (issue 7: one fsync less on every run's critical path).
-        if let Some(mut j) = self.journal.take() {
-            j.flush()?;
-        }
+        let Some(mut j) = self.journal.take() else {
+            return Err(self.reject("the session is already finished".into()));
+        };
+        j.flush()?;
+        // the writer's own extent, not a second scan: every record is checked against its
+        // checksum as the build reads it
+        let scan = j.extent(JournalHeader::of(&self.info));
+        drop(j);
         self.done = PointSet::default();
-        let scan = journal::scan(&self.journal_path, |_| {})?;
-        if let Some(e) = scan
-            .header
-            .mismatch(&JournalHeader::of(&self.info), &self.journal_path)
-        {
-            return Err(e);
-        }
         let partial = partial_path(&self.path);
         self.prepare_final_file()?;
         let skeleton = self.skeleton.take().expect("prepared above");
