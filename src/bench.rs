@@ -670,10 +670,15 @@ pub fn bench_write_vs_null(
     repeats: usize,
 ) -> Result<WriteShare, String> {
     let pool = run::build_pool(threads).map_err(err("pool"))?;
-    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
     let (mut runs, mut nulls, mut overheads) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..repeats.max(1) {
-        let (null, _) = run_null(study, &bats, &pool)?;
+        // from the bats' preparation on, as in `batstudy run`: the store begins its file
+        // while the bats are prepared
+        let t0 = Instant::now();
+        let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
+        let (run, _) = run_null(study, &bats, &pool)?;
+        let null = t0.elapsed().as_secs_f64();
+        std::hint::black_box(run);
         let w = bench_write_to(case, &format!("{case}-{k}"), study, dir, threads)?;
         overheads.push((w.wall_seconds - null) / w.wall_seconds);
         nulls.push(null);
@@ -695,14 +700,18 @@ fn bench_write_to(
     threads: usize,
 ) -> Result<WriteShare, String> {
     let pool = run::build_pool(threads).map_err(err("pool"))?;
-    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
-    let history = study.history_request(bats.max_length());
-    let info = study.info(bats.variants.clone(), history.clone());
     let out: PathBuf = dir.join(format!("{file}.h5"));
     let rss_before = reset_peak();
     let c0 = process_cpu_seconds();
+    // from the bats' preparation on, as in `batstudy run` (`cli::run_with`)
     let t0 = Instant::now();
-    let session = store::open(&out, &info, &store::StoreOptions::default())
+    let (bats, begun) = run::prepare_bats_alongside(&ModelSimulator, &study.plan, &pool, || {
+        store::begin(&out, &study.plan.shape)
+    });
+    let history = study.history_request(bats.max_length());
+    let info = study.info(bats.variants.clone(), history.clone());
+    let session = begun
+        .and_then(|b| store::open_begun(&out, &info, &store::StoreOptions::default(), Some(b)))
         .map_err(err("open the results file"))?;
     let sink = TimedSink::new(StoreSink::new(session));
     let stop = AtomicBool::new(false);

@@ -508,16 +508,20 @@ fn cmd_run(a: &RunArgs) -> i32 {
         },
         ..Default::default()
     };
+    let output = &settings.output;
+    let shape = &settings.study.plan.shape;
     run_with(
         &settings,
         &ModelSimulator,
-        |path, info, existing| {
+        || store::begin(output, shape),
+        |path, info, existing, begun| {
             let mut o = store_options(existing);
             o.run_meta.shard_range = settings.options.shard.map(|sh| {
                 let r = run::shard_range(&settings.study.plan, info.history.as_ref(), sh);
                 (r.start, r.end)
             });
-            store::open(path, info, &o)
+            begun
+                .and_then(|b| store::open_begun(path, info, &o, Some(b)))
                 .map(StoreSink::new)
                 .map_err(|e| e.to_string())
         },
@@ -525,13 +529,22 @@ fn cmd_run(a: &RunArgs) -> i32 {
     )
 }
 
-/// The run itself, against any simulator and sink (`open` creates the sink for the
-/// output path once the bats are prepared). Prints the summary; returns the exit code.
-pub fn run_with<S, K, F>(settings: &RunSettings, sim: &S, open: F, stop: &AtomicBool) -> i32
+/// The run itself, against any simulator and sink. `begin` runs while the bats are
+/// prepared (the store begins its file there); `open` then creates the sink for the output
+/// path with what `begin` made. Prints the summary; returns the exit code.
+pub fn run_with<S, K, E, B, F>(
+    settings: &RunSettings,
+    sim: &S,
+    begin: B,
+    open: F,
+    stop: &AtomicBool,
+) -> i32
 where
     S: Simulator,
     K: Sink,
-    F: FnOnce(&Path, &StudyInfo, Existing) -> Result<K, String>,
+    E: Send,
+    B: FnOnce() -> E + Send,
+    F: FnOnce(&Path, &StudyInfo, Existing, E) -> Result<K, String>,
 {
     let plan = &settings.study.plan;
     let pool = match run::build_pool(settings.options.jobs) {
@@ -541,9 +554,6 @@ where
             return EXIT_RUN_FAILED;
         }
     };
-    let bats = run::prepare_bats(sim, plan, &pool);
-    let history = settings.study.history_request(bats.max_length());
-    let info = settings.study.info(bats.variants.clone(), history.clone());
     if let Some(dir) = settings
         .output
         .parent()
@@ -554,7 +564,10 @@ where
             return EXIT_RUN_FAILED;
         }
     }
-    let sink = match open(&settings.output, &info, settings.existing) {
+    let (bats, begun) = run::prepare_bats_alongside(sim, plan, &pool, begin);
+    let history = settings.study.history_request(bats.max_length());
+    let info = settings.study.info(bats.variants.clone(), history.clone());
+    let sink = match open(&settings.output, &info, settings.existing, begun) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("error: {}: {e}", settings.output.display());

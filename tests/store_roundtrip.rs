@@ -776,3 +776,70 @@ fn finish_refuses_a_journal_changed_after_it_was_written() {
         assert!(!path.exists(), "no final file from a changed journal");
     }
 }
+
+/// Guards the file begun before the bats are known (issue 7): begun from the shape, then
+/// taken over by the session, it holds exactly what a file made in one go holds; unused or
+/// refused, it leaves nothing behind.
+#[test]
+fn begun_file_equals_one_made_in_one_go() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    for history in [false, true] {
+        let info = study(history, HistoryPrecision::F32);
+        let clean = dir.path().join(format!("clean{history}.h5"));
+        full_run(&info, &clean);
+        let path = dir.path().join(format!("begun{history}.h5"));
+        let begun = store::begin(&path, &info.shape).unwrap();
+        assert!(store::partial_path(&path).exists());
+        let mut s = store::open_begun(&path, &info, &opts(false, false), Some(begun)).unwrap();
+        let n = info.shape.n_points();
+        for k in 0..n {
+            s.write(record(&info, (k * 11 + 5) % n)).unwrap();
+        }
+        s.finish().unwrap();
+        assert_eq!(dump(&path), dump(&clean));
+        assert!(!store::partial_path(&path).exists());
+        let a = hdf5::File::open(&clean).unwrap();
+        let b = hdf5::File::open(&path).unwrap();
+        let names = |f: &hdf5::File| {
+            let mut v: Vec<String> = f.attr_names().unwrap();
+            for g in f.member_names().unwrap() {
+                for m in f.group(&g).unwrap().member_names().unwrap() {
+                    v.push(format!("{g}/{m}"));
+                }
+            }
+            v.sort();
+            v
+        };
+        assert_eq!(names(&a), names(&b));
+    }
+
+    let info = study(false, HistoryPrecision::F64);
+    // dropped unused: no partial file left
+    let path = dir.path().join("unused.h5");
+    drop(store::begin(&path, &info.shape).unwrap());
+    assert!(!store::partial_path(&path).exists());
+    // begun for another output: refused, and both partial files gone
+    let other = dir.path().join("other.h5");
+    let begun = store::begin(&other, &info.shape).unwrap();
+    assert!(store::open_begun(&path, &info, &opts(false, false), Some(begun)).is_err());
+    assert!(!store::partial_path(&other).exists());
+    assert!(!store::partial_path(&path).exists());
+    // begun for another shape: the first record fails, the file goes with the session
+    let mut smaller = info.clone();
+    smaller.shape.dims.truncate(1);
+    let begun = store::begin(&path, &smaller.shape).unwrap();
+    let mut s = store::open_begun(&path, &info, &opts(false, false), Some(begun)).unwrap();
+    let e = s.write(record(&info, 0)).unwrap_err().to_string();
+    assert!(e.contains("another study shape"), "{e}");
+    drop(s);
+    assert!(!store::partial_path(&path).exists());
+    // an existing output without --force: refused, the begun file removed
+    std::fs::write(&path, b"x").unwrap();
+    let begun = store::begin(&path, &info.shape).unwrap();
+    assert!(matches!(
+        store::open_begun(&path, &info, &opts(false, false), Some(begun)),
+        Err(StoreError::Exists { .. })
+    ));
+    assert!(!store::partial_path(&path).exists());
+}

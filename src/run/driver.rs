@@ -158,6 +158,23 @@ pub fn prepare_bats<S: Simulator>(
     PreparedBats { variants, handles }
 }
 
+/// [`prepare_bats`] with `side` run on a thread of its own meanwhile, for work that does not
+/// need the bats: a study with fewer bats than cores leaves cores idle while they are
+/// prepared (issue 7: the store begins the results file there).
+pub fn prepare_bats_alongside<S: Simulator, T: Send>(
+    sim: &S,
+    plan: &Plan,
+    pool: &rayon::ThreadPool,
+    side: impl FnOnce() -> T + Send,
+) -> (PreparedBats<S::Bat>, T) {
+    std::thread::scope(|scope| {
+        let side = scope.spawn(side);
+        let bats = prepare_bats(sim, plan, pool);
+        let t = side.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
+        (bats, t)
+    })
+}
+
 /// Non-finite summary numbers make a point fail.
 pub fn check_finite(o: &Outcome) -> Result<(), String> {
     check_finite_for(o, ModelKind::Wave)

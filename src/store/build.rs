@@ -15,7 +15,7 @@ use crate::model::sweet::find_sweet_spot;
 use crate::model::sweet_defs::vibration_sweet_spot;
 use crate::pointset::PointSet;
 use crate::results::PointRecord;
-use crate::results::{CoordValues, Dim, StudyInfo};
+use crate::results::{CoordValues, Dim, ResultShape, StudyInfo};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group};
 use ndarray::{ArrayD, IxDyn};
@@ -615,11 +615,16 @@ fn block_pieces<'a>(
 
 /// The results file with everything that does not depend on the points' results: root
 /// attributes, groups, coordinates and dimension scales, every variable (empty), `/bat`. The
-/// store creates it on the writer thread while the workers compute, so that finishing a run
-/// only fills in the data (issue 7: most of a small study's HDF5 time was this fixed part).
+/// store creates it in two steps off the critical path, so that finishing a run only fills
+/// in the data (issue 7: most of a small study's HDF5 time was this fixed part): the
+/// shape's part ([`begin_skeleton`]) while the bats are prepared, the rest
+/// ([`complete_skeleton`]) on the writer thread while the workers compute.
 pub struct Skeleton {
     f: hdf5::File,
     out: PathBuf,
+    /// The shape it was begun for, and whether [`complete_skeleton`] has run.
+    shape: ResultShape,
+    complete: bool,
     floats: Vec<Dataset>,
     recontact: Dataset,
     status: Dataset,
@@ -627,7 +632,7 @@ pub struct Skeleton {
     bat_index: Dataset,
     /// `impact_z`'s position among the dims, the sweet-spot variables and the z values.
     sweet: Option<(usize, Vec<Dataset>, Vec<f64>)>,
-    errors: Group,
+    errors: Errors,
     /// Stored history variables: index into [`l::HISTORY_VARS`], dataset, full shape.
     history: Vec<(usize, Dataset, Vec<usize>)>,
 }
@@ -638,10 +643,19 @@ pub fn create_skeleton(
     meta: &RunMeta,
     out: &Path,
 ) -> Result<Skeleton, StoreError> {
-    let f = hdf5::File::create(out).ctx(out, "create the results file")?;
-    root_attrs(&f, info, meta, out)?;
+    let mut sk = begin_skeleton(&info.shape, out)?;
+    complete_skeleton(&mut sk, info, meta)?;
+    Ok(sk)
+}
 
-    let dims = &info.shape.dims;
+/// The part of the skeleton that depends on the study's shape alone: `/summary`,
+/// `/sweet_spot` and `/errors`, with their coordinates and empty variables. It can be made
+/// before the bats are prepared (issue 7: while a one-bat study prepares its bat, a core is
+/// idle); [`complete_skeleton`] adds the rest.
+pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton, StoreError> {
+    let f = hdf5::File::create(out).ctx(out, "create the results file")?;
+
+    let dims = &study_shape.dims;
     let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let chunk = summary_chunk(dims);
 
@@ -732,19 +746,12 @@ pub fn create_skeleton(
         None => None,
     };
 
-    let errors = f
-        .create_group(l::GROUP_ERRORS)
-        .ctx(out, "create group errors")?;
-    let history = match &info.history {
-        Some(h) => create_history(&f, h, info, out)?,
-        None => Vec::new(),
-    };
-    write_bats(&f, info, out)?;
-    // hand the metadata to the OS now, not on the critical path at the end
-    f.flush().ctx(out, "flush the results file")?;
+    let errors = create_errors(&f, out)?;
     Ok(Skeleton {
         f,
         out: out.to_path_buf(),
+        shape: study_shape.clone(),
+        complete: false,
         floats,
         recontact,
         status,
@@ -752,8 +759,86 @@ pub fn create_skeleton(
         bat_index,
         sweet,
         errors,
-        history,
+        history: Vec::new(),
     })
+}
+
+/// `/errors`: the failed points, one row each, along a growable dim.
+struct Errors {
+    index: Dataset,
+    flat_index: Dataset,
+    point_id: Dataset,
+    message: Dataset,
+}
+
+/// `/errors` with no rows: most runs have no failed points, and then finishing the file
+/// writes nothing here.
+fn create_errors(f: &hdf5::File, out: &Path) -> Result<Errors, StoreError> {
+    let g = f
+        .create_group(l::GROUP_ERRORS)
+        .ctx(out, "create group errors")?;
+    let e = |r: hdf5::Result<Dataset>| r.ctx(out, "create the errors");
+    let edef = VarDef {
+        name: l::ERR_DIM,
+        units: "1",
+        long_name: "failed point number",
+    };
+    let index = e(h5u::create_growable::<i64>(&g, l::ERR_DIM))?;
+    h5u::set_scale(&index, l::ERR_DIM).ctx(out, "create the errors")?;
+    describe(&index, &edef).ctx(out, "create the errors")?;
+    let column = |def: &VarDef, ds: hdf5::Result<Dataset>| -> Result<Dataset, StoreError> {
+        let ds = e(ds)?;
+        describe(&ds, def).ctx(out, "create the errors")?;
+        attach_scales(&ds, &[&index]).ctx(out, "create the errors")?;
+        Ok(ds)
+    };
+    let flat_index = column(
+        &l::ERR_FLAT_INDEX,
+        h5u::create_growable::<u64>(&g, l::ERR_FLAT_INDEX.name),
+    )?;
+    let point_id = column(
+        &l::ERR_POINT_ID,
+        h5u::create_growable::<u64>(&g, l::ERR_POINT_ID.name),
+    )?;
+    let message = column(
+        &l::ERR_MESSAGE,
+        h5u::create_growable::<VarLenUnicode>(&g, l::ERR_MESSAGE.name),
+    )?;
+    Ok(Errors {
+        index,
+        flat_index,
+        point_id,
+        message,
+    })
+}
+
+/// Add what depends on the bats and the run to a begun skeleton: the root attributes,
+/// `/history` and `/bat`; then hand the metadata to the OS.
+pub fn complete_skeleton(
+    sk: &mut Skeleton,
+    info: &StudyInfo,
+    meta: &RunMeta,
+) -> Result<(), StoreError> {
+    let out = sk.out.as_path();
+    if sk.complete {
+        return Ok(());
+    }
+    if !sk.shape.identical(&info.shape) {
+        return Err(StoreError::BadRecord {
+            path: out.to_path_buf(),
+            what: "the results file was begun for another study shape".into(),
+        });
+    }
+    let f = &sk.f;
+    root_attrs(f, info, meta, out)?;
+    if let Some(h) = &info.history {
+        sk.history = create_history(f, h, info, out)?;
+    }
+    write_bats(f, info, out)?;
+    // hand the metadata to the OS now, not on the critical path at the end
+    f.flush().ctx(out, "flush the results file")?;
+    sk.complete = true;
+    Ok(())
 }
 
 /// Fill a skeleton with the journal's records, write the counts and `created`, and close
@@ -845,29 +930,25 @@ pub fn fill(
     }
     drop(spill);
 
-    // ---- /errors
-    errors.sort_by_key(|e| e.0);
-    let eg = &sk.errors;
-    let eidx: Vec<i64> = (0..errors.len() as i64).collect();
-    let edef = VarDef {
-        name: l::ERR_DIM,
-        units: "1",
-        long_name: "failed point number",
-    };
-    let escale = h5u::scale_coord(eg, l::ERR_DIM, &eidx, &edef).ctx(out, "write errors")?;
-    let cols: [(&VarDef, Vec<u64>); 2] = [
-        (&l::ERR_FLAT_INDEX, errors.iter().map(|e| e.0).collect()),
-        (&l::ERR_POINT_ID, errors.iter().map(|e| e.1).collect()),
-    ];
-    for (def, data) in cols {
-        let ds = h5u::write_1d(eg, def.name, &data).ctx(out, "write errors")?;
-        describe(&ds, def).ctx(out, "write errors")?;
-        attach_scales(&ds, &[&escale]).ctx(out, "write errors")?;
+    // ---- /errors: made empty with the skeleton; grown only when points failed
+    if !errors.is_empty() {
+        errors.sort_by_key(|e| e.0);
+        let e = &sk.errors;
+        let n = errors.len();
+        let grow = |ds: &Dataset| ds.resize(n).ctx(out, "write errors");
+        let eidx: Vec<i64> = (0..n as i64).collect();
+        let flat: Vec<u64> = errors.iter().map(|e| e.0).collect();
+        let ids: Vec<u64> = errors.iter().map(|e| e.1).collect();
+        let msgs: Vec<VarLenUnicode> = errors.iter().map(|e| h5u::vlstr(&e.2)).collect();
+        for ds in [&e.index, &e.flat_index, &e.point_id, &e.message] {
+            grow(ds)?;
+        }
+        let w = |r: hdf5::Result<()>| r.ctx(out, "write errors");
+        w(h5u::write_small(&e.index, &eidx))?;
+        w(h5u::write_small(&e.flat_index, &flat))?;
+        w(h5u::write_small(&e.point_id, &ids))?;
+        w(h5u::write_small(&e.message, &msgs))?;
     }
-    let msgs: Vec<VarLenUnicode> = errors.iter().map(|e| h5u::vlstr(&e.2)).collect();
-    let ds = h5u::write_1d(eg, l::ERR_MESSAGE.name, &msgs).ctx(out, "write errors")?;
-    describe(&ds, &l::ERR_MESSAGE).ctx(out, "write errors")?;
-    attach_scales(&ds, &[&escale]).ctx(out, "write errors")?;
     drop(errors);
 
     // ---- /history

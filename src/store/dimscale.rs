@@ -141,6 +141,11 @@ pub fn write_small<T: H5Type>(ds: &Dataset, data: &[T]) -> hdf5::Result<()> {
     Ok(())
 }
 
+/// An empty 1-D dataset that can grow (chunked; rows are added by resizing it).
+pub fn create_growable<T: H5Type>(g: &Group, name: &str) -> hdf5::Result<Dataset> {
+    g.new_dataset::<T>().shape(0..).chunk(1024).create(name)
+}
+
 /// Create a dimension-scale coordinate variable of numbers or labels.
 pub fn scale_coord<T: H5Type>(
     g: &Group,

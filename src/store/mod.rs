@@ -27,7 +27,7 @@ pub use read::{
 };
 
 use crate::pointset::PointSet;
-use crate::results::{PointRecord, StudyInfo};
+use crate::results::{PointRecord, ResultShape, StudyInfo};
 use journal::{JournalHeader, JournalWriter};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -211,13 +211,66 @@ fn check_info(info: &StudyInfo, path: &Path) -> Result<(), StoreError> {
     Ok(())
 }
 
+/// The final file of output `path` (`OUT.h5.partial`), begun from the study's shape alone
+/// by [`begin`] before the bats are known; [`open_begun`] takes it over. Dropped unused, it
+/// removes its file.
+pub struct BegunFile {
+    path: PathBuf,
+    skeleton: Option<build::Skeleton>,
+}
+
+impl Drop for BegunFile {
+    fn drop(&mut self) {
+        if self.skeleton.take().is_some() {
+            let _ = std::fs::remove_file(partial_path(&self.path));
+        }
+    }
+}
+
+/// Begin the final file of output `path` for a study of this shape: the groups, coordinates
+/// and empty variables that do not depend on the bats. A run does this while it prepares
+/// its bats, when a one-bat study leaves cores idle (issue 7: the file's fixed cost, off the
+/// critical path). Replaces a stale `OUT.h5.partial`; touches nothing else.
+pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> {
+    let partial = partial_path(path);
+    let skeleton = build::begin_skeleton(shape, &partial)?;
+    Ok(BegunFile {
+        path: path.to_path_buf(),
+        skeleton: Some(skeleton),
+    })
+}
+
 /// Open the output `path` for a study: a new run, or (`opts.resume`) the continuation of an
 /// interrupted one. Never overwrites an existing output unless `opts.force`.
 pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Session, StoreError> {
+    open_begun(path, info, opts, None)
+}
+
+/// [`open`], taking over the final file [`begin`] made for the same output and shape.
+pub fn open_begun(
+    path: &Path,
+    info: &StudyInfo,
+    opts: &StoreOptions,
+    begun: Option<BegunFile>,
+) -> Result<Session, StoreError> {
     check_info(info, path)?;
     let jpath = journal_path(path);
     let want = JournalHeader::of(info);
-    remove_if_exists(&partial_path(path))?;
+    let skeleton = match begun {
+        Some(mut b) => {
+            if b.path != path {
+                return Err(StoreError::BadRecord {
+                    path: path.to_path_buf(),
+                    what: format!("the results file was begun for {}", b.path.display()),
+                });
+            }
+            b.skeleton.take()
+        }
+        None => {
+            remove_if_exists(&partial_path(path))?;
+            None
+        }
+    };
     build::remove_stale_spills(&partial_path(path));
     let n_points = info.shape.n_points();
     let mut s = Session {
@@ -228,7 +281,7 @@ pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Sessio
         journal: None,
         done: PointSet::new(n_points),
         build_memory: opts.build_memory,
-        skeleton: None,
+        skeleton,
         history_keep: info.history.as_ref().map(build::history_vars),
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
@@ -438,11 +491,14 @@ impl Session {
     /// if it is not there yet. The writer thread does this with its first record, while the
     /// workers compute, so that [`Self::finish`] only has the data left to write.
     fn prepare_final_file(&mut self) -> Result<(), StoreError> {
-        if self.skeleton.is_none() {
-            let partial = partial_path(&self.path);
-            self.skeleton = Some(build::create_skeleton(&self.info, &self.meta, &partial)?);
+        match &mut self.skeleton {
+            Some(sk) => build::complete_skeleton(sk, &self.info, &self.meta),
+            None => {
+                let partial = partial_path(&self.path);
+                self.skeleton = Some(build::create_skeleton(&self.info, &self.meta, &partial)?);
+                Ok(())
+            }
         }
-        Ok(())
     }
 
     /// Store one finished point (buffered; see the module docs for when it becomes durable).
