@@ -157,7 +157,10 @@ mod tests {
     #[test]
     fn shapes_with_nan_coordinates_are_identical_to_themselves() {
         let a = shape(vec![f64::NAN, 500.0, 640.0]);
-        assert!(a != a.clone(), "under == a NaN coordinate differs from itself");
+        assert!(
+            a != a.clone(),
+            "under == a NaN coordinate differs from itself"
+        );
         assert!(a.identical(&a.clone()));
         assert!(!a.identical(&shape(vec![f64::NAN, 500.0, 641.0])));
         assert!(!a.identical(&shape(vec![0.0, 500.0, 640.0])));

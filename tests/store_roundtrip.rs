@@ -750,30 +750,50 @@ fn journal_writer_extent_equals_a_scan() {
     check(&w);
 }
 
-/// Finishing reads every record against its checksum: a journal changed under a running
-/// session makes `finish` fail loudly instead of storing the changed values.
+/// Finishing reads every record it takes from the journal against its checksum: a journal
+/// changed under a running session makes `finish` fail loudly instead of storing the changed
+/// values. A fresh summary-only session builds the file from the records it was handed (the
+/// journal is not read back), so the change cannot reach the file.
 #[test]
 fn finish_refuses_a_journal_changed_after_it_was_written() {
     let _g = shared();
     let dir = tempfile::tempdir().unwrap();
-    for history in [false, true] {
-        let info = study(history, HistoryPrecision::F64);
-        let path = dir.path().join(format!("o{history}.h5"));
-        let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
-        for k in 0..5 {
-            s.write(record(&info, k)).unwrap();
-        }
-        s.flush().unwrap();
-        // flip one byte near the end of the journal: inside the last record's payload (its
-        // history when there is one)
-        let j = store::journal_path(&path);
+    // flip one byte near the end of the journal: inside the last record's payload (its
+    // history when there is one)
+    let corrupt = |path: &Path| {
+        let j = store::journal_path(path);
         let mut bytes = std::fs::read(&j).unwrap();
         let at = bytes.len() - 3;
         bytes[at] ^= 0x55;
         std::fs::write(&j, &bytes).unwrap();
-        let e = s.finish().unwrap_err().to_string();
-        assert!(e.contains("checksum") || e.contains("changed"), "{e}");
-        assert!(!path.exists(), "no final file from a changed journal");
+    };
+    for (history, resumed) in [(true, false), (true, true), (false, true), (false, false)] {
+        let info = study(history, HistoryPrecision::F64);
+        let path = dir.path().join(format!("o{history}{resumed}.h5"));
+        let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+        for k in 0..3 {
+            s.write(record(&info, k)).unwrap();
+        }
+        if resumed {
+            s.flush().unwrap();
+            drop(s);
+            s = store::open(&path, &info, &opts(true, false)).unwrap();
+        }
+        for k in 3..6 {
+            s.write(record(&info, k)).unwrap();
+        }
+        s.flush().unwrap();
+        corrupt(&path);
+        if history || resumed {
+            let e = s.finish().unwrap_err().to_string();
+            assert!(e.contains("checksum") || e.contains("changed"), "{e}");
+            assert!(!path.exists(), "no final file from a changed journal");
+        } else {
+            s.finish().unwrap();
+            let back = store::read_results(&path).unwrap();
+            let want: Vec<_> = (0..6).map(|k| expected(&info, k)).collect();
+            assert_eq!(format!("{:?}", back.records), format!("{want:?}"));
+        }
     }
 }
 

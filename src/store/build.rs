@@ -195,6 +195,10 @@ impl BlockGrid {
         }
     }
 
+    fn n_points(&self) -> usize {
+        self.shape.iter().product()
+    }
+
     fn n_blocks(&self) -> usize {
         if self.shape.contains(&0) {
             0
@@ -422,6 +426,91 @@ impl Window {
             point_id: vec![0; m],
             bat_index: vec![-1; m],
         }
+    }
+
+    /// Place one record of blocks `[b0, b1)`; others are not this window's. Records come in
+    /// journal order, and the first record of a point wins.
+    fn put(&mut self, rec: &PointRecord, blocks: &BlockGrid, b0: usize, b1: usize, t: &mut Tally) {
+        if rec.index >= blocks.n_points() {
+            return;
+        }
+        let (b, pos) = blocks.locate(rec.index);
+        if b < b0 || b >= b1 {
+            return;
+        }
+        let j = self.offsets[b - b0] + pos;
+        if self.status[j] != l::STATUS_NOT_COMPUTED {
+            return;
+        }
+        self.point_id[j] = rec.id;
+        self.bat_index[j] = rec.bat as i32;
+        t.n_done += 1;
+        match &rec.result {
+            Ok(o) => {
+                self.status[j] = l::STATUS_OK;
+                self.recontact[j] = o.recontact as i8;
+                for (k, x) in l::summary_floats(o).into_iter().enumerate() {
+                    self.floats[k][j] = x;
+                }
+            }
+            Err(msg) => {
+                self.status[j] = l::STATUS_FAILED;
+                t.n_failed += 1;
+                t.errors.push((rec.index as u64, rec.id, msg.clone()));
+            }
+        }
+    }
+}
+
+/// Counts of the records placed, and the failed points (flat index, id, message).
+#[derive(Default)]
+struct Tally {
+    n_done: usize,
+    n_failed: usize,
+    errors: Vec<(u64, u64, String)>,
+}
+
+impl Tally {
+    fn add(&mut self, other: Tally) {
+        self.n_done += other.n_done;
+        self.n_failed += other.n_failed;
+        self.errors.extend(other.errors);
+    }
+}
+
+/// The summary of a study that fits one build window, gathered from the records as the run
+/// writes them, so that [`fill`] need not read the journal back (issue 7: on a small study
+/// that read was a fifth of finishing the file). Only for a session that saw every record
+/// it stores: a resumed one reads its journal as before.
+pub struct Gathered {
+    blocks: BlockGrid,
+    window: Window,
+    tally: Tally,
+}
+
+impl Gathered {
+    /// `None` when the study needs more than one window of `memory` bytes.
+    pub fn new(info: &StudyInfo, memory: usize) -> Option<Gathered> {
+        let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
+        let blocks = BlockGrid::new(&shape, &summary_chunk(&info.shape.dims));
+        if plan_windows(&blocks, memory).len() != 1 {
+            return None;
+        }
+        let mut offsets = vec![0];
+        for b in 0..blocks.n_blocks() {
+            offsets.push(offsets[b] + blocks.block_len(b));
+        }
+        Some(Gathered {
+            window: Window::new(offsets),
+            tally: Tally::default(),
+            blocks,
+        })
+    }
+
+    /// Place a record the session has just stored.
+    pub fn put(&mut self, rec: &PointRecord) {
+        let n = self.blocks.n_blocks();
+        self.window.put(rec, &self.blocks, 0, n, &mut self.tally);
     }
 }
 
@@ -852,13 +941,13 @@ pub fn fill(
     info: &StudyInfo,
     created: &str,
     memory: usize,
+    mut gathered: Option<Gathered>,
 ) -> Result<Summary, StoreError> {
     let out = sk.out.as_path();
     let n_points = info.shape.n_points();
     let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
     let chunk = summary_chunk(&info.shape.dims);
-    let (mut n_done, mut n_failed) = (0, 0);
-    let mut errors: Vec<(u64, u64, String)> = Vec::new();
+    let mut tally = Tally::default();
     let blocks = BlockGrid::new(&shape, &chunk);
     let windows = plan_windows(&blocks, memory);
     // the datasets a block writes to, in the order of [`block_pieces`]
@@ -879,42 +968,24 @@ pub fn fill(
         for b in b0..b1 {
             offsets.push(offsets[b - b0] + blocks.block_len(b));
         }
-        let mut w = Window::new(offsets);
-        let mut source = match &spill {
-            Some(sp) => Source::Spill(sp.reader(k)?),
-            None => Source::Journal(RecordReader::open(journal, scan)?),
+        let w = match gathered.take() {
+            // one window, gathered while the run wrote its journal: nothing to read back
+            Some(g) if windows.len() == 1 => {
+                tally.add(g.tally);
+                g.window
+            }
+            _ => {
+                let mut w = Window::new(offsets);
+                let mut source = match &spill {
+                    Some(sp) => Source::Spill(sp.reader(k)?),
+                    None => Source::Journal(RecordReader::open(journal, scan)?),
+                };
+                while let Some(rec) = source.next()? {
+                    w.put(&rec, &blocks, b0, b1, &mut tally);
+                }
+                w
+            }
         };
-        // in journal order: the first record of a point wins
-        while let Some(rec) = source.next()? {
-            if rec.index >= n_points {
-                continue;
-            }
-            let (b, pos) = blocks.locate(rec.index);
-            if b < b0 || b >= b1 {
-                continue;
-            }
-            let j = w.offsets[b - b0] + pos;
-            if w.status[j] != l::STATUS_NOT_COMPUTED {
-                continue;
-            }
-            w.point_id[j] = rec.id;
-            w.bat_index[j] = rec.bat as i32;
-            n_done += 1;
-            match rec.result {
-                Ok(o) => {
-                    w.status[j] = l::STATUS_OK;
-                    w.recontact[j] = o.recontact as i8;
-                    for (k, x) in l::summary_floats(&o).into_iter().enumerate() {
-                        w.floats[k][j] = x;
-                    }
-                }
-                Err(msg) => {
-                    w.status[j] = l::STATUS_FAILED;
-                    n_failed += 1;
-                    errors.push((rec.index as u64, rec.id, msg));
-                }
-            }
-        }
         // every block's chunks compressed on all cores, then written in block order
         // a small study is one block: parallel over (block, variable), not blocks alone
         let pieces: Vec<Piece> = (b0..b1)
@@ -930,6 +1001,11 @@ pub fn fill(
     }
     drop(spill);
 
+    let Tally {
+        n_done,
+        n_failed,
+        mut errors,
+    } = tally;
     // ---- /errors: made empty with the skeleton; grown only when points failed
     if !errors.is_empty() {
         errors.sort_by_key(|e| e.0);

@@ -169,6 +169,9 @@ pub struct Session {
     build_memory: usize,
     /// `OUT.h5.partial` with everything but the results, made while the workers compute.
     skeleton: Option<build::Skeleton>,
+    /// The summary gathered as records arrive, when the study fits one build window and
+    /// the journal is this session's own (not resumed).
+    gathered: Option<build::Gathered>,
     history_keep: Option<Vec<usize>>,
     flush_interval: Duration,
     sync_interval: Duration,
@@ -282,6 +285,7 @@ pub fn open_begun(
         done: PointSet::new(n_points),
         build_memory: opts.build_memory,
         skeleton,
+        gathered: None,
         history_keep: info.history.as_ref().map(build::history_vars),
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
@@ -340,6 +344,8 @@ pub fn open_begun(
         remove_if_exists(&jpath)?;
     }
     s.journal = Some(JournalWriter::create(&jpath, &want)?);
+    // a fresh journal: this session sees every record it will store
+    s.gathered = build::Gathered::new(info, opts.build_memory);
     Ok(s)
 }
 
@@ -550,6 +556,9 @@ impl Session {
         let j = self.journal.as_mut().expect("open session has a journal");
         j.append(&rec);
         self.done.insert(rec.index);
+        if let Some(g) = self.gathered.as_mut() {
+            g.put(&rec);
+        }
         if j.buffered_bytes() >= 1 << 22 || self.last_flush.elapsed() >= self.flush_interval {
             j.flush()?;
             self.last_flush = Instant::now();
@@ -616,6 +625,7 @@ impl Session {
             &self.info,
             &iso8601_now(),
             self.build_memory,
+            self.gathered.take(),
         )?;
         std::fs::File::open(&partial)
             .and_then(|f| f.sync_all())
