@@ -4,7 +4,7 @@
 //! messages.
 
 use super::chunks;
-use super::dimscale::{self as h5u, attach_scales, attr_num, attr_str, attr_vec, describe};
+use super::dimscale::{self as h5u, attr_num, attr_str, attr_vec, describe, Attacher};
 use super::error::{H5Ctx, StoreError};
 use super::journal::{decode_record, encode_record, RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
@@ -58,6 +58,7 @@ pub fn summary_chunk(dims: &[Dim]) -> Vec<usize> {
 fn study_dims(
     g: &Group,
     dims: &[Dim],
+    att: &Attacher,
     path: &Path,
 ) -> Result<(Vec<Dataset>, Vec<String>), StoreError> {
     let mut scales = Vec::new();
@@ -92,7 +93,7 @@ fn study_dims(
             attr_str(&ds, "units", &c.units).ctx(path, "describe a coordinate")?;
             attr_str(&ds, "long_name", &c.long_name).ctx(path, "describe a coordinate")?;
             attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
-            attach_scales(&ds, &[&scale]).ctx(path, "attach a dimension scale")?;
+            att.add(&ds, &[&scale]);
             aux.push(c.name.clone());
         }
         scales.push(scale);
@@ -126,19 +127,10 @@ fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     def: &VarDef,
     shape_chunk: (&[usize], &[usize]),
     fill: T,
-    scales: &[&Dataset],
-    aux: &[String],
+    links: (&[&Dataset], &[String], &Attacher),
     path: &Path,
 ) -> Result<Dataset, StoreError> {
-    new_var_level(
-        g,
-        def,
-        shape_chunk,
-        fill,
-        (scales, aux),
-        l::DEFLATE_LEVEL,
-        path,
-    )
+    new_var_level(g, def, shape_chunk, fill, links, l::DEFLATE_LEVEL, path)
 }
 
 fn new_var_level<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
@@ -146,7 +138,7 @@ fn new_var_level<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     def: &VarDef,
     (shape, chunk): (&[usize], &[usize]),
     fill: T,
-    (scales, aux): (&[&Dataset], &[String]),
+    (scales, aux, att): (&[&Dataset], &[String], &Attacher),
     level: u8,
     path: &Path,
 ) -> Result<Dataset, StoreError> {
@@ -156,7 +148,7 @@ fn new_var_level<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
     if !aux.is_empty() {
         attr_str(&ds, "coordinates", &aux.join(" ")).ctx(path, &what)?;
     }
-    attach_scales(&ds, scales).ctx(path, &what)?;
+    att.add(&ds, scales);
     Ok(ds)
 }
 
@@ -749,37 +741,30 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
     let chunk = summary_chunk(dims);
 
     // ---- /summary (and /sweet_spot, computed from the same blocks)
+    let att = Attacher::default();
     let g = f
         .create_group(l::GROUP_SUMMARY)
         .ctx(out, "create group summary")?;
-    let (scales, aux) = study_dims(&g, dims, out)?;
+    let (scales, aux) = study_dims(&g, dims, &att, out)?;
     let sref: Vec<&Dataset> = scales.iter().collect();
+    let links = (&sref[..], &aux[..], &att);
     let mut floats = Vec::new();
     for def in &l::SUMMARY_FLOATS {
-        floats.push(new_var(
-            &g,
-            def,
-            (&shape, &chunk),
-            f64::NAN,
-            &sref,
-            &aux,
-            out,
-        )?);
+        floats.push(new_var(&g, def, (&shape, &chunk), f64::NAN, links, out)?);
     }
-    let recontact = new_var(&g, &l::RECONTACT, (&shape, &chunk), -1i8, &sref, &aux, out)?;
+    let recontact = new_var(&g, &l::RECONTACT, (&shape, &chunk), -1i8, links, out)?;
     let status = new_var(
         &g,
         &l::STATUS,
         (&shape, &chunk),
         l::STATUS_NOT_COMPUTED,
-        &sref,
-        &aux,
+        links,
         out,
     )?;
     attr_vec(&status, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe status")?;
     attr_str(&status, "flag_meanings", "not_computed ok failed").ctx(out, "describe status")?;
-    let point_id = new_var(&g, &l::POINT_ID, (&shape, &chunk), 0u64, &sref, &aux, out)?;
-    let bat_index = new_var(&g, &l::BAT_INDEX, (&shape, &chunk), -1i32, &sref, &aux, out)?;
+    let point_id = new_var(&g, &l::POINT_ID, (&shape, &chunk), 0u64, links, out)?;
+    let bat_index = new_var(&g, &l::BAT_INDEX, (&shape, &chunk), -1i32, links, out)?;
 
     let iz = dims.iter().position(|d| d.name == l::IMPACT_Z);
     let sweet = match iz {
@@ -793,7 +778,7 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
                 .filter(|&(k, _)| k != iz)
                 .map(|(_, d)| d.clone())
                 .collect();
-            let (ss, saux) = study_dims(&sg, &rest, out)?;
+            let (ss, saux) = study_dims(&sg, &rest, &att, out)?;
             let ssref: Vec<&Dataset> = ss.iter().collect();
             let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
             let rchunk = without(&chunk, iz);
@@ -806,15 +791,8 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
                 &l::SWEET_MIN_VIBRATION_AMPLITUDE,
                 &l::SWEET_MIN_VIBRATION_ENERGY_POSITION,
             ] {
-                vars.push(new_var(
-                    &sg,
-                    def,
-                    (&rshape, &rchunk),
-                    f64::NAN,
-                    &ssref,
-                    &saux,
-                    out,
-                )?);
+                let links = (&ssref[..], &saux[..], &att);
+                vars.push(new_var(&sg, def, (&rshape, &rchunk), f64::NAN, links, out)?);
             }
             let z = match dims[iz]
                 .coords
@@ -835,7 +813,8 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
         None => None,
     };
 
-    let errors = create_errors(&f, out)?;
+    let errors = create_errors(&f, &att, out)?;
+    att.write().ctx(out, "attach the dimension scales")?;
     Ok(Skeleton {
         f,
         out: out.to_path_buf(),
@@ -862,7 +841,7 @@ struct Errors {
 
 /// `/errors` with no rows: most runs have no failed points, and then finishing the file
 /// writes nothing here.
-fn create_errors(f: &hdf5::File, out: &Path) -> Result<Errors, StoreError> {
+fn create_errors(f: &hdf5::File, att: &Attacher, out: &Path) -> Result<Errors, StoreError> {
     let g = f
         .create_group(l::GROUP_ERRORS)
         .ctx(out, "create group errors")?;
@@ -878,7 +857,7 @@ fn create_errors(f: &hdf5::File, out: &Path) -> Result<Errors, StoreError> {
     let column = |def: &VarDef, ds: hdf5::Result<Dataset>| -> Result<Dataset, StoreError> {
         let ds = e(ds)?;
         describe(&ds, def).ctx(out, "create the errors")?;
-        attach_scales(&ds, &[&index]).ctx(out, "create the errors")?;
+        att.add(&ds, &[&index]);
         Ok(ds)
     };
     let flat_index = column(
@@ -920,10 +899,12 @@ pub fn complete_skeleton(
     }
     let f = &sk.f;
     root_attrs(f, info, meta, out)?;
+    let att = Attacher::default();
     if let Some(h) = &info.history {
-        sk.history = create_history(f, h, info, out)?;
+        sk.history = create_history(f, h, info, &att, out)?;
     }
-    write_bats(f, info, out)?;
+    write_bats(f, info, &att, out)?;
+    att.write().ctx(out, "attach the dimension scales")?;
     // hand the metadata to the OS now, not on the critical path at the end
     f.flush().ctx(out, "flush the results file")?;
     sk.complete = true;
@@ -1090,13 +1071,14 @@ fn create_history(
     f: &hdf5::File,
     h: &HistoryRequest,
     info: &StudyInfo,
+    att: &Attacher,
     out: &Path,
 ) -> Result<Vec<(usize, Dataset, Vec<usize>)>, StoreError> {
     let dims = &info.shape.dims;
     let g = f
         .create_group(l::GROUP_HISTORY)
         .ctx(out, "create group history")?;
-    let (scales, aux) = study_dims(&g, dims, out)?;
+    let (scales, aux) = study_dims(&g, dims, att, out)?;
     let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
     let tscale = h5u::scale_coord(&g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
     let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
@@ -1119,10 +1101,10 @@ fn create_history(
         }
         let ds = match h.precision {
             HistoryPrecision::F64 => {
-                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux), HL, out)?
+                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux, att), HL, out)?
             }
             HistoryPrecision::F32 => {
-                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux), HL, out)?
+                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux, att), HL, out)?
             }
         };
         attr_str(
@@ -1227,7 +1209,12 @@ fn padded<T: Clone>(rows: &[Vec<T>], fill: T) -> (Vec<T>, usize) {
     (v, w)
 }
 
-fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreError> {
+fn write_bats(
+    f: &hdf5::File,
+    info: &StudyInfo,
+    att: &Attacher,
+    out: &Path,
+) -> Result<(), StoreError> {
     let g = f.create_group(l::GROUP_BAT).ctx(out, "create group bat")?;
     let e = |what: &str| format!("write bat {what}");
     let labels: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.label)).collect();
@@ -1262,7 +1249,8 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
             .ctx(out, &e(def.name))?;
         h5u::write_small(&ds, &data).ctx(out, &e(def.name))?;
         describe(&ds, def).ctx(out, &e(def.name))?;
-        attach_scales(&ds, sc).ctx(out, &e(def.name))
+        att.add(&ds, sc);
+        Ok(())
     };
     var(
         &l::BAT_MASS,
@@ -1372,7 +1360,7 @@ fn write_bats(f: &hdf5::File, info: &StudyInfo, out: &Path) -> Result<(), StoreE
     let spec: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.spec_json)).collect();
     let ds = h5u::write_1d(&g, l::BAT_SPEC.name, &spec).ctx(out, &e("spec"))?;
     describe(&ds, &l::BAT_SPEC).ctx(out, &e("spec"))?;
-    attach_scales(&ds, &[&bat]).ctx(out, &e("spec"))?;
+    att.add(&ds, &[&bat]);
     Ok(())
 }
 

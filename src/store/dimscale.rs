@@ -6,12 +6,20 @@ use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
 use hdf5_sys::h5::herr_t;
 use hdf5_sys::h5i::hid_t;
-use std::ffi::{c_char, c_uint, CString};
+use std::ffi::{c_char, c_int, c_void, CString};
 use std::str::FromStr;
 
 extern "C" {
     fn H5DSset_scale(dsid: hid_t, dimname: *const c_char) -> herr_t;
-    fn H5DSattach_scale(did: hid_t, dsid: hid_t, idx: c_uint) -> herr_t;
+    // the 1.8-style object reference (`H5R_OBJECT` = 0 in every version) that dimension
+    // scales store; declared here so as not to depend on the -sys crate's version gates
+    fn H5Rcreate(
+        reference: *mut c_void,
+        loc_id: hid_t,
+        name: *const c_char,
+        ref_type: c_int,
+        space_id: hid_t,
+    ) -> herr_t;
 }
 
 fn fail(what: String) -> hdf5::Error {
@@ -28,15 +36,183 @@ pub fn set_scale(ds: &Dataset, name: &str) -> hdf5::Result<()> {
     Ok(())
 }
 
-/// Attach `scales[k]` to dimension k of `ds`.
-pub fn attach_scales(ds: &Dataset, scales: &[&Dataset]) -> hdf5::Result<()> {
-    for (k, s) in scales.iter().enumerate() {
-        let r = hdf5::sync::sync(|| unsafe { H5DSattach_scale(ds.id(), s.id(), k as c_uint) });
-        if r < 0 {
-            return Err(fail(format!("H5DSattach_scale failed on {}", ds.name())));
+/// Dimension scales attached in one go. `H5DSattach_scale` rewrites a variable's
+/// `DIMENSION_LIST` and its scale's whole `REFERENCE_LIST` on every call (a third of the
+/// file skeleton's cost, issue 7); this collects the links and writes each attribute once,
+/// with the types and layout the H5DS API uses, so every reader (h5py, netCDF, xarray) sees
+/// the same scales.
+#[derive(Default)]
+pub struct Attacher {
+    links: std::cell::RefCell<Vec<(Dataset, Vec<Dataset>)>>,
+}
+
+/// One `REFERENCE_LIST` entry: H5DS's `ds_list_t` (an object reference, then the dimension).
+#[repr(C)]
+struct BackReference {
+    dataset: u64,
+    dimension: c_int,
+}
+
+/// Closes an HDF5 id when dropped.
+struct Owned(hid_t, unsafe extern "C" fn(hid_t) -> herr_t);
+
+impl Owned {
+    fn new(
+        id: hid_t,
+        close: unsafe extern "C" fn(hid_t) -> herr_t,
+        what: &str,
+    ) -> hdf5::Result<Owned> {
+        if id < 0 {
+            return Err(fail(format!("{what} failed")));
         }
+        Ok(Owned(id, close))
+    }
+}
+
+impl Drop for Owned {
+    fn drop(&mut self) {
+        unsafe { (self.1)(self.0) };
+    }
+}
+
+fn check(r: herr_t, what: &str) -> hdf5::Result<()> {
+    if r < 0 {
+        return Err(fail(format!("{what} failed")));
     }
     Ok(())
+}
+
+/// The object reference (`hobj_ref_t`) to `ds` that dimension-scale attributes hold.
+fn object_ref(ds: &Dataset) -> hdf5::Result<u64> {
+    let mut r: u64 = 0;
+    let here = c".";
+    check(
+        unsafe { H5Rcreate((&raw mut r).cast(), ds.id(), here.as_ptr(), 0, -1) },
+        "H5Rcreate",
+    )?;
+    Ok(r)
+}
+
+/// Write attribute `name` of `len` elements of `dtype` from `buf` on `loc`.
+fn write_attr(
+    loc: hid_t,
+    name: &str,
+    dtype: hid_t,
+    len: usize,
+    buf: *const c_void,
+) -> hdf5::Result<()> {
+    use hdf5_sys::h5a::{H5Aclose, H5Acreate2, H5Awrite};
+    use hdf5_sys::h5p::H5P_DEFAULT;
+    use hdf5_sys::h5s::{H5Sclose, H5Screate_simple};
+    let c = CString::new(name).map_err(|_| fail(format!("bad attribute name {name:?}")))?;
+    let dims = [len as hdf5_sys::h5::hsize_t];
+    let space = Owned::new(
+        unsafe { H5Screate_simple(1, dims.as_ptr(), std::ptr::null()) },
+        H5Sclose,
+        "H5Screate_simple",
+    )?;
+    let attr = Owned::new(
+        unsafe { H5Acreate2(loc, c.as_ptr(), dtype, space.0, H5P_DEFAULT, H5P_DEFAULT) },
+        H5Aclose,
+        name,
+    )?;
+    check(unsafe { H5Awrite(attr.0, dtype, buf) }, name)
+}
+
+impl Attacher {
+    /// Attach `scales[k]` to dimension k of `ds` (written by [`Self::write`]).
+    pub fn add(&self, ds: &Dataset, scales: &[&Dataset]) {
+        let scales = scales.iter().map(|&s| s.clone()).collect();
+        self.links.borrow_mut().push((ds.clone(), scales));
+    }
+
+    /// Write every variable's `DIMENSION_LIST` and every scale's `REFERENCE_LIST` (in the
+    /// order the links were added, as `H5DSattach_scale` would have appended them). Each
+    /// scale must get all its links from this one attacher.
+    pub fn write(self) -> hdf5::Result<()> {
+        use hdf5_sys::h5t::{
+            hvl_t, H5T_class_t, H5Tclose, H5Tcreate, H5Tinsert, H5Tvlen_create, H5T_NATIVE_INT,
+            H5T_STD_REF_OBJ,
+        };
+        let links = self.links.into_inner();
+        hdf5::sync::sync(|| {
+            let vlen = Owned::new(
+                unsafe { H5Tvlen_create(*H5T_STD_REF_OBJ) },
+                H5Tclose,
+                "H5Tvlen_create",
+            )?;
+            // scales in order of first use, each with its back references
+            let mut scales: Vec<(u64, &Dataset, Vec<BackReference>)> = Vec::new();
+            for (ds, dim_scales) in &links {
+                let me = object_ref(ds)?;
+                let mut refs = Vec::with_capacity(dim_scales.len());
+                for (k, sc) in dim_scales.iter().enumerate() {
+                    let r = object_ref(sc)?;
+                    refs.push(r);
+                    let back = BackReference {
+                        dataset: me,
+                        dimension: k as c_int,
+                    };
+                    match scales.iter_mut().find(|(s, _, _)| *s == r) {
+                        Some((_, _, v)) => v.push(back),
+                        None => scales.push((r, sc, vec![back])),
+                    }
+                }
+                let lists: Vec<hvl_t> = refs
+                    .iter_mut()
+                    .map(|r| hvl_t {
+                        len: 1,
+                        p: (r as *mut u64).cast(),
+                    })
+                    .collect();
+                write_attr(
+                    ds.id(),
+                    "DIMENSION_LIST",
+                    vlen.0,
+                    lists.len(),
+                    lists.as_ptr().cast(),
+                )?;
+            }
+            let compound = Owned::new(
+                unsafe { H5Tcreate(H5T_class_t::H5T_COMPOUND, size_of::<BackReference>()) },
+                H5Tclose,
+                "H5Tcreate",
+            )?;
+            let (dataset, dimension) = (c"dataset", c"dimension");
+            check(
+                unsafe {
+                    H5Tinsert(
+                        compound.0,
+                        dataset.as_ptr(),
+                        std::mem::offset_of!(BackReference, dataset),
+                        *H5T_STD_REF_OBJ,
+                    )
+                },
+                "H5Tinsert",
+            )?;
+            check(
+                unsafe {
+                    H5Tinsert(
+                        compound.0,
+                        dimension.as_ptr(),
+                        std::mem::offset_of!(BackReference, dimension),
+                        *H5T_NATIVE_INT,
+                    )
+                },
+                "H5Tinsert",
+            )?;
+            for (_, sc, backs) in &scales {
+                write_attr(
+                    sc.id(),
+                    "REFERENCE_LIST",
+                    compound.0,
+                    backs.len(),
+                    backs.as_ptr().cast(),
+                )?;
+            }
+            Ok(())
+        })
+    }
 }
 
 pub fn vlstr(s: &str) -> VarLenUnicode {
