@@ -160,6 +160,8 @@ pub struct WriteShare {
     /// (wall − null wall) / wall. `None` where not measured (the history case: one long run).
     pub null_wall_seconds: Option<f64>,
     pub wall_overhead: Option<f64>,
+    /// First and third quartiles of the per-pair overheads (the machine's noise).
+    pub wall_overhead_quartiles: Option<(f64, f64)>,
     /// Store runs behind the medians (the other fields are from the run of median wall time).
     pub repeats: usize,
 }
@@ -244,7 +246,7 @@ impl Sizes {
                 history_omegas: 40,
                 plan_points: [1000, 100, 100],
                 store_points: [1000, 100, 10],
-                write_repeats: 11,
+                write_repeats: 41,
             }
         }
     }
@@ -671,15 +673,26 @@ pub fn bench_write_vs_null(
 ) -> Result<WriteShare, String> {
     let pool = run::build_pool(threads).map_err(err("pool"))?;
     let (mut runs, mut nulls, mut overheads) = (Vec::new(), Vec::new(), Vec::new());
-    for k in 0..repeats.max(1) {
-        // from the bats' preparation on, as in `batstudy run`: the store begins its file
-        // while the bats are prepared
+    // from the bats' preparation on, as in `batstudy run`: the store begins its file while
+    // the bats are prepared
+    let null_run = || -> Result<f64, String> {
         let t0 = Instant::now();
         let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
         let (run, _) = run_null(study, &bats, &pool)?;
-        let null = t0.elapsed().as_secs_f64();
         std::hint::black_box(run);
-        let w = bench_write_to(case, &format!("{case}-{k}"), study, dir, threads)?;
+        Ok(t0.elapsed().as_secs_f64())
+    };
+    for k in 0..repeats.max(1) {
+        // the order alternates within pairs: whichever runs second is measurably faster on
+        // this machine, by a few percent either way
+        let file = format!("{case}-{k}");
+        let (null, w) = if k % 2 == 0 {
+            let null = null_run()?;
+            (null, bench_write_to(case, &file, study, dir, threads)?)
+        } else {
+            let w = bench_write_to(case, &file, study, dir, threads)?;
+            (null_run()?, w)
+        };
         overheads.push((w.wall_seconds - null) / w.wall_seconds);
         nulls.push(null);
         runs.push(w);
@@ -687,6 +700,9 @@ pub fn bench_write_vs_null(
     runs.sort_by(|a, b| a.wall_seconds.total_cmp(&b.wall_seconds));
     let mut w = runs.swap_remove(runs.len() / 2);
     w.null_wall_seconds = Some(median(nulls));
+    overheads.sort_by(|a, b| a.total_cmp(b));
+    let n = overheads.len();
+    w.wall_overhead_quartiles = Some((overheads[n / 4], overheads[(3 * n) / 4]));
     w.wall_overhead = Some(median(overheads));
     w.repeats = repeats.max(1);
     Ok(w)
@@ -757,6 +773,7 @@ fn bench_write_to(
         history_bytes_in_memory: history.as_ref().map_or(0, history_bytes) * n as u64,
         null_wall_seconds: None,
         wall_overhead: None,
+        wall_overhead_quartiles: None,
         repeats: 1,
     })
 }
@@ -975,7 +992,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         &large_study,
         dir.path(),
         threads,
-        sz.write_repeats.div_ceil(2).min(5),
+        sz.write_repeats.div_ceil(2).min(6),
     )?;
     p(
         out,
@@ -990,11 +1007,14 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
                 w.case,
                 w.points,
                 w.wall_seconds,
-                match (w.null_wall_seconds, w.wall_overhead) {
-                    (Some(null), Some(o)) => format!(
-                        " vs {null:.3} s with a null sink: writing adds {:.2} % of wall (median of {}; target ≤ 5 %: {})",
+                match (w.null_wall_seconds, w.wall_overhead, w.wall_overhead_quartiles) {
+                    (Some(null), Some(o), Some((q1, q3))) => format!(
+                        " vs {null:.3} s with a null sink: writing adds {:.2} % of wall (median of {} pairs, \
+                         quartiles {:.2}..{:.2} %; target ≤ 5 %: {})",
                         o * 100.0,
                         w.repeats,
+                        q1 * 100.0,
+                        q3 * 100.0,
                         status(o <= HDF5_SHARE_TARGET)
                     ),
                     _ => String::new(),
