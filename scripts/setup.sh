@@ -8,9 +8,10 @@ cd "$(dirname "$0")/.."
 
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 
-# Debian packages: install only the missing ones.
+# Debian packages: install only the missing ones. gcc: the linker, and libdeflate's C sources
+# (libdeflater) are compiled by it.
 need=()
-for pkg in libhdf5-dev pkg-config; do
+for pkg in libhdf5-dev pkg-config gcc; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || need+=("$pkg")
 done
 if ! python3 -m venv --help >/dev/null 2>&1 || ! python3 -c 'import ensurepip' >/dev/null 2>&1; then
