@@ -216,7 +216,8 @@ struct Sizes {
     history_omegas: usize,
     plan_points: [usize; 3],
     store_points: [usize; 3],
-    /// Store + null-sink pairs of the summary case.
+    /// Store + null-sink pairs of the summary case. On a shared 2-core machine a 0.3 s run
+    /// varies by ±10 %; the median of 121 pairs pins the overhead to about ±1 %.
     write_repeats: usize,
 }
 
@@ -246,7 +247,7 @@ impl Sizes {
                 history_omegas: 40,
                 plan_points: [1000, 100, 100],
                 store_points: [1000, 100, 10],
-                write_repeats: 41,
+                write_repeats: 121,
             }
         }
     }
@@ -992,7 +993,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         &large_study,
         dir.path(),
         threads,
-        sz.write_repeats.div_ceil(2).min(6),
+        sz.write_repeats.div_ceil(2).min(12),
     )?;
     p(
         out,
