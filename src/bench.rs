@@ -993,7 +993,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         &large_study,
         dir.path(),
         threads,
-        sz.write_repeats.div_ceil(2).min(12),
+        sz.write_repeats.div_ceil(2).min(24),
     )?;
     p(
         out,
