@@ -178,29 +178,22 @@ impl Attacher {
                 H5Tclose,
                 "H5Tcreate",
             )?;
-            let (dataset, dimension) = (c"dataset", c"dimension");
-            check(
-                unsafe {
-                    H5Tinsert(
-                        compound.0,
-                        dataset.as_ptr(),
-                        std::mem::offset_of!(BackReference, dataset),
-                        *H5T_STD_REF_OBJ,
-                    )
-                },
-                "H5Tinsert",
-            )?;
-            check(
-                unsafe {
-                    H5Tinsert(
-                        compound.0,
-                        dimension.as_ptr(),
-                        std::mem::offset_of!(BackReference, dimension),
-                        *H5T_NATIVE_INT,
-                    )
-                },
-                "H5Tinsert",
-            )?;
+            let members = [
+                (
+                    c"dataset",
+                    std::mem::offset_of!(BackReference, dataset),
+                    *H5T_STD_REF_OBJ,
+                ),
+                (
+                    c"dimension",
+                    std::mem::offset_of!(BackReference, dimension),
+                    *H5T_NATIVE_INT,
+                ),
+            ];
+            for (name, offset, member) in members {
+                let r = unsafe { H5Tinsert(compound.0, name.as_ptr(), offset, member) };
+                check(r, "H5Tinsert")?;
+            }
             for (_, sc, backs) in &scales {
                 write_attr(
                     sc.id(),
