@@ -892,9 +892,9 @@ pub fn complete_skeleton(
         return Ok(());
     }
     if !sk.shape.identical(&info.shape) {
-        return Err(StoreError::BadRecord {
+        return Err(StoreError::BegunMismatch {
             path: out.to_path_buf(),
-            what: "the results file was begun for another study shape".into(),
+            what: "it was begun for another study shape".into(),
         });
     }
     let f = &sk.f;

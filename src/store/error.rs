@@ -28,6 +28,10 @@ pub enum StoreError {
     BadFile { path: PathBuf, what: String },
     #[error("{}: rejected point record: {what}", path.display())]
     BadRecord { path: PathBuf, what: String },
+    /// A file begun by `store::begin` handed to a session it was not begun for (a caller's
+    /// mistake, not the user's).
+    #[error("{}: the results file begun for this run does not match it: {what}", path.display())]
+    BegunMismatch { path: PathBuf, what: String },
 }
 
 impl StoreError {

@@ -167,7 +167,8 @@ pub struct Session {
     done: PointSet,
     /// Memory budget of the final file's build (bytes of summary values held at once).
     build_memory: usize,
-    /// `OUT.h5.partial` with everything but the results, made while the workers compute.
+    /// `OUT.h5.partial` with everything but the results: begun while the bats are prepared
+    /// ([`begin`]) or with the first record, completed with the first record.
     skeleton: Option<build::Skeleton>,
     /// The summary gathered as records arrive, when the study fits one build window and
     /// the journal is this session's own (not resumed).
@@ -262,9 +263,9 @@ pub fn open_begun(
     let skeleton = match begun {
         Some(mut b) => {
             if b.path != path {
-                return Err(StoreError::BadRecord {
+                return Err(StoreError::BegunMismatch {
                     path: path.to_path_buf(),
-                    what: format!("the results file was begun for {}", b.path.display()),
+                    what: format!("it was begun for {}", b.path.display()),
                 });
             }
             b.skeleton.take()
@@ -493,9 +494,10 @@ impl Session {
         }
     }
 
-    /// Create the final file's skeleton (`OUT.h5.partial`: coordinates, variables, `/bat`)
-    /// if it is not there yet. The writer thread does this with its first record, while the
-    /// workers compute, so that [`Self::finish`] only has the data left to write.
+    /// Create the final file's skeleton (`OUT.h5.partial`: coordinates, variables, `/bat`),
+    /// or complete the one [`begin`] made, if that is not done yet. The writer thread does
+    /// this with its first record, while the workers compute, so that [`Self::finish`] only
+    /// has the data left to write.
     fn prepare_final_file(&mut self) -> Result<(), StoreError> {
         match &mut self.skeleton {
             Some(sk) => build::complete_skeleton(sk, &self.info, &self.meta),
