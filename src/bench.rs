@@ -660,7 +660,8 @@ fn bench_write(
     dir: &Path,
     threads: usize,
 ) -> Result<WriteShare, String> {
-    bench_write_to(case, case, study, dir, threads)
+    let pool = run::build_pool(threads).map_err(err("pool"))?;
+    bench_write_to(case, case, study, dir, &pool)
 }
 
 /// `repeats` store runs, each right after a null-sink run of the same plan: the store run of
@@ -689,9 +690,9 @@ pub fn bench_write_vs_null(
         let file = format!("{case}-{k}");
         let (null, w) = if k % 2 == 0 {
             let null = null_run()?;
-            (null, bench_write_to(case, &file, study, dir, threads)?)
+            (null, bench_write_to(case, &file, study, dir, &pool)?)
         } else {
-            let w = bench_write_to(case, &file, study, dir, threads)?;
+            let w = bench_write_to(case, &file, study, dir, &pool)?;
             (null_run()?, w)
         };
         overheads.push((w.wall_seconds - null) / w.wall_seconds);
@@ -709,20 +710,23 @@ pub fn bench_write_vs_null(
     Ok(w)
 }
 
+/// One store run on `pool` (the null runs it is compared with use the same pool: a pool
+/// built for each store run alone made its threads start cold, a bias of about 1 % against
+/// the store on the small study).
 fn bench_write_to(
     case: &str,
     file: &str,
     study: &Study,
     dir: &Path,
-    threads: usize,
+    pool: &rayon::ThreadPool,
 ) -> Result<WriteShare, String> {
-    let pool = run::build_pool(threads).map_err(err("pool"))?;
+    let threads = pool.current_num_threads();
     let out: PathBuf = dir.join(format!("{file}.h5"));
     let rss_before = reset_peak();
     let c0 = process_cpu_seconds();
     // from the bats' preparation on, as in `batstudy run` (`cli::run_with`)
     let t0 = Instant::now();
-    let (bats, begun) = run::prepare_bats_alongside(&ModelSimulator, &study.plan, &pool, || {
+    let (bats, begun) = run::prepare_bats_alongside(&ModelSimulator, &study.plan, pool, || {
         store::begin(&out, &study.plan.shape)
     });
     let history = study.history_request(bats.max_length());
@@ -742,7 +746,7 @@ fn bench_write_to(
         &bats,
         history.as_ref(),
         sink,
-        &pool,
+        pool,
         &opts,
         &stop,
     )
