@@ -1,7 +1,7 @@
 //! Writing the final HDF5 file from a journal (the only place that writes results to HDF5).
-//! [`create_skeleton`] while the run computes, then [`fill`] from the journal. Memory: a
-//! bounded window of summary values (see [`fill`]), one history, and the failed points'
-//! messages.
+//! The skeleton in two steps ([`begin_skeleton`] while the bats are prepared,
+//! [`complete_skeleton`] while the run computes), then [`fill`]. Memory: a bounded window of
+//! summary values (see [`fill`]), one history, and the failed points' messages.
 
 use super::chunks;
 use super::dimscale::{self as h5u, attr_num, attr_str, attr_vec, describe, Attacher};
@@ -337,7 +337,7 @@ impl Spill {
             let f = File::create(p).map_err(|e| StoreError::io(p, "create a spill file", e))?;
             files.push(BufWriter::with_capacity(1 << 16, f));
         }
-        let n_points: usize = blocks.shape.iter().product();
+        let n_points = blocks.n_points();
         let mut rr = RecordReader::open(journal, scan)?;
         let mut buf = Vec::new();
         while let Some(rec) = rr.next_summary()? {
@@ -408,7 +408,12 @@ impl SpillReader {
 }
 
 impl Window {
-    fn new(offsets: Vec<usize>) -> Self {
+    /// An empty window over blocks `[b0, b1)`.
+    fn of_blocks(blocks: &BlockGrid, b0: usize, b1: usize) -> Self {
+        let mut offsets = vec![0];
+        for b in b0..b1 {
+            offsets.push(offsets[b - b0] + blocks.block_len(b));
+        }
         let m = *offsets.last().unwrap_or(&0);
         Window {
             offsets,
@@ -488,12 +493,8 @@ impl Gathered {
         if plan_windows(&blocks, memory).len() != 1 {
             return None;
         }
-        let mut offsets = vec![0];
-        for b in 0..blocks.n_blocks() {
-            offsets.push(offsets[b] + blocks.block_len(b));
-        }
         Some(Gathered {
-            window: Window::new(offsets),
+            window: Window::of_blocks(&blocks, 0, blocks.n_blocks()),
             tally: Tally::default(),
             blocks,
         })
@@ -945,10 +946,6 @@ pub fn fill(
         None
     };
     for (k, &(b0, b1)) in windows.iter().enumerate() {
-        let mut offsets = vec![0];
-        for b in b0..b1 {
-            offsets.push(offsets[b - b0] + blocks.block_len(b));
-        }
         let w = match gathered.take() {
             // one window, gathered while the run wrote its journal: nothing to read back
             Some(g) if windows.len() == 1 => {
@@ -956,7 +953,7 @@ pub fn fill(
                 g.window
             }
             _ => {
-                let mut w = Window::new(offsets);
+                let mut w = Window::of_blocks(&blocks, b0, b1);
                 let mut source = match &spill {
                     Some(sp) => Source::Spill(sp.reader(k)?),
                     None => Source::Journal(RecordReader::open(journal, scan)?),

@@ -285,29 +285,21 @@ pub fn write_small<T: H5Type>(ds: &Dataset, data: &[T]) -> hdf5::Result<()> {
     let mem = hdf5::Datatype::from_type::<T>()?;
     // at least one element of any type; the library needs room for one converted element
     let size = (std::mem::size_of_val(data) * 4).max(4096);
-    let r = hdf5::sync::sync(|| unsafe {
-        let dxpl = H5Pcreate(*H5P_CLS_DATASET_XFER);
-        if dxpl < 0 {
-            return -1;
-        }
-        let mut r = H5Pset_buffer(dxpl, size, std::ptr::null_mut(), std::ptr::null_mut());
-        if r >= 0 {
-            r = H5Dwrite(
-                ds.id(),
-                mem.id(),
-                H5S_ALL,
-                H5S_ALL,
-                dxpl,
-                data.as_ptr().cast(),
-            );
-        }
-        H5Pclose(dxpl);
-        r
-    });
-    if r < 0 {
-        return Err(fail(format!("H5Dwrite failed on {}", ds.name())));
-    }
-    Ok(())
+    hdf5::sync::sync(|| {
+        let dxpl = Owned::new(
+            unsafe { H5Pcreate(*H5P_CLS_DATASET_XFER) },
+            H5Pclose,
+            "H5Pcreate",
+        )?;
+        let none = std::ptr::null_mut();
+        check(
+            unsafe { H5Pset_buffer(dxpl.0, size, none, none) },
+            "H5Pset_buffer",
+        )?;
+        let (all, buf) = (H5S_ALL, data.as_ptr().cast());
+        let r = unsafe { H5Dwrite(ds.id(), mem.id(), all, all, dxpl.0, buf) };
+        check(r, &format!("H5Dwrite on {}", ds.name()))
+    })
 }
 
 /// An empty 1-D dataset that can grow (chunked; rows are added by resizing it).

@@ -444,6 +444,18 @@ pub struct JournalWriter {
 }
 
 impl JournalWriter {
+    fn over(file: File, path: &Path, header_len: u64, len: u64, entry_durable: bool) -> Self {
+        JournalWriter {
+            file,
+            path: path.to_path_buf(),
+            buf: Vec::with_capacity(1 << 20),
+            payload: Vec::new(),
+            header_len,
+            len,
+            entry_durable,
+        }
+    }
+
     /// Create a new journal (the file must not exist) and write its header. The header
     /// becomes durable with the first [`Self::sync`], like the records: until then a power
     /// loss would lose the records anyway, and a killed process loses nothing handed to the
@@ -462,15 +474,8 @@ impl JournalWriter {
         b.extend_from_slice(&fnv1a(&json).to_le_bytes());
         file.write_all(&b)
             .map_err(|e| StoreError::io(path, "write the journal header", e))?;
-        Ok(JournalWriter {
-            entry_durable: false,
-            file,
-            path: path.to_path_buf(),
-            buf: Vec::with_capacity(1 << 20),
-            payload: Vec::new(),
-            header_len: b.len() as u64,
-            len: b.len() as u64,
-        })
+        let n = b.len() as u64;
+        Ok(JournalWriter::over(file, path, n, n, false))
     }
 
     /// Open an existing, scanned journal for appending after its valid part (a torn tail is
@@ -485,15 +490,13 @@ impl JournalWriter {
             .and_then(|_| file.sync_all())
             .and_then(|_| file.seek(SeekFrom::Start(valid_len)).map(|_| ()))
             .map_err(|e| StoreError::io(path, "cut the journal's torn tail", e))?;
-        Ok(JournalWriter {
-            entry_durable: true,
+        Ok(JournalWriter::over(
             file,
-            path: path.to_path_buf(),
-            buf: Vec::with_capacity(1 << 20),
-            payload: Vec::new(),
-            header_len: scan.header_len,
-            len: valid_len,
-        })
+            path,
+            scan.header_len,
+            valid_len,
+            true,
+        ))
     }
 
     /// What a scan of this journal would find once it is flushed: the header it was created
