@@ -52,6 +52,7 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
     // the summary cases are measured against a null sink
     for w in [&r.hdf5[0], &r.hdf5[2]] {
         assert!(w.null_wall_seconds.is_some_and(|t| t > 0.0) && w.wall_overhead.is_some());
+        assert!(w.untimed_wall_seconds.is_some_and(|t| t > 0.0));
     }
     assert!(r.hdf5.iter().all(|w| w.file_bytes > 0 && w.share > 0.0));
     assert!(r.hdf5[1].history_bytes_in_memory > 0);
