@@ -53,3 +53,70 @@ fn attached_scales_read_back_through_h5ds() {
     assert_eq!(refs(&x), vec![2]);
     assert_eq!(refs(&y), vec![3]);
 }
+
+// `attr_str` builds its attributes with raw HDF5 calls (issue 7: the wrapper's per-attribute
+// type and property-list building was a third of the skeleton's cost). It must store what
+// hdf5-metno's `new_attr::<VarLenUnicode>()` stores — a scalar, variable-length,
+// null-terminated UTF-8 string with a UTF-8 name — so that h5py, netCDF and xarray read the
+// same `str`. Reference: the HDF5 attribute and datatype APIs (H5Aget_type, H5Tis_variable_str,
+// H5Tget_cset, H5Tget_strpad; H5Pget_char_encoding on the attribute's creation list).
+#[test]
+fn string_attributes_match_the_wrappers_own() {
+    use batstudy::store::dimscale::attr_str;
+    use hdf5::types::VarLenUnicode;
+    use hdf5_sys::h5a::{H5Aget_create_plist, H5Aget_type, H5Aopen};
+    use hdf5_sys::h5p::{H5Pclose, H5Pget_char_encoding, H5P_DEFAULT};
+    use hdf5_sys::h5t::{
+        H5T_class_t, H5T_cset_t, H5T_str_t, H5Tclose, H5Tget_class, H5Tget_cset, H5Tget_strpad,
+        H5Tis_variable_str,
+    };
+    use std::ffi::CString;
+    use std::str::FromStr;
+
+    let dir = tempfile::tempdir().unwrap();
+    let f = hdf5::File::create(dir.path().join("attrs.h5")).unwrap();
+    let value = "m/s² — ∂y/∂t";
+    attr_str(&f, "ours", value).unwrap();
+    f.new_attr::<VarLenUnicode>()
+        .create("wrappers")
+        .unwrap()
+        .write_scalar(&VarLenUnicode::from_str(value).unwrap())
+        .unwrap();
+    // an interior NUL cannot be stored in a C string: it is replaced, not an error
+    attr_str(&f, "nul", "a\0b").unwrap();
+
+    let read = |name: &str| -> String {
+        f.attr(name)
+            .unwrap()
+            .read_scalar::<VarLenUnicode>()
+            .unwrap()
+            .to_string()
+    };
+    assert_eq!(read("ours"), value);
+    assert_eq!(read("wrappers"), value);
+    assert_eq!(read("nul"), "a\u{FFFD}b");
+
+    let describe = |name: &str| unsafe {
+        let c = CString::new(name).unwrap();
+        let a = H5Aopen(f.id(), c.as_ptr(), H5P_DEFAULT);
+        assert!(a >= 0);
+        let t = H5Aget_type(a);
+        let p = H5Aget_create_plist(a);
+        let mut name_cset = H5T_cset_t::H5T_CSET_ASCII;
+        assert!(H5Pget_char_encoding(p, &mut name_cset) >= 0);
+        let d = (
+            H5Tget_class(t) == H5T_class_t::H5T_STRING,
+            H5Tis_variable_str(t),
+            H5Tget_cset(t) == H5T_cset_t::H5T_CSET_UTF8,
+            H5Tget_strpad(t) == H5T_str_t::H5T_STR_NULLTERM,
+            name_cset == H5T_cset_t::H5T_CSET_UTF8,
+        );
+        H5Pclose(p);
+        H5Tclose(t);
+        hdf5_sys::h5a::H5Aclose(a);
+        d
+    };
+    assert_eq!(describe("ours"), describe("wrappers"));
+    assert_eq!(describe("ours"), (true, 1, true, true, true));
+    assert!(f.attr("ours").unwrap().is_scalar());
+}

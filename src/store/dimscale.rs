@@ -213,10 +213,79 @@ pub fn vlstr(s: &str) -> VarLenUnicode {
     VarLenUnicode::from_str(&s.replace('\0', "\u{FFFD}")).expect("no NUL")
 }
 
+/// The ids every string attribute is made with: a variable-length UTF-8 string type, a
+/// scalar dataspace and a creation list for UTF-8 names (what hdf5-metno's
+/// `new_attr::<VarLenUnicode>()` builds for each attribute). Made once per process, never
+/// closed: building them per attribute, through the wrapper's checks, was about a third of
+/// the file skeleton's instructions (issue 7; the skeleton has about 140 string attributes).
+struct StrAttrIds {
+    string: hid_t,
+    scalar: hid_t,
+    acpl: hid_t,
+}
+
+fn str_attr_ids() -> hdf5::Result<&'static StrAttrIds> {
+    use hdf5_sys::h5p::{H5Pcreate, H5Pset_char_encoding, H5P_CLS_ATTRIBUTE_CREATE};
+    use hdf5_sys::h5s::{H5S_class_t, H5Screate};
+    use hdf5_sys::h5t::{
+        H5T_cset_t, H5T_str_t, H5Tcopy, H5Tset_cset, H5Tset_size, H5Tset_strpad, H5T_C_S1,
+        H5T_VARIABLE,
+    };
+    static IDS: std::sync::OnceLock<Result<StrAttrIds, String>> = std::sync::OnceLock::new();
+    let ids = IDS.get_or_init(|| {
+        hdf5::sync::sync(|| unsafe {
+            let string = H5Tcopy(*H5T_C_S1);
+            let scalar = H5Screate(H5S_class_t::H5S_SCALAR);
+            let acpl = H5Pcreate(*H5P_CLS_ATTRIBUTE_CREATE);
+            let ok = string >= 0
+                && scalar >= 0
+                && acpl >= 0
+                && H5Tset_cset(string, H5T_cset_t::H5T_CSET_UTF8) >= 0
+                && H5Tset_strpad(string, H5T_str_t::H5T_STR_NULLTERM) >= 0
+                && H5Tset_size(string, H5T_VARIABLE) >= 0
+                && H5Pset_char_encoding(acpl, H5T_cset_t::H5T_CSET_UTF8) >= 0;
+            if ok {
+                Ok(StrAttrIds {
+                    string,
+                    scalar,
+                    acpl,
+                })
+            } else {
+                Err("making the string attribute type failed".to_string())
+            }
+        })
+    });
+    ids.as_ref().map_err(|e| fail(e.clone()))
+}
+
+/// A scalar variable-length UTF-8 string attribute (interior NULs replaced, as [`vlstr`]).
 pub fn attr_str(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
-    loc.new_attr::<VarLenUnicode>()
-        .create(name)?
-        .write_scalar(&vlstr(value))
+    use hdf5_sys::h5a::{H5Aclose, H5Acreate2, H5Awrite};
+    use hdf5_sys::h5p::H5P_DEFAULT;
+    let ids = str_attr_ids()?;
+    let c_name = CString::new(name).map_err(|_| fail(format!("bad attribute name {name:?}")))?;
+    let c_value = CString::new(value.replace('\0', "\u{FFFD}")).expect("no NUL left");
+    hdf5::sync::sync(|| {
+        let attr = Owned::new(
+            unsafe {
+                H5Acreate2(
+                    loc.id(),
+                    c_name.as_ptr(),
+                    ids.string,
+                    ids.scalar,
+                    ids.acpl,
+                    H5P_DEFAULT,
+                )
+            },
+            H5Aclose,
+            name,
+        )?;
+        let value: *const c_char = c_value.as_ptr();
+        check(
+            unsafe { H5Awrite(attr.0, ids.string, (&raw const value).cast()) },
+            name,
+        )
+    })
 }
 
 pub fn attr_num<T: H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
