@@ -863,3 +863,84 @@ fn begun_file_equals_one_made_in_one_go() {
     ));
     assert!(!store::partial_path(&path).exists());
 }
+
+extern "C" {
+    // libhdf5 ≥ 1.10.5; declared here so as not to depend on the -sys crate's version gates
+    fn H5Dget_chunk_info_by_coord(
+        dset: i64,
+        offset: *const u64,
+        filter_mask: *mut u32,
+        addr: *mut u64,
+        size: *mut u64,
+    ) -> i32;
+}
+
+/// (variable, [(file address, stored bytes)] of the chunks at `starts`) for every chunked
+/// summary variable of `path`.
+fn chunk_layout(path: &Path, starts: &[Vec<u64>]) -> Vec<(String, Vec<(u64, u64)>)> {
+    let f = hdf5::File::open(path).unwrap();
+    let g = f.group("summary").unwrap();
+    let mut names = g.member_names().unwrap();
+    names.sort();
+    let mut out = Vec::new();
+    for name in names {
+        let ds = g.dataset(&name).unwrap();
+        if !ds.is_chunked() || ds.ndim() != starts[0].len() {
+            continue;
+        }
+        let chunks = starts
+            .iter()
+            .map(|start| {
+                let (mut mask, mut addr, mut size) = (0, 0, 0);
+                let r = hdf5::sync::sync(|| unsafe {
+                    H5Dget_chunk_info_by_coord(
+                        ds.id(),
+                        start.as_ptr(),
+                        &mut mask,
+                        &mut addr,
+                        &mut size,
+                    )
+                });
+                assert!(r >= 0, "{name} chunk at {start:?}");
+                (addr, size)
+            })
+            .collect();
+        out.push((name, chunks));
+    }
+    out
+}
+
+// issue 7: the summary chunks are compressed on every core and each is written as soon as
+// the ones before it are. Where a chunk lands in the file must not depend on which thread
+// finished first: a file built on one thread and one built on three hold every chunk of
+// every summary variable at the same address, with the same size.
+#[test]
+fn chunk_layout_does_not_depend_on_the_threads() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = many_blocks_study();
+    let n = info.shape.n_points();
+    let mut layouts = Vec::new();
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let path = dir.path().join(format!("threads{threads}.h5"));
+        pool.install(|| {
+            let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+            for k in 0..n {
+                s.write(record(&info, (k * 7919 + 13) % n)).unwrap();
+            }
+            s.finish().unwrap();
+        });
+        // the two blocks of `many_blocks_study`
+        layouts.push(chunk_layout(&path, &[vec![0, 0, 0], vec![36, 0, 0]]));
+    }
+    // 28 variables × 2 blocks: enough pieces for three threads to finish out of order
+    assert!(layouts[0].len() >= 20);
+    assert!(layouts[0]
+        .iter()
+        .all(|(_, c)| c.iter().all(|&(a, s)| a > 0 && s > 0)));
+    assert_eq!(layouts[0], layouts[1]);
+}

@@ -21,9 +21,11 @@ use hdf5::{Dataset, Group};
 use ndarray::{ArrayD, IxDyn};
 use rayon::prelude::*;
 use std::borrow::Cow;
+use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// Indices into [`l::HISTORY_VARS`] of the variables a request stores.
 pub fn history_vars(h: &HistoryRequest) -> Vec<usize> {
@@ -646,6 +648,74 @@ impl<'a> Piece<'a> {
     }
 }
 
+/// Compress `pieces` on all cores and write them in their order, each as soon as every
+/// piece before it is written: the writes overlap the compression (issue 7: compressing all,
+/// then writing all, left one core idle for a third of a small study's finish), and the file
+/// is laid out in the same order whatever the threads. Whoever finishes the next piece
+/// writes it and the finished ones after it; a thread that finishes a later piece leaves it
+/// queued and moves on.
+fn compress_and_write(
+    pieces: Vec<Piece>,
+    targets: &[&Dataset],
+    out: &Path,
+) -> Result<(), StoreError> {
+    struct Queue<'a> {
+        next: usize,
+        ready: BTreeMap<usize, Piece<'a>>,
+        writing: bool,
+        error: Option<StoreError>,
+    }
+    let queue = Mutex::new(Queue {
+        next: 0,
+        ready: BTreeMap::new(),
+        writing: false,
+        error: None,
+    });
+    let lock = || queue.lock().unwrap_or_else(|p| p.into_inner());
+    pieces
+        .into_par_iter()
+        .enumerate()
+        .with_max_len(1)
+        .for_each(|(i, p)| {
+            let p = p.compress();
+            let mut q = lock();
+            q.ready.insert(i, p);
+            if q.writing {
+                return;
+            }
+            q.writing = true;
+            loop {
+                // the run of pieces that can be written now, taken out under the lock
+                let mut run = Vec::new();
+                while let Some(p) = {
+                    let next = q.next;
+                    q.ready.remove(&next)
+                } {
+                    run.push(p);
+                    q.next += 1;
+                }
+                if run.is_empty() || q.error.is_some() {
+                    q.writing = false;
+                    return;
+                }
+                drop(q);
+                let written = run.into_iter().try_for_each(|p| p.write(targets, out));
+                q = lock();
+                if let Err(e) = written {
+                    q.error = Some(e);
+                }
+            }
+        });
+    let q = queue.into_inner().unwrap_or_else(|p| p.into_inner());
+    match q.error {
+        Some(e) => Err(e),
+        None => {
+            debug_assert!(q.ready.is_empty());
+            Ok(())
+        }
+    }
+}
+
 /// Everything block `b` (the `q`-th of window `w`) writes, uncompressed: its summary variables
 /// and, with an `impact_z` dim, the sweet spots of its curves. Pure: runs on any thread.
 fn block_pieces<'a>(
@@ -964,18 +1034,12 @@ pub fn fill(
                 w
             }
         };
-        // every block's chunks compressed on all cores, then written in block order
         // a small study is one block: parallel over (block, variable), not blocks alone
         let pieces: Vec<Piece> = (b0..b1)
             .into_par_iter()
             .flat_map_iter(|b| block_pieces(&w, b - b0, &blocks, &chunk, b, sk.sweet.as_ref()))
-            .collect::<Vec<Piece>>()
-            .into_par_iter()
-            .map(Piece::compress)
             .collect();
-        for p in pieces {
-            p.write(&targets, out)?;
-        }
+        compress_and_write(pieces, &targets, out)?;
     }
     drop(spill);
 
