@@ -299,6 +299,14 @@ pub fn run_plan<S: Simulator, K: Sink>(
                     drop(s);
                     writer_pb.inc(1);
                 }
+                // Every record is in: finish here, as soon as the last worker lets go of the
+                // channel, not after the main thread has woken and joined this one (issue 7:
+                // each wake-up between threads is on the critical path of a small study). In
+                // the run's pool, whose threads have just finished their last points: the
+                // final file's parallel parts (deflate) start on threads that are awake.
+                let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
+                let sink = &mut *s;
+                pool.install(|| sink.finish())?;
                 Ok((ok, failed, failures))
             })
             .expect("spawn writer thread");
@@ -353,10 +361,8 @@ pub fn run_plan<S: Simulator, K: Sink>(
             .map_err(|p| RunError::Sink(format!("writer thread panicked: {}", panic_text(p))))
     })?;
     pb.finish_and_clear();
-    let mut sink = sink.into_inner().unwrap_or_else(|p| p.into_inner());
+    let sink = sink.into_inner().unwrap_or_else(|p| p.into_inner());
     let (ok, failed, failures) = written.map_err(RunError::Sink)?;
-    // in the run's pool: the final file's parallel parts (deflate) start on warm threads
-    pool.install(|| sink.finish()).map_err(RunError::Sink)?;
     let report = RunReport {
         total,
         skipped: skipped.into_inner(),
