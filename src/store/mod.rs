@@ -635,8 +635,10 @@ impl Session {
         std::fs::rename(&partial, &self.path)
             .map_err(|e| StoreError::io(&self.path, "rename the finished file into place", e))?;
         journal::sync_parent_dir(&self.path);
+        // Not synced: the finished file is durable now, and a journal that comes back after
+        // a power loss only makes `--resume` rebuild the same file from it (issue 7: one
+        // directory sync less at the end of every run).
         remove_if_exists(&self.journal_path)?;
-        journal::sync_parent_dir(&self.path);
         Ok(summary)
     }
 }
