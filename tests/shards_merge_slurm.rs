@@ -6,12 +6,43 @@ use batstudy::study::{load_str, LoadOptions};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// Children inherit the test process's open file descriptors, and with them HDF5's lock on
+/// any file a test holds open at that moment: a child of one test then kept another test's
+/// `part.h5` locked while that test's `merge` tried to read it ("unable to lock file",
+/// seen under load). Tests open HDF5 files only under [`no_spawns`]; children are spawned
+/// under [`spawn_guard`].
+static FORK: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
+fn spawn_guard() -> std::sync::RwLockReadGuard<'static, ()> {
+    FORK.read().unwrap_or_else(|e| e.into_inner())
+}
+
+fn no_spawns() -> std::sync::RwLockWriteGuard<'static, ()> {
+    FORK.write().unwrap_or_else(|e| e.into_inner())
+}
+
+fn file_info(path: &Path) -> store::FileInfo {
+    let _g = no_spawns();
+    store::file_info(path).unwrap()
+}
+
+fn read_results(path: &Path) -> store::ReadBack {
+    let _g = no_spawns();
+    store::read_results(path).unwrap()
+}
+
 fn batstudy(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_batstudy"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run batstudy")
+    let child = {
+        let _g = spawn_guard();
+        Command::new(env!("CARGO_BIN_EXE_batstudy"))
+            .args(args)
+            .current_dir(dir)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run batstudy")
+    };
+    child.wait_with_output().expect("run batstudy")
 }
 
 fn ok(o: &Output) {
@@ -41,6 +72,7 @@ history: {fields: [force, displacement], interval: 2.0e-5, duration: 1.0e-3, z_s
 /// Every dataset of every group, as bits (floats by `to_bits`, so NaN payloads count).
 fn dump_all(path: &Path) -> Vec<(String, String)> {
     use hdf5::types::{FloatSize, IntSize, TypeDescriptor as T, VarLenUnicode};
+    let _g = no_spawns();
     let f = hdf5::File::open(path).unwrap();
     let mut out = Vec::new();
     let mut groups = vec![f.as_group().unwrap()];
@@ -160,9 +192,9 @@ fn merged_shards_equal_single_run() {
     let shards = run_shards(dir, "shardtest.yaml", 3);
     let mut covered = 0;
     for (k, s) in shards.iter().enumerate() {
-        let fi = store::file_info(&dir.join(s)).unwrap();
+        let fi = file_info(&dir.join(s));
         assert_eq!(fi.shard, format!("{}/3", k + 1));
-        let single = store::file_info(&dir.join("single.h5")).unwrap();
+        let single = file_info(&dir.join("single.h5"));
         assert_eq!(fi.study_sha256, single.study_sha256);
         let (a, b) = fi.shard_range.unwrap();
         assert_eq!(a, covered);
@@ -210,8 +242,8 @@ fn merged_shards_equal_single_run() {
     assert!(a.len() > 30, "{} datasets", a.len());
     assert_eq!(a, b);
     // and through the store's reader
-    let ra = store::read_results(&dir.join("single.h5")).unwrap();
-    let rb = store::read_results(&dir.join("merged.h5")).unwrap();
+    let ra = read_results(&dir.join("single.h5"));
+    let rb = read_results(&dir.join("merged.h5"));
     assert_eq!(format!("{:?}", ra.records), format!("{:?}", rb.records));
     assert_eq!(ra.records.len(), 16);
     assert!(ra.records.iter().any(|r| r.result.is_err()));
@@ -234,10 +266,7 @@ fn merge_refuses_bad_shard_sets() {
     let dir = d.path();
     let s = run_shards(dir, "shardtest.yaml", 3);
     // a missing shard
-    let (a, b) = store::file_info(&dir.join(&s[1]))
-        .unwrap()
-        .shard_range
-        .unwrap();
+    let (a, b) = file_info(&dir.join(&s[1])).shard_range.unwrap();
     assert_refused(
         dir,
         &["merge", "-o", "bad.h5", &s[0], &s[2]],
@@ -276,6 +305,7 @@ fn merge_refuses_bad_shard_sets() {
     std::fs::copy(dir.join(&s[1]), dir.join("part.h5")).unwrap();
     let keep = dir.join("part.h5");
     {
+        let _no_spawns = no_spawns();
         let f = hdf5::File::open_rw(&keep).unwrap();
         let st = f.dataset("summary/status").unwrap();
         let mut v = st.read_raw::<i8>().unwrap();
@@ -375,6 +405,7 @@ fn slurm_scripts() {
         "{submit}"
     );
     for n in ["array.sbatch", "merge.sbatch", "submit.sh"] {
+        let _g = spawn_guard();
         let st = Command::new("bash")
             .arg("-n")
             .arg(jobs.join(n))
