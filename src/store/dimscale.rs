@@ -93,6 +93,25 @@ fn object_ref(ds: &Dataset) -> hdf5::Result<u64> {
     Ok(r)
 }
 
+/// Create attribute `name` of type `dtype` over dataspace `space` (creation list `acpl`) on
+/// `loc`, and write `buf` into it.
+fn put_attr(
+    loc: hid_t,
+    name: &str,
+    (dtype, space, acpl): (hid_t, hid_t, hid_t),
+    buf: *const c_void,
+) -> hdf5::Result<()> {
+    use hdf5_sys::h5a::{H5Aclose, H5Acreate2, H5Awrite};
+    use hdf5_sys::h5p::H5P_DEFAULT;
+    let c = CString::new(name).map_err(|_| fail(format!("bad attribute name {name:?}")))?;
+    let attr = Owned::new(
+        unsafe { H5Acreate2(loc, c.as_ptr(), dtype, space, acpl, H5P_DEFAULT) },
+        H5Aclose,
+        name,
+    )?;
+    check(unsafe { H5Awrite(attr.0, dtype, buf) }, name)
+}
+
 /// Write attribute `name` of `len` elements of `dtype` from `buf` on `loc`.
 fn write_attr(
     loc: hid_t,
@@ -101,22 +120,15 @@ fn write_attr(
     len: usize,
     buf: *const c_void,
 ) -> hdf5::Result<()> {
-    use hdf5_sys::h5a::{H5Aclose, H5Acreate2, H5Awrite};
     use hdf5_sys::h5p::H5P_DEFAULT;
     use hdf5_sys::h5s::{H5Sclose, H5Screate_simple};
-    let c = CString::new(name).map_err(|_| fail(format!("bad attribute name {name:?}")))?;
     let dims = [len as hdf5_sys::h5::hsize_t];
     let space = Owned::new(
         unsafe { H5Screate_simple(1, dims.as_ptr(), std::ptr::null()) },
         H5Sclose,
         "H5Screate_simple",
     )?;
-    let attr = Owned::new(
-        unsafe { H5Acreate2(loc, c.as_ptr(), dtype, space.0, H5P_DEFAULT, H5P_DEFAULT) },
-        H5Aclose,
-        name,
-    )?;
-    check(unsafe { H5Awrite(attr.0, dtype, buf) }, name)
+    put_attr(loc, name, (dtype, space.0, H5P_DEFAULT), buf)
 }
 
 impl Attacher {
@@ -260,32 +272,11 @@ fn str_attr_ids() -> hdf5::Result<&'static StrAttrIds> {
 
 /// A scalar variable-length UTF-8 string attribute (interior NULs replaced, as [`vlstr`]).
 pub fn attr_str(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
-    use hdf5_sys::h5a::{H5Aclose, H5Acreate2, H5Awrite};
-    use hdf5_sys::h5p::H5P_DEFAULT;
     let ids = str_attr_ids()?;
-    let c_name = CString::new(name).map_err(|_| fail(format!("bad attribute name {name:?}")))?;
     let c_value = CString::new(value.replace('\0', "\u{FFFD}")).expect("no NUL left");
-    hdf5::sync::sync(|| {
-        let attr = Owned::new(
-            unsafe {
-                H5Acreate2(
-                    loc.id(),
-                    c_name.as_ptr(),
-                    ids.string,
-                    ids.scalar,
-                    ids.acpl,
-                    H5P_DEFAULT,
-                )
-            },
-            H5Aclose,
-            name,
-        )?;
-        let value: *const c_char = c_value.as_ptr();
-        check(
-            unsafe { H5Awrite(attr.0, ids.string, (&raw const value).cast()) },
-            name,
-        )
-    })
+    let ptr: *const c_char = c_value.as_ptr();
+    let types = (ids.string, ids.scalar, ids.acpl);
+    hdf5::sync::sync(|| put_attr(loc.id(), name, types, (&raw const ptr).cast()))
 }
 
 pub fn attr_num<T: H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
