@@ -56,7 +56,7 @@ pub enum Command {
         /// A results file.
         file: PathBuf,
     },
-    /// Measure speed, parallel efficiency, HDF5 write share and peak memory (issue 7).
+    /// Measure speed, parallel efficiency, HDF5 write share and peak memory.
     Bench {
         /// Shrink every case (a few seconds; for tests).
         #[arg(long)]
@@ -310,11 +310,15 @@ fn cmd_validate(files: &[PathBuf], max_points: usize) -> i32 {
         });
         match res {
             Ok(s) => println!(
-                "ok: {}: {} points, {} dimensions, {} bats",
+                "ok: {}: {} points, {} dimensions, {} bats{}",
                 f.display(),
                 s.plan.n_points(),
                 s.plan.dims().len(),
-                s.plan.bats().len()
+                s.plan.bats().len(),
+                match s.plan.history_count() {
+                    Some(h) => format!(", {h} histories"),
+                    None => String::new(),
+                }
             ),
             Err(e) => {
                 eprintln!("{e}");
@@ -484,6 +488,20 @@ fn cmd_run(a: &RunArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
+    let _lock = match lock_output(&settings.output) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    // Checked again under the lock: another run may have finished the file meanwhile.
+    if let Err(e) = check_output_of(
+        &settings.study,
+        &settings.output,
+        a.output.is_some(),
+        settings.existing,
+    ) {
+        eprintln!("{e}");
+        return EXIT_BAD_INPUT;
+    }
     let stop = Arc::new(AtomicBool::new(false));
     {
         let stop = Arc::clone(&stop);
@@ -564,7 +582,17 @@ where
             return EXIT_RUN_FAILED;
         }
     }
+    let started = std::time::Instant::now();
+    let preparing = run::progress::spinner(
+        settings.options.progress,
+        format!(
+            "preparing {} bat{}",
+            plan.bats().len(),
+            if plan.bats().len() == 1 { "" } else { "s" }
+        ),
+    );
     let (bats, begun) = run::prepare_bats_alongside(sim, plan, &pool, begin);
+    preparing.finish_and_clear();
     let history = settings.study.history_request(bats.max_length());
     let info = settings.study.info(bats.variants.clone(), history.clone());
     let sink = match open(&settings.output, &info, settings.existing, begun) {
@@ -591,11 +619,29 @@ where
         }
         Ok((report, _sink)) => {
             if !settings.quiet {
-                print_report(settings, &report);
+                print_report(settings, &report, started.elapsed());
             }
             exit_code(&report)
         }
     }
+}
+
+/// Take the output's lock (`OUT.h5.lock`) before anything of it is touched: a second
+/// process on the same output is refused (exit 2) and changes nothing.
+fn lock_output(output: &Path) -> Result<store::lock::OutputLock, i32> {
+    if let Some(dir) = output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("error: cannot create {}: {e}", dir.display());
+            return Err(EXIT_RUN_FAILED);
+        }
+    }
+    store::lock::OutputLock::acquire(output).map_err(|e| {
+        eprintln!("error: {e}");
+        match e {
+            store::lock::LockError::Held { .. } => EXIT_BAD_INPUT,
+            store::lock::LockError::Io { .. } => EXIT_RUN_FAILED,
+        }
+    })
 }
 
 /// Exit code of a finished run.
@@ -609,9 +655,9 @@ pub fn exit_code(r: &RunReport) -> i32 {
     }
 }
 
-fn print_report(s: &RunSettings, r: &RunReport) {
+fn print_report(s: &RunSettings, r: &RunReport, elapsed: std::time::Duration) {
     eprintln!(
-        "{}: {} points: {} ok, {} failed, {} already done{}",
+        "{}: {} points: {} ok, {} failed, {} already done{}; {} ({})",
         s.output.display(),
         r.total,
         r.ok,
@@ -621,7 +667,9 @@ fn print_report(s: &RunSettings, r: &RunReport) {
             format!(", {} not run", r.remaining())
         } else {
             String::new()
-        }
+        },
+        run::progress::duration_text(elapsed.as_secs_f64()),
+        run::progress::rate_text((r.ok + r.failed) as u64, elapsed)
     );
     for (i, e) in &r.failures {
         eprintln!("  point {i} ({}): {e}", s.study.plan.describe(*i));
@@ -630,8 +678,10 @@ fn print_report(s: &RunSettings, r: &RunReport) {
         eprintln!("  … and {} more failures", r.failed - r.failures.len());
     }
     if r.interrupted || r.aborted {
+        // As this process was invoked, so that it can be pasted.
+        let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());
         let mut cmd = format!(
-            "batstudy run {} --resume -o {}",
+            "{program} run {} --resume -o {}",
             s.study.path.display(),
             s.output.display()
         );
@@ -703,6 +753,13 @@ fn cmd_merge(a: &MergeArgs) -> i32 {
         Existing::Overwrite
     } else {
         Existing::Refuse
+    };
+    if let Err((msg, allowed)) = check_output(&a.output, existing) {
+        return bad(format!("--output: {msg} (allowed: {allowed})"));
+    }
+    let _lock = match lock_output(&a.output) {
+        Ok(l) => l,
+        Err(code) => return code,
     };
     if let Err((msg, allowed)) = check_output(&a.output, existing) {
         return bad(format!("--output: {msg} (allowed: {allowed})"));

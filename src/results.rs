@@ -117,6 +117,8 @@ pub struct StudyInfo {
     /// Histories to store (None: summary only).
     pub history: Option<HistoryRequest>,
     pub bats: Vec<BatVariant>,
+    /// The study accepts values outside the plausible ranges (`allow_implausible`).
+    pub allow_implausible: bool,
 }
 
 /// One finished point.

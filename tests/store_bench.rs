@@ -39,6 +39,7 @@ fn summary_only_write_cost() {
             spec_json: "{}".into(),
             properties: BatProperties::default(),
         }],
+        allow_implausible: false,
     };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bench.h5");

@@ -99,6 +99,7 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
             precision,
         }),
         bats: vec![bat("r161", 3), bat("r161, bat.material.density=700", 2)],
+        allow_implausible: false,
     }
 }
 

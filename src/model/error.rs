@@ -42,6 +42,20 @@ pub enum ModelError {
     /// The ball was still in contact when the bounded simulation time ran out.
     #[error("ball still in contact after {t} s (simulation bound); the bat may be too soft for this ball")]
     NoSeparation { t: f64 },
+    /// The collision needs more time steps than its budget (`numerics.max_steps`).
+    #[error("this collision needs {}{steps:.0} time steps of {dt:.3e} s, more than its budget numerics.max_steps = {budget}{}",
+        if *provable { "at least " } else { "" },
+        if *provable { "" } else { ": it was stopped there" })]
+    StepBudget {
+        steps: f64,
+        dt: f64,
+        budget: u64,
+        /// The field that sets the step: `numerics.dt` when given, else the ball's
+        /// stiffness (`ball.law.stiffness` or `ball.law.k1`), or `numerics.max_steps`.
+        cause: &'static str,
+        /// Known before the run (true) or found when the budget ran out (false).
+        provable: bool,
+    },
     /// A feature not available (yet).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
@@ -93,6 +107,19 @@ impl ModelError {
                 "ball.speed".into(),
                 approach_speed.to_string(),
                 "a positive approach speed at the impact point".into(),
+            ),
+            ModelError::StepBudget {
+                steps,
+                dt,
+                budget,
+                cause,
+                ..
+            } => (
+                cause.to_string(),
+                none(),
+                format!(
+                    "at most {budget} steps (numerics.max_steps) for {steps:.0} steps of {dt:.3e} s: a softer ball.law, a larger numerics.dt, or a larger numerics.max_steps"
+                ),
             ),
             ModelError::NoSeparation { .. } | ModelError::Unsupported(_) => {
                 (none(), none(), self.to_string())

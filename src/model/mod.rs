@@ -4,7 +4,7 @@
 //! Modules, one idea each: `profile` (outer radius R(z)), `section` (resolved geometry and
 //! cross-sections), `beam` (lumped Euler–Bernoulli beam), `modal` (eigenmodes), `bat`
 //! (`PreparedBat`), `ball` (force laws), `wave` (time integration), `history` (sampling),
-//! `validate` (spec checks), `simulate` (dispatch), `rigid` (Brody's model), `sweet`
+//! `validate` (spec checks), `plausible` (the values real bats and balls have), `simulate` (dispatch), `rigid` (Brody's model), `sweet`
 //! (sweet-spot finder), `sweet_defs` (least-vibration sweet spots, extremum finder),
 //! `metrics` (centre of percussion, barrel nodes, BBCOR, grip vibration), `error`.
 
@@ -16,6 +16,7 @@ mod history;
 pub mod metrics;
 pub mod modal;
 pub mod outcome;
+pub mod plausible;
 pub mod profile;
 pub mod rigid;
 pub mod section;

@@ -428,6 +428,12 @@ pub struct NumericsSpec {
     /// Time integrator. Default `modal`.
     #[serde(default)]
     pub integrator: Integrator,
+    /// Most time steps one collision may take (its budget): a point that would need more
+    /// is refused before it runs (at least the re-contact watch after separation, 0.5 ms,
+    /// must fit) and stopped with an error if it runs out. Default 10 000 000 (a few
+    /// seconds of computing; the base case takes about 600).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_steps: Option<u64>,
 }
 
 fn default_grip_z() -> f64 {

@@ -125,6 +125,58 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     if let Some(dt) = spec.numerics.dt {
         check("numerics.dt", dt, dt > 0.0, "(0, stability limit] s")?;
     }
+    if let Some(b) = spec.numerics.max_steps {
+        check(
+            "numerics.max_steps",
+            b as f64,
+            b >= 1,
+            "a whole number >= 1",
+        )?;
+    }
+    check_step_budget(spec, length)
+}
+
+/// Refuse a collision that provably needs more steps than its budget, without preparing
+/// the bat: every run lasts at least `COAST_TIME` after separation, and its step is at most
+/// the user's `numerics.dt`, or the default fraction of 1/ω where ω² = k_t/m uses the ball's
+/// stiffest tangent alone (the bat and a hoop only make the real ω larger, the step smaller).
+fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError> {
+    use super::spec::Integrator;
+    use super::wave::{step_budget, COAST_TIME, MODAL_STEP_FRACTION, VERLET_STEP_FRACTION};
+    let dt = match spec.numerics.dt {
+        Some(dt) => dt,
+        None => {
+            // The approach speed is at least this wherever the centre of mass lies.
+            let approach = spec.ball.speed - spec.swing.omega.abs() * length;
+            if approach <= 0.0 {
+                return Ok(()); // no bound; the run's own budget check still holds
+            }
+            let law = super::ball::ContactLaw::from_spec(&spec.ball.law);
+            let omega = (law.max_tangent(spec.ball.mass, approach) / spec.ball.mass).sqrt();
+            let fraction = match spec.numerics.integrator {
+                Integrator::Modal => MODAL_STEP_FRACTION,
+                // Verlet's limit is 2/ω with ω at least the ball's alone.
+                Integrator::Verlet => VERLET_STEP_FRACTION * 2.0,
+            };
+            fraction / omega
+        }
+    };
+    let budget = step_budget(spec);
+    let least = (COAST_TIME / dt).ceil();
+    if least > budget as f64 {
+        let cause = match (spec.numerics.dt, spec.ball.law.kind) {
+            (Some(_), _) => "numerics.dt",
+            (None, super::spec::BallLawKind::PowerLaw) => "ball.law.k1",
+            (None, _) => "ball.law.stiffness",
+        };
+        return Err(ModelError::StepBudget {
+            steps: least,
+            dt,
+            budget,
+            cause,
+            provable: true,
+        });
+    }
     Ok(())
 }
 

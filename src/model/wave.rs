@@ -27,6 +27,9 @@ use super::spec::{BeamTheory, CollisionSpec, Integrator};
 pub const COAST_TIME: f64 = 0.5e-3;
 /// Upper bound of the simulated time, s.
 pub const MAX_TIME: f64 = 20e-3;
+/// Default step budget of one collision (`numerics.max_steps`): a few seconds of computing
+/// for the explicit baseline, thousands of times what a default collision takes.
+pub const DEFAULT_MAX_STEPS: u64 = 10_000_000;
 /// Default modal step as a fraction of the contact's time scale 1/ω_c (ω_c from the ball's
 /// stiffest tangent, plus the hoop): ≈ 3.4 µs for the base case, exit speed within 4e-5 of
 /// the converged value.
@@ -164,6 +167,8 @@ struct Collision {
     a: f64,
     lever: f64,
     dt: f64,
+    /// Most steps this collision may take.
+    budget: u64,
     /// Modes above this angular frequency are treated quasi-statically (modal integrator).
     mode_cutoff: f64,
 }
@@ -236,6 +241,11 @@ pub fn time_step(spec: &CollisionSpec, bat: &PreparedBat) -> Result<f64, ModelEr
             Integrator::Verlet => VERLET_STEP_FRACTION * limit,
         }),
     }
+}
+
+/// The step budget of this collision (`numerics.max_steps`, default `DEFAULT_MAX_STEPS`).
+pub fn step_budget(spec: &CollisionSpec) -> u64 {
+    spec.numerics.max_steps.unwrap_or(DEFAULT_MAX_STEPS)
 }
 
 /// Relative approach speed at the impact point, m/s.
@@ -356,6 +366,18 @@ pub fn simulate_wave(
     }
     let hoop = resolve_hoop(spec, bat)?;
     let dt = time_step(spec, bat)?;
+    // The run lasts at least the re-contact watch after the ball has left.
+    let budget = step_budget(spec);
+    let least = (COAST_TIME / dt).ceil();
+    if least > budget as f64 {
+        return Err(ModelError::StepBudget {
+            steps: least,
+            dt,
+            budget,
+            cause: "numerics.max_steps",
+            provable: true,
+        });
+    }
     let (k, a) = bat.beam.interpolation(spec.impact.z);
     let frame_velocity = bat
         .beam
@@ -372,6 +394,7 @@ pub fn simulate_wave(
         a,
         lever: spec.impact.z - bat.z_cm,
         dt,
+        budget,
         mode_cutoff: MODE_CUTOFF_FACTOR
             * contact_omega(spec, hoop, &ContactLaw::from_spec(&spec.ball.law), approach),
     };
@@ -896,6 +919,15 @@ fn run_modal(
             }
             break;
         }
+        if steps as u64 >= c.budget {
+            return Err(ModelError::StepBudget {
+                steps: steps as f64,
+                dt: h,
+                budget: c.budget,
+                cause: "numerics.max_steps",
+                provable: false,
+            });
+        }
     }
     let mut bat_energy = 0.0;
     for j in 0..n {
@@ -1052,6 +1084,15 @@ fn run_verlet(
                 return Err(ModelError::NoSeparation { t });
             }
             break;
+        }
+        if steps as u64 >= c.budget {
+            return Err(ModelError::StepBudget {
+                steps: steps as f64,
+                dt: h,
+                budget: c.budget,
+                cause: "numerics.max_steps",
+                provable: false,
+            });
         }
     }
     let _ = hoop_force;

@@ -12,9 +12,7 @@ use crate::model::spec::ModelKind;
 use crate::pointset::PointSet;
 use crate::results::{BatVariant, PointRecord};
 use crate::study::Plan;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
-use std::io::IsTerminal;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -239,17 +237,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
         .shard
         .map_or(0..n, |s| super::shard::shard_range(plan, history, s));
     let total = range.len();
-    let pb = if opts.progress && std::io::stderr().is_terminal() {
-        ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr())
-    } else {
-        ProgressBar::hidden()
-    };
-    pb.set_style(
-        ProgressStyle::with_template(
-            "{elapsed_precise} [{wide_bar}] {pos}/{len} points  {per_sec}  ETA {eta}",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let pb = super::progress::points_bar(opts.progress, total as u64);
     // The points to skip, asked of the sink once, before any worker starts: the workers then
     // never wait for the sink's lock, which the writer holds while it writes (issue 7: the
     // final file's skeleton, made on the writer's first record, stalled every worker).
@@ -304,6 +292,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
                 // each wake-up between threads is on the critical path of a small study). In
                 // the run's pool, whose threads have just finished their last points: the
                 // final file's parallel parts (deflate) start on threads that are awake.
+                writer_pb.set_message("writing");
                 let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
                 let sink = &mut *s;
                 pool.install(|| sink.finish())?;

@@ -3,6 +3,7 @@
 
 pub mod adapters;
 pub mod driver;
+pub mod progress;
 pub mod shard;
 pub mod traits;
 

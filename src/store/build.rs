@@ -1120,6 +1120,7 @@ fn root_attrs(
     n("git_dirty", meta.git_dirty as i64)?;
     n("threads", meta.threads as i64)?;
     n("n_points", info.shape.n_points() as i64)?;
+    n("allow_implausible", info.allow_implausible as i64)?;
     if let Some((start, stop)) = meta.shard_range {
         n("shard_start", start as i64)?;
         n("shard_stop", stop as i64)?;

@@ -11,7 +11,7 @@
 //!
 //! Modules: [`layout`] (names, units), [`dimscale`] (HDF5 dimension scales and helpers),
 //! [`journal`], [`build`] (journal → HDF5), [`read`] (reading back, inspect),
-//! [`sweet_spot`].
+//! [`lock`] (one process per output).
 
 pub mod build;
 pub mod chunks;
@@ -19,6 +19,7 @@ pub mod dimscale;
 pub mod error;
 pub mod journal;
 pub mod layout;
+pub mod lock;
 pub mod read;
 
 pub use error::StoreError;

@@ -2,6 +2,7 @@
 //! study file. The checks themselves are the model's (`model::validate_spec`): one
 //! definition of what is physically allowed.
 
+use crate::model::plausible::check_plausible;
 use crate::model::section::BatGeometry;
 use crate::model::spec::{BatSpec, CollisionSpec};
 use crate::model::validate_spec;
@@ -12,6 +13,8 @@ pub struct Violation {
     pub path: String,
     pub value: String,
     pub allowed: String,
+    /// The model's own sentence, where "out of range" would not say enough.
+    pub message: Option<String>,
 }
 
 /// Length of the bat in m as the model will build it (profile, or `bat.length` when set);
@@ -20,16 +23,27 @@ pub fn bat_length(bat: &BatSpec) -> f64 {
     BatGeometry::resolve(bat).map_or(f64::NAN, |g| g.length)
 }
 
-/// Check one resolved collision: the first violation, if any.
-pub fn check_spec(spec: &CollisionSpec) -> Vec<Violation> {
-    match validate_spec(spec) {
+/// Check one resolved collision: the first violation, if any. The plausible ranges are
+/// checked too unless the study allows implausible values.
+pub fn check_spec(spec: &CollisionSpec, allow_implausible: bool) -> Vec<Violation> {
+    let checked = validate_spec(spec).and_then(|()| {
+        if allow_implausible {
+            Ok(())
+        } else {
+            check_plausible(spec)
+        }
+    });
+    match checked {
         Ok(()) => Vec::new(),
         Err(e) => {
             let (path, value, allowed) = e.field_value_allowed();
+            let message =
+                matches!(e, crate::model::ModelError::StepBudget { .. }).then(|| e.to_string());
             vec![Violation {
                 path,
                 value,
                 allowed,
+                message,
             }]
         }
     }

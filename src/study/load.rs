@@ -61,6 +61,7 @@ const TOP_KEYS: &[&str] = &[
     "points",
     "history",
     "output",
+    "allow_implausible",
 ];
 const HISTORY_KEYS: &[&str] = &[
     "fields",
@@ -112,12 +113,15 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
             )
             .allowed(TOP_KEYS.join(", ")));
     };
-    // 2. Unknown keys at the top and in `history`.
+    // 2. No NaN or infinity anywhere: serde would turn a NaN into `null` on its way
+    //    through JSON, and `null` means "the preset's value".
+    check_finite(&cx, &root, &mut Vec::new())?;
+    // 3. Unknown keys at the top and in `history`.
     check_keys(&cx, top, &[], TOP_KEYS, "study")?;
     if let Some(Value::Mapping(h)) = top.get("history") {
         check_keys(&cx, h, &keys(&["history"]), HISTORY_KEYS, "history")?;
     }
-    // 3. Types of the study's own fields.
+    // 4. Types of the study's own fields.
     let file: StudyFile = serde_path_to_error::deserialize(root.clone()).map_err(|e| {
         let p = path_string(e.path());
         let segs = yaml_segs(e.path());
@@ -144,6 +148,54 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         file,
         plan,
     })
+}
+
+/// Refuse a NaN or an infinite number anywhere in the document, at its position.
+fn check_finite(cx: &Ctx, v: &Value, at: &mut Vec<Seg>) -> Result<(), StudyError> {
+    match v {
+        Value::Number(n) => match n.as_f64() {
+            Some(x) if !x.is_finite() => Err(cx
+                .err(at, "not a finite number")
+                .field(seg_path(at))
+                .value(value_text(v))
+                .allowed("a finite number (NaN and infinities are refused anywhere in a study)")),
+            _ => Ok(()),
+        },
+        Value::Sequence(items) => {
+            for (i, x) in items.iter().enumerate() {
+                at.push(Seg::Index(i));
+                check_finite(cx, x, at)?;
+                at.pop();
+            }
+            Ok(())
+        }
+        Value::Mapping(m) => {
+            for (k, x) in m {
+                at.push(Seg::Key(value_text(k)));
+                check_finite(cx, x, at)?;
+                at.pop();
+            }
+            Ok(())
+        }
+        Value::Tagged(t) => check_finite(cx, &t.value, at),
+        _ => Ok(()),
+    }
+}
+
+/// `grid.impact.z[2]` for a path of segments.
+fn seg_path(at: &[Seg]) -> String {
+    let mut s = String::new();
+    for seg in at {
+        match seg {
+            Seg::Key(k) if s.is_empty() => s.push_str(k),
+            Seg::Key(k) => {
+                s.push('.');
+                s.push_str(k);
+            }
+            Seg::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    s
 }
 
 fn hex(b: &[u8]) -> String {
@@ -403,7 +455,9 @@ fn located(
         }
         ResolveError::Check(v) => (
             v.path.clone(),
-            if v.value == "missing" {
+            if let Some(m) = v.message {
+                m
+            } else if v.value == "missing" {
                 format!(
                     "missing field `{}`",
                     v.path.rsplit('.').next().unwrap_or(&v.path)
@@ -411,7 +465,7 @@ fn located(
             } else {
                 format!("`{}` out of range", v.path)
             },
-            Some(v.value),
+            Some(v.value).filter(|v| !v.is_empty()),
             Some(v.allowed),
         ),
         ResolveError::Profile { file: f } => (
@@ -475,6 +529,7 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
         }
     };
     check_param_keys(cx, &base, "", &keys(&["base"]))?;
+    check_base_types(cx, &base)?;
     if let Some(m) = file.model {
         if let Some(bm) = base.get("model") {
             let bm: Option<crate::model::spec::ModelKind> =
@@ -721,6 +776,8 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
     let mut plan = Plan {
         base,
         history_only,
+        allow_implausible: file.allow_implausible,
+        history_count: None,
         dims,
         shape,
         profiles,
@@ -734,6 +791,8 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
     if let Err(e) = plan.resolve(&zero) {
         return Err(located(cx, file, &plan, &zero, None, e));
     }
+    let mut unused = super::unused::Tally::new();
+    unused.add(&plan.value_at(&zero));
     for d in 0..plan.dims.len() {
         for i in 1..plan.dims[d].size {
             let mut m = zero.clone();
@@ -741,6 +800,7 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
             if let Err(e) = plan.resolve(&m) {
                 return Err(located(cx, file, &plan, &m, Some(d), e));
             }
+            unused.add(&plan.value_at(&m));
         }
     }
     // Distinct bats.
@@ -792,16 +852,180 @@ fn build_plan(cx: &Ctx, file: &StudyFile, opts: &LoadOptions) -> Result<Plan, St
         bat_of_combo.push(idx);
     }
     plan.bat_of_combo = bat_of_combo;
-    // Small plans: every point.
+    // Small plans: every point (and the exact number of histories they record).
+    let wants_history = file.history.as_ref().is_some_and(|h| !h.fields.is_empty());
     if n <= FULL_CHECK_LIMIT {
+        let mut histories = 0usize;
         for flat in 0..n {
             let m = plan.shape.unravel(flat);
-            if let Err(e) = plan.resolve(&m) {
-                return Err(located(cx, file, &plan, &m, None, e));
+            match plan.resolve(&m) {
+                Err(e) => return Err(located(cx, file, &plan, &m, None, e)),
+                Ok(spec) => {
+                    if wants_history
+                        && spec.model == crate::model::spec::ModelKind::Wave
+                        && plan.records_history(&spec)
+                    {
+                        histories += 1;
+                    }
+                }
+            }
+            unused.add(&plan.value_at(&m));
+        }
+        if wants_history {
+            plan.history_count = Some(histories);
+        }
+    }
+    if let Some(rule) = unused.unused() {
+        return Err(cx
+            .err(
+                &written_at(file, &plan, rule.field),
+                format!(
+                    "`{}` is set, but no point of the study uses it: it is used only {}",
+                    rule.field, rule.used_when
+                ),
+            )
+            .field(rule.field)
+            .allowed(format!("leave it out (it is used only {})", rule.used_when)));
+    }
+    if wants_history {
+        check_history_only(cx, file, &plan)?;
+    }
+    Ok(plan)
+}
+
+/// Every value written in `base` has the right type, even where a block overrides it
+/// (`base.ball.speed: fast` under a `ball.speed` grid would otherwise pass unnoticed).
+/// Fields left out of `base` are not asked for: blocks may set them.
+fn check_base_types(cx: &Ctx, base: &Value) -> Result<(), StudyError> {
+    let mut probe = base.clone();
+    if super::paths::get_path(&probe, "impact.z").is_none() {
+        let _ = set_path(&mut probe, "impact.z", Value::from(0.5));
+    }
+    let Ok(json) = serde_json::to_value(&probe) else {
+        return Ok(());
+    };
+    let Err(e) = serde_path_to_error::deserialize::<_, crate::model::spec::CollisionSpec>(json)
+    else {
+        return Ok(());
+    };
+    let path = path_string(e.path());
+    let message = e.into_inner().to_string();
+    if message.starts_with("missing field") {
+        return Ok(());
+    }
+    let mut at = keys(&["base"]);
+    at.extend(dotted(&path));
+    let mut err = cx
+        .err(&at, format!("{message} (in base)"))
+        .field(path.clone());
+    if let Some(v) = super::paths::get_path(base, &path) {
+        err = err.value(value_text(v));
+    }
+    if let Some(a) = allowed_from_serde(&message) {
+        err = err.allowed(a);
+    }
+    Err(err)
+}
+
+/// Where the study sets `field`: in `base`, else the first block value that sets it.
+fn written_at(file: &StudyFile, plan: &Plan, field: &str) -> Vec<Seg> {
+    let set = |v: Option<&Value>| v.is_some_and(|v| !v.is_null());
+    if set(super::paths::get_path(&plan.base, field)) {
+        let mut s = keys(&["base"]);
+        s.extend(dotted(field));
+        return s;
+    }
+    for d in &plan.dims {
+        for (p, vals) in &d.params {
+            if !related(p, field) {
+                continue;
+            }
+            for (i, v) in vals.iter().enumerate() {
+                let mut probe = Value::Mapping(Mapping::new());
+                let _ = set_path(&mut probe, p, v.clone());
+                if set(super::paths::get_path(&probe, field)) {
+                    return dim_elem(file, d, p, i);
+                }
             }
         }
     }
-    Ok(plan)
+    keys(&["base"])
+}
+
+/// Every value listed in `history.only` must be one that some point takes: a value off
+/// the grid (a typo, or 0.703 for 0.70) would silently record nothing. For a plan small
+/// enough to count, at least one point must record a history.
+fn check_history_only(cx: &Ctx, file: &StudyFile, plan: &Plan) -> Result<(), StudyError> {
+    let Some(h) = &file.history else {
+        return Ok(());
+    };
+    let defaults = with_defaults(&plan.base);
+    for (path, wanted) in &h.only {
+        let Some(taken) = values_taken(plan, &defaults, path) else {
+            continue; // set inside a record by a block: not comparable value by value
+        };
+        for (i, w) in wanted.iter().enumerate() {
+            if !taken.iter().any(|t| super::plan::same_value(t, w)) {
+                let mut shown: Vec<String> = taken.iter().take(12).map(value_text).collect();
+                if taken.len() > 12 {
+                    shown.push(format!("… ({} values)", taken.len()));
+                }
+                return Err(cx
+                    .err(
+                        &[
+                            Seg::Key("history".into()),
+                            Seg::Key("only".into()),
+                            Seg::Key(path.clone()),
+                            Seg::Index(i),
+                        ],
+                        format!("history.only: no point of the study has `{path}` = {}: this value would record no history", value_text(w)),
+                    )
+                    .field(format!("history.only.{path}"))
+                    .value(value_text(w))
+                    .allowed(if shown.is_empty() {
+                        format!("a value `{path}` takes in the study (it is not set)")
+                    } else {
+                        format!("values `{path}` takes in the study: {}", shown.join(", "))
+                    }));
+            }
+        }
+    }
+    if plan.history_count == Some(0) {
+        return Err(cx
+            .err(
+                &keys(&["history", "only"]),
+                "history.only: no point of the study meets every condition at once (the rigid model never records histories)",
+            )
+            .field("history.only")
+            .allowed("conditions that some wave-model point meets together"));
+    }
+    Ok(())
+}
+
+/// The values `path` takes over the study: a block's values where a block sets it (with
+/// the base value too where a `points` set leaves it out), else the base value with its
+/// defaults. None when a block sets a record that contains `path`, or a field inside it.
+fn values_taken(plan: &Plan, defaults: &Value, path: &str) -> Option<Vec<Value>> {
+    let base_value = || super::paths::get_path(defaults, path).cloned();
+    for d in &plan.dims {
+        for (p, vals) in &d.params {
+            if p == path {
+                let mut out: Vec<Value> = Vec::new();
+                for v in vals {
+                    if super::plan::is_unset(v) {
+                        out.extend(base_value());
+                    } else {
+                        out.push(v.clone());
+                    }
+                }
+                return Some(out);
+            }
+            if related(p, path) {
+                return None;
+            }
+        }
+    }
+    Some(base_value().into_iter().collect())
 }
 
 impl Study {
@@ -837,6 +1061,7 @@ impl Study {
             shape: self.plan.shape.clone(),
             history,
             bats,
+            allow_implausible: self.file.allow_implausible,
         }
     }
 

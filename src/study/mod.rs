@@ -15,6 +15,7 @@ pub mod plan;
 pub mod profile;
 pub mod source;
 pub mod types;
+pub mod unused;
 
 pub use error::StudyError;
 pub use load::{load, load_str, LoadOptions, Study, DEFAULT_MAX_POINTS};

@@ -103,6 +103,10 @@ pub struct Plan {
     pub(crate) base: Value,
     /// `history.only`: record histories only where every listed path takes a listed value.
     pub(crate) history_only: Vec<(String, Vec<Value>)>,
+    /// The study's `allow_implausible`: skip the plausible ranges.
+    pub(crate) allow_implausible: bool,
+    /// How many points record a history, when the plan was small enough to count them.
+    pub(crate) history_count: Option<usize>,
     pub(crate) dims: Vec<PlanDim>,
     pub(crate) shape: ResultShape,
     /// Profile CSV paths as written → knots.
@@ -144,7 +148,7 @@ pub(crate) fn is_bat_path(p: &str) -> bool {
 
 /// Equal parameter values: numbers within 1e-9 relative (a value typed as `0.6` matches a
 /// grid value computed as 0.4 + 20·0.01), anything else exactly.
-fn same_value(a: &Value, b: &Value) -> bool {
+pub(crate) fn same_value(a: &Value, b: &Value) -> bool {
     match (a.as_f64(), b.as_f64()) {
         (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-300),
         _ => a == b,
@@ -186,6 +190,10 @@ impl Plan {
     /// The distinct bats, in order of first appearance (row-major over the bat dimensions).
     pub fn bats(&self) -> &[BatChoice] {
         &self.bats
+    }
+    /// How many points record a history (None: not counted, the plan is large).
+    pub fn history_count(&self) -> Option<usize> {
+        self.history_count
     }
     /// The base parameters (after `model` was copied in), as a YAML tree.
     pub fn base(&self) -> &Value {
@@ -241,7 +249,7 @@ impl Plan {
                 value,
             }
         })?;
-        if let Some(first) = check_spec(&spec).into_iter().next() {
+        if let Some(first) = check_spec(&spec, self.allow_implausible).into_iter().next() {
             return Err(ResolveError::Check(first));
         }
         Ok(spec)

@@ -58,6 +58,11 @@ pub struct StudyFile {
     /// `-o` is). Default `results/<name>.h5`.
     #[serde(default)]
     pub output: Option<String>,
+    /// A what-if study: accept values outside the plausible ranges (docs/study-files.md,
+    /// "Plausible ranges"). Recorded in the results file's root attribute
+    /// `allow_implausible`. Default false.
+    #[serde(default)]
+    pub allow_implausible: bool,
 }
 
 fn base_schema(gen: &mut SchemaGenerator) -> Schema {
@@ -423,7 +428,24 @@ impl HistorySpec {
 /// The JSON Schema of study files, pretty-printed with a trailing newline.
 pub fn schema_json() -> String {
     let schema = schemars::schema_for!(StudyFile);
-    serde_json::to_string_pretty(&schema).expect("schema serializes") + "\n"
+    let mut root = schema.as_value().clone();
+    // The plausible ranges bound `base` unless the study sets `allow_implausible: true`.
+    if let Some(obj) = root.as_object_mut() {
+        obj.insert(
+            "if".into(),
+            serde_json::json!({
+                "properties": {"allow_implausible": {"const": true}},
+                "required": ["allow_implausible"]
+            }),
+        );
+        obj.insert(
+            "else".into(),
+            serde_json::json!({
+                "properties": {"base": crate::model::plausible::schema_overlay()}
+            }),
+        );
+    }
+    serde_json::to_string_pretty(&root).expect("schema serializes") + "\n"
 }
 
 #[cfg(test)]

@@ -1,0 +1,319 @@
+//! Plausible ranges: the values a real bat, ball and swing can have.
+//!
+//! `validate_spec` refuses what the model cannot compute (a negative mass, a shell thicker
+//! than the bat); this table refuses what it can compute but no bat or ball has (a ball at
+//! 1e6 m/s, wood at 1e30 kg/m³), because such numbers are almost always typing errors and
+//! would be stored without a word. A study that wants to go beyond on purpose (a what-if
+//! study) sets `allow_implausible: true`; the study layer then skips this check and the
+//! results file records it. The same table feeds the JSON schema (`minimum`/`maximum`) and
+//! docs/study-files.md, where each bound's reason is given.
+
+use super::error::ModelError;
+use super::spec::CollisionSpec;
+
+/// One plausible range of a parameter.
+#[derive(Debug, Clone, Copy)]
+pub struct Range {
+    /// Dotted path of the parameter.
+    pub path: &'static str,
+    pub min: f64,
+    pub max: f64,
+    /// Unit of `min` and `max` (SI).
+    pub unit: &'static str,
+    /// Why these bounds.
+    pub reason: &'static str,
+    /// The value in a spec, when set (a preset's own values are inside every range).
+    pub get: fn(&CollisionSpec) -> Option<f64>,
+}
+
+/// Every plausible range, in the order of the study-file reference.
+pub const RANGES: &[Range] = &[
+    Range {
+        path: "bat.length",
+        min: 0.4,
+        max: 1.5,
+        unit: "m",
+        reason: "youth bats are about 0.6 m, adult bats 0.8-0.9 m; the paper's longest bat is 1.10 m",
+        get: |s| s.bat.length,
+    },
+    Range {
+        path: "bat.material.density",
+        min: 100.0,
+        max: 10000.0,
+        unit: "kg/m^3",
+        reason: "from balsa (about 150) through woods (400-900), composites (about 1600) and aluminium (2700) to steel (7850)",
+        get: |s| s.bat.material.density,
+    },
+    Range {
+        path: "bat.material.youngs_modulus",
+        min: 1.0e8,
+        max: 5.0e11,
+        unit: "Pa",
+        reason: "from soft plastics (about 1e9) through wood (1-2e10) and aluminium (6.9e10) to steel and carbon fibre (2-4e11)",
+        get: |s| s.bat.material.youngs_modulus,
+    },
+    Range {
+        path: "bat.material.poisson_ratio",
+        min: 0.0,
+        max: 0.5,
+        unit: "1",
+        reason: "isotropic materials lie between 0 and 0.5",
+        get: |s| s.bat.material.poisson_ratio,
+    },
+    Range {
+        path: "bat.material.shear_modulus",
+        min: 1.0e7,
+        max: 2.0e11,
+        unit: "Pa",
+        reason: "wood's longitudinal-radial shear modulus is about 1e9, aluminium's 2.6e10, steel's 8e10",
+        get: |s| s.bat.material.shear_modulus,
+    },
+    Range {
+        path: "bat.material.shear_coefficient",
+        min: 0.1,
+        max: 1.0,
+        unit: "1",
+        reason: "Cowper's coefficient is about 0.5 for a thin tube and 0.9 for a solid circle",
+        get: |s| s.bat.material.shear_coefficient,
+    },
+    Range {
+        path: "bat.material.quality_factor",
+        min: 2.0,
+        max: 1.0e6,
+        unit: "1",
+        reason: "wood's Q is tens to a few hundred, metals' thousands; below 2 the modes are barely oscillatory",
+        get: |s| s.bat.material.quality_factor,
+    },
+    Range {
+        path: "bat.shell.thickness",
+        min: 5.0e-4,
+        max: 0.05,
+        unit: "m",
+        reason: "aluminium bat walls are 2-3.5 mm thick, a corked barrel's wall about 1 cm; below 0.5 mm no wall survives an impact",
+        get: |s| s.bat.shell.as_ref().and_then(|x| x.thickness),
+    },
+    Range {
+        path: "bat.fill.density",
+        min: 0.0,
+        max: 2000.0,
+        unit: "kg/m^3",
+        reason: "0 is hollow; cork is about 240, rubber and resins up to about 1500",
+        get: |s| s.bat.fill.as_ref().map(|f| f.density),
+    },
+    Range {
+        path: "bat.handle.radius_scale",
+        min: 0.3,
+        max: 3.0,
+        unit: "1",
+        reason: "the paper's handle variants are 0.8 and 1.25; beyond a factor of 3 the handle is no handle",
+        get: |s| Some(s.bat.handle.radius_scale),
+    },
+    Range {
+        path: "bat.grip.stiffness",
+        min: 1.0e2,
+        max: 1.0e9,
+        unit: "N/m",
+        reason: "hands measured as a few 1e3-1e5 N/m; a clamp is about 1e8",
+        get: |s| s.bat.grip.as_ref().and_then(|g| g.stiffness),
+    },
+    Range {
+        path: "bat.grip.damping",
+        min: 0.0,
+        max: 1.0e5,
+        unit: "N s/m",
+        reason: "hands damp with tens to hundreds of N s/m",
+        get: |s| s.bat.grip.as_ref().map(|g| g.damping),
+    },
+    Range {
+        path: "ball.mass",
+        min: 0.1,
+        max: 0.25,
+        unit: "kg",
+        reason: "baseballs weigh 0.142-0.149 kg, softballs 0.17-0.20 kg",
+        get: |s| Some(s.ball.mass),
+    },
+    Range {
+        path: "ball.speed",
+        min: 0.5,
+        max: 100.0,
+        unit: "m/s",
+        reason: "from slow laboratory impacts (1 m/s) to beyond the fastest pitch (47 m/s) meeting the fastest barrel (about 40 m/s)",
+        get: |s| Some(s.ball.speed),
+    },
+    Range {
+        path: "ball.law.stiffness",
+        min: 1.0e4,
+        max: 1.0e8,
+        unit: "N/m",
+        reason: "baseballs' dynamic stiffness is about 0.5-2e6 N/m (the paper uses 7e5); two decades either side",
+        get: |s| Some(s.ball.law.stiffness),
+    },
+    Range {
+        path: "ball.law.cor",
+        min: 0.2,
+        max: 1.0,
+        unit: "1",
+        reason: "balls in play have a wall COR of 0.4-0.6; 1 is lossless",
+        get: |s| Some(s.ball.law.cor),
+    },
+    Range {
+        path: "ball.law.k1",
+        min: 1.0e5,
+        max: 1.0e10,
+        unit: "N/m^alpha",
+        reason: "Nathan (2000) fits 6.53e7 N/m^1.84 to a baseball",
+        get: |s| Some(s.ball.law.k1),
+    },
+    Range {
+        path: "ball.law.alpha",
+        min: 1.0,
+        max: 3.0,
+        unit: "1",
+        reason: "1 is a linear spring, 1.5 Hertz contact, 1.84 Nathan's baseball",
+        get: |s| Some(s.ball.law.alpha),
+    },
+    Range {
+        path: "swing.omega",
+        min: -200.0,
+        max: 200.0,
+        unit: "rad/s",
+        reason: "the fastest measured swings turn the bat at about 50-60 rad/s at impact",
+        get: |s| Some(s.swing.omega),
+    },
+    Range {
+        path: "swing.cm_speed",
+        min: -60.0,
+        max: 60.0,
+        unit: "m/s",
+        reason: "a bat's centre of mass moves at up to about 25 m/s in a swing",
+        get: |s| Some(s.swing.cm_speed),
+    },
+    Range {
+        path: "hoop.frequency",
+        min: 100.0,
+        max: 20000.0,
+        unit: "Hz",
+        reason: "hollow bats' hoop modes are measured at about 1-2.5 kHz; the paper explores 300-2000 Hz",
+        get: |s| s.hoop.as_ref().and_then(|h| h.frequency),
+    },
+    Range {
+        path: "hoop.mass",
+        min: 1.0e-3,
+        max: 0.5,
+        unit: "kg",
+        reason: "the shell that moves in a hoop mode weighs grams to tens of grams",
+        get: |s| s.hoop.as_ref().and_then(|h| h.mass),
+    },
+    Range {
+        path: "hoop.length",
+        min: 0.005,
+        max: 0.5,
+        unit: "m",
+        reason: "the hoop deformation spans a few centimetres of the barrel",
+        get: |s| s.hoop.as_ref().and_then(|h| h.length),
+    },
+];
+
+/// The plausible range of a path, if it has one.
+pub fn range_of(path: &str) -> Option<&'static Range> {
+    RANGES.iter().find(|r| r.path == path)
+}
+
+/// The first value of `spec` outside its plausible range.
+pub fn check_plausible(spec: &CollisionSpec) -> Result<(), ModelError> {
+    for r in RANGES {
+        if let Some(v) = (r.get)(spec) {
+            if !(v >= r.min && v <= r.max) {
+                return Err(ModelError::OutOfRange {
+                    path: r.path.to_string(),
+                    value: v,
+                    allowed: format!(
+                        "{} to {} {} ({}); a what-if study beyond it sets `allow_implausible: true`",
+                        r.min, r.max, r.unit, r.reason
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The ranges as a JSON Schema fragment for the `base` block: nested `properties` with
+/// `minimum`/`maximum` (numbers only; `null` and absent fields pass).
+pub fn schema_overlay() -> serde_json::Value {
+    use serde_json::{json, Map, Value};
+    let mut root = Map::new();
+    for r in RANGES {
+        let mut node = &mut root;
+        let segs: Vec<&str> = r.path.split('.').collect();
+        for seg in &segs[..segs.len() - 1] {
+            let child = node
+                .entry(seg.to_string())
+                .or_insert_with(|| json!({"properties": {}}));
+            node = child
+                .get_mut("properties")
+                .and_then(Value::as_object_mut)
+                .expect("overlay nodes have properties");
+        }
+        node.insert(
+            segs[segs.len() - 1].to_string(),
+            json!({
+                "minimum": r.min,
+                "maximum": r.max,
+                "description": format!("plausible range, {}: {}", r.unit, r.reason),
+            }),
+        );
+    }
+    json!({ "properties": root })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_base_case_and_every_preset_are_plausible() {
+        use crate::model::spec::BatPreset;
+        for preset in [BatPreset::R161, BatPreset::Aluminum, BatPreset::Corked] {
+            let mut s = CollisionSpec::base_case(0.6);
+            s.bat.preset = preset;
+            check_plausible(&s).unwrap();
+        }
+    }
+
+    #[test]
+    fn every_range_is_ordered() {
+        for r in RANGES {
+            assert!(r.min < r.max, "{}", r.path);
+        }
+    }
+
+    #[test]
+    fn the_issues_implausible_values_are_refused() {
+        type Edit = fn(&mut CollisionSpec);
+        let cases: [(&str, Edit); 4] = [
+            ("ball.speed", |s| s.ball.speed = 1e6),
+            ("bat.material.youngs_modulus", |s| {
+                s.bat.material.youngs_modulus = Some(1e3)
+            }),
+            ("bat.material.density", |s| {
+                s.bat.material.density = Some(1e30)
+            }),
+            ("bat.shell.thickness", |s| {
+                s.bat.preset = crate::model::spec::BatPreset::Aluminum;
+                s.bat.shell = Some(crate::model::spec::ShellSpec {
+                    thickness: Some(1e-4),
+                    from: None,
+                });
+            }),
+        ];
+        for (path, set) in cases {
+            let mut s = CollisionSpec::base_case(0.6);
+            set(&mut s);
+            match check_plausible(&s) {
+                Err(ModelError::OutOfRange { path: p, .. }) => assert_eq!(p, path),
+                other => panic!("{path}: {other:?}"),
+            }
+        }
+    }
+}

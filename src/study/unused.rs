@@ -1,0 +1,120 @@
+//! Fields a study sets that no point uses: `ball.law.stiffness` with a power-law ball,
+//! `bat.grip.damping` with a pinned grip, … A kind or option that ignores a field would
+//! otherwise run with the defaults, and nothing would tell the user that the number they
+//! typed had no effect.
+//!
+//! A field is reported only when no point of the study both sets it and uses it: a study
+//! that sweeps `ball.law.kind` may well set `stiffness` for its linear points.
+
+use super::paths::get_path;
+use serde_yaml_ng::Value;
+
+/// A field that only some options use.
+pub struct Rule {
+    /// Dotted path of the field.
+    pub field: &'static str,
+    /// When it is used, in words (for the message).
+    pub used_when: &'static str,
+    /// Whether a point's parameter tree uses it.
+    pub uses: fn(&Value) -> bool,
+}
+
+/// The text at `path`, or `default` when the tree leaves it out.
+fn text<'a>(tree: &'a Value, path: &str, default: &'a str) -> &'a str {
+    get_path(tree, path)
+        .and_then(Value::as_str)
+        .unwrap_or(default)
+}
+
+fn wave(t: &Value) -> bool {
+    text(t, "model", "wave") == "wave"
+}
+
+fn law(t: &Value) -> &str {
+    text(t, "ball.law.kind", "linear_hysteresis")
+}
+
+/// Every field that an option can make irrelevant.
+pub const RULES: &[Rule] = &[
+    Rule {
+        field: "ball.law.stiffness",
+        used_when: "by the wave model with ball.law.kind linear_hysteresis or elastic",
+        uses: |t| wave(t) && matches!(law(t), "linear_hysteresis" | "elastic"),
+    },
+    Rule {
+        field: "ball.law.cor",
+        used_when: "by ball.law.kind linear_hysteresis or power_law, and by the rigid model",
+        uses: |t| !wave(t) || matches!(law(t), "linear_hysteresis" | "power_law"),
+    },
+    Rule {
+        field: "ball.law.k1",
+        used_when: "by the wave model with ball.law.kind power_law",
+        uses: |t| wave(t) && law(t) == "power_law",
+    },
+    Rule {
+        field: "ball.law.alpha",
+        used_when: "by the wave model with ball.law.kind power_law",
+        uses: |t| wave(t) && law(t) == "power_law",
+    },
+    Rule {
+        field: "hoop.length",
+        used_when: "with hoop.from_geometry: true",
+        uses: |t| get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true),
+    },
+    Rule {
+        field: "bat.grip.stiffness",
+        used_when: "with bat.grip.kind: spring",
+        uses: |t| text(t, "bat.grip.kind", "pinned") == "spring",
+    },
+    Rule {
+        field: "bat.grip.damping",
+        used_when: "with bat.grip.kind: spring",
+        uses: |t| text(t, "bat.grip.kind", "pinned") == "spring",
+    },
+    Rule {
+        field: "bat.material.shear_modulus",
+        used_when: "by the wave model with bat.beam: timoshenko",
+        uses: |t| wave(t) && text(t, "bat.beam", "euler_bernoulli") == "timoshenko",
+    },
+    Rule {
+        field: "bat.material.shear_coefficient",
+        used_when: "by the wave model with bat.beam: timoshenko",
+        uses: |t| wave(t) && text(t, "bat.beam", "euler_bernoulli") == "timoshenko",
+    },
+];
+
+/// Tallies, over the parameter trees of a study's points, which rule fields are set and
+/// whether any point that sets one uses it.
+#[derive(Debug, Default)]
+pub struct Tally {
+    set: Vec<bool>,
+    used: Vec<bool>,
+}
+
+impl Tally {
+    pub fn new() -> Self {
+        Tally {
+            set: vec![false; RULES.len()],
+            used: vec![false; RULES.len()],
+        }
+    }
+
+    /// Count one point's parameter tree (as written: base plus the blocks' values).
+    pub fn add(&mut self, tree: &Value) {
+        for (i, r) in RULES.iter().enumerate() {
+            if get_path(tree, r.field).is_some_and(|v| !v.is_null()) {
+                self.set[i] = true;
+                if !self.used[i] && (r.uses)(tree) {
+                    self.used[i] = true;
+                }
+            }
+        }
+    }
+
+    /// The first rule whose field is set somewhere and used nowhere.
+    pub fn unused(&self) -> Option<&'static Rule> {
+        (0..RULES.len())
+            .find(|&i| self.set[i] && !self.used[i])
+            .map(|i| &RULES[i])
+    }
+}
