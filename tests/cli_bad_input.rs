@@ -187,6 +187,114 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: a readable CSV",
         ],
     ),
+    // issue 17: values that are not numbers, and values no bat has
+    (
+        "nan_density",
+        &[
+            "nan_density.yaml:6:26",
+            "`grid.bat.material.density[0]`",
+            "not a finite number",
+            "value: .nan",
+            "allowed: a finite number",
+        ],
+    ),
+    (
+        "infinite_speed",
+        &[
+            "infinite_speed.yaml:4:10",
+            "`base.ball.speed`",
+            "value: .inf",
+            "allowed: a finite number",
+        ],
+    ),
+    (
+        "implausible_speed",
+        &[
+            "implausible_speed.yaml:4:10",
+            "`ball.speed`",
+            "outside its plausible range",
+            "value: 1000000",
+            "allowed: 0.5 to 100 m/s",
+            "allow_implausible: true",
+        ],
+    ),
+    (
+        "implausible_youngs_modulus",
+        &[
+            "implausible_youngs_modulus.yaml:5:43",
+            "`bat.material.youngs_modulus`",
+            "value: 1000",
+            "grid axis `bat.material.youngs_modulus`, value #2",
+            "allowed: 100000000 to 500000000000 Pa",
+        ],
+    ),
+    (
+        "implausible_density",
+        &[
+            "implausible_density.yaml:4:16",
+            "`bat.material.density`",
+            "value: 1000000000000000000000000000000",
+            "allowed: 100 to 10000 kg/m^3",
+        ],
+    ),
+    (
+        "implausible_shell",
+        &[
+            "implausible_shell.yaml:3:35",
+            "`bat.shell.thickness`",
+            "value: 0.0001",
+            "allowed: 0.0005 to 0.05 m",
+        ],
+    ),
+    // issue 17: a point that never ends is refused before it runs
+    (
+        "stiff_ball",
+        &[
+            "stiff_ball.yaml:6:41",
+            "`ball.law.stiffness`",
+            "needs at least 1737020835 time steps",
+            "numerics.max_steps = 10000000",
+            "allowed: at most 10000000 steps",
+        ],
+    ),
+    // issue 17: fields that the chosen kind or option ignores
+    (
+        "unused_law_field",
+        &[
+            "unused_law_field.yaml:5:28",
+            "`ball.law.stiffness`",
+            "no point of the study uses it",
+            "allowed: leave it out (it is used only by the wave model with ball.law.kind linear_hysteresis or elastic)",
+        ],
+    ),
+    (
+        "unused_grip_damping",
+        &[
+            "unused_grip_damping.yaml:6:22",
+            "`bat.grip.damping`",
+            "allowed: leave it out (it is used only with bat.grip.kind: spring)",
+        ],
+    ),
+    // issue 17: studies that quietly do nothing
+    (
+        "history_only_off_grid",
+        &[
+            "history_only_off_grid.yaml:6:88",
+            "`history.only.impact.z`",
+            "would record no history",
+            "value: 0.703",
+            "allowed: values `impact.z` takes in the study: 0.4, 0.41",
+        ],
+    ),
+    (
+        "base_type_under_grid",
+        &[
+            "base_type_under_grid.yaml:4:10",
+            "`ball.speed`",
+            "value: fast",
+            "allowed: a number",
+        ],
+    ),
 ];
 
 #[test]

@@ -26,25 +26,27 @@ pub fn bat_length(bat: &BatSpec) -> f64 {
 /// Check one resolved collision: the first violation, if any. The plausible ranges are
 /// checked too unless the study allows implausible values.
 pub fn check_spec(spec: &CollisionSpec, allow_implausible: bool) -> Vec<Violation> {
-    let checked = validate_spec(spec).and_then(|()| {
-        if allow_implausible {
-            Ok(())
-        } else {
-            check_plausible(spec)
-        }
-    });
-    match checked {
-        Ok(()) => Vec::new(),
-        Err(e) => {
-            let (path, value, allowed) = e.field_value_allowed();
-            let message =
-                matches!(e, crate::model::ModelError::StepBudget { .. }).then(|| e.to_string());
-            vec![Violation {
-                path,
-                value,
-                allowed,
-                message,
-            }]
+    let violation = |e: crate::model::ModelError, message: Option<String>| {
+        let (path, value, allowed) = e.field_value_allowed();
+        let message = message.or_else(|| {
+            matches!(e, crate::model::ModelError::StepBudget { .. }).then(|| e.to_string())
+        });
+        vec![Violation {
+            path,
+            value,
+            allowed,
+            message,
+        }]
+    };
+    if let Err(e) = validate_spec(spec) {
+        return violation(e, None);
+    }
+    if !allow_implausible {
+        if let Err(e) = check_plausible(spec) {
+            let (path, value, _) = e.field_value_allowed();
+            let message = format!("`{path}` = {value} is outside its plausible range");
+            return violation(e, Some(message));
         }
     }
+    Vec::new()
 }

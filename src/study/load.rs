@@ -85,8 +85,14 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
+    /// An error at `at`, or at the nearest place above it; at the document's start
+    /// (line 1, column 1) when nothing above it was written (e.g. a missing top key).
     fn err(&self, at: &[Seg], msg: impl Into<String>) -> StudyError {
-        StudyError::new(self.file, msg).at(self.src.nearest(at))
+        let pos = self
+            .src
+            .nearest(at)
+            .unwrap_or(super::source::Pos { line: 1, column: 1 });
+        StudyError::new(self.file, msg).at(Some(pos))
     }
 }
 
@@ -99,10 +105,11 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
     // 1. YAML syntax.
     let root: Value = serde_yaml_ng::from_str(text).map_err(|e| {
         let mut err = StudyError::new(path, format!("malformed YAML: {e}"));
-        if let Some(l) = e.location() {
-            err.line = Some(l.line());
-            err.column = Some(l.column());
-        }
+        // serde_yaml_ng gives no location for some errors (a second document): the
+        // document's start then.
+        let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
+        err.line = Some(line);
+        err.column = Some(column);
         err
     })?;
     let Value::Mapping(top) = &root else {
@@ -127,10 +134,11 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         let segs = yaml_segs(e.path());
         let value = get_segs(&root, &segs).map(value_text);
         let msg = e.into_inner().to_string();
+        let whole_document = p.is_empty();
         let mut err =
             cx.err(&segs, msg.clone())
-                .field(if p.is_empty() { "study".into() } else { p });
-        if let Some(v) = value {
+                .field(if whole_document { "study".into() } else { p });
+        if let Some(v) = value.filter(|_| !whole_document) {
             err = err.value(v);
         }
         if let Some(a) = allowed_from_serde(&msg) {

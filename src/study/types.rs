@@ -171,6 +171,10 @@ impl<'de> Deserialize<'de> for AxisValues {
     }
 }
 
+/// Most values one axis may have (the default limit of a whole study's points): a typo
+/// such as `{linspace: [0, 1, 1e12]}` is refused before anything is allocated.
+pub const MAX_AXIS_VALUES: usize = 10_000_000;
+
 const AXIS_FORMS: &str =
     "a list of values, {linspace: [start, stop, n]} or {range: [start, stop, step]}";
 
@@ -197,9 +201,9 @@ impl AxisValues {
                 };
                 if kind == "linspace" {
                     let n = nums[2];
-                    if n < 1.0 || n.fract() != 0.0 {
+                    if !(1.0..=MAX_AXIS_VALUES as f64).contains(&n) || n.fract() != 0.0 {
                         return Err(format!(
-                            "linspace count n must be a whole number >= 1, got {n}"
+                            "linspace count n must be a whole number from 1 to {MAX_AXIS_VALUES}, got {n}"
                         ));
                     }
                     Ok(AxisValues::Linspace {
@@ -291,8 +295,11 @@ pub fn range(start: f64, stop: f64, step: f64) -> Result<Vec<f64>, String> {
         ));
     }
     let k_max = (q + 1e-9).floor().max(0.0);
-    if k_max > 1e8 {
-        return Err(format!("range gives more than 1e8 values ({k_max})"));
+    if k_max >= MAX_AXIS_VALUES as f64 {
+        return Err(format!(
+            "range gives more than {MAX_AXIS_VALUES} values ({})",
+            k_max + 1.0
+        ));
     }
     let k_max = k_max as usize;
     let on_grid = (q - k_max as f64).abs() <= 1e-9;
