@@ -8,6 +8,8 @@
 //! of a crash plus the error contract of README ("the message names the file, line and
 //! column, the field, the value and what is allowed").
 
+#![allow(clippy::result_large_err)] // StudyError: see src/study/mod.rs
+
 use batstudy::study::{load_str, LoadOptions};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
