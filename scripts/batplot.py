@@ -389,7 +389,7 @@ def rigid_projection(displacement, z, weight):
 def excess_speed(res: Results, curve: Curve) -> xr.DataArray:
     """Exit speed minus the impact (approach) speed at the impact point, both bat-CM frame.
 
-    The approach speed is ``v_ball − ω (z − z_cm)`` (PHYSICS.md): the stored
+    The approach speed is ``v_ball − ω (z − z_cm)`` (docs/physics.md): the stored
     ``/summary/approach_speed`` when present, else computed from the curve's parameters."""
     exit_ = res.values(curve, "exit_speed")
     if res.summary is not None and "approach_speed" in res.summary:

@@ -3,8 +3,8 @@
 //!
 //! References: the derivation in src/model/metrics.rs (angular momentum about the pivot +
 //! restitution at the impact point ⇒ BBCOR = e_A (1 + m/M_e) + m/M_e, M_e = I_p/(z − z_p)²,
-//! which is exactly the ball's COR e for a rigid bat); PHYSICS.md: Nathan's
-//! e_A = (e − m/M*)/(1 + m/M*); the stiff-bat limit of the wave model (PHYSICS.md: Y × 1000
+//! which is exactly the ball's COR e for a rigid bat); docs/physics.md: Nathan's
+//! e_A = (e − m/M*)/(1 + m/M*); the stiff-bat limit of the wave model (docs/physics.md: Y × 1000
 //! reproduces the rigid-body model, 0.5 % in exit speed in tests/physics_rigid_limit.rs).
 
 mod common;

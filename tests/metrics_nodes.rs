@@ -3,7 +3,7 @@
 //! References: Blevins, Formulas for Natural Frequency and Mode Shape (1979), Table 8-1,
 //! free–free uniform beam: mode 1 nodes at 0.2242 L and 0.7758 L, mode 2 at 0.1321 L, 0.5 L
 //! and 0.8679 L; Nathan, Am. J. Phys. 68, 979 (2000), Table II, R161: barrel nodes 68 cm
-//! (mode 1) and 72 cm (mode 2) — PHYSICS.md says our profile table reproduces the nodes
+//! (mode 1) and 72 cm (mode 2) — docs/physics.md says our profile table reproduces the nodes
 //! within 1 cm.
 
 use batstudy::model::metrics::{barrel_node, bat_metrics};

@@ -1,6 +1,6 @@
 //! Ball force laws against a rigid, immovable wall.
 //!
-//! Reference: PHYSICS.md "The ball" — a ball fired at a rigid wall must come back at e·v;
+//! Reference: docs/physics.md "The ball" — a ball fired at a rigid wall must come back at e·v;
 //! the paper's linear loading with the unloading branch p = 2/e² − 1, and Nathan (2000)'s
 //! power law k₁ s^α / k₂ s^β with β = (1 + α)/e² − 1 (k₁ = 6.53e7, α = 1.84).
 

@@ -5,7 +5,7 @@
 //!   text, e.g. Thomson, "Theory of vibration with applications", §2.6); ω and the shape are
 //!   the bat's, the decay rate is checked against the analytic ω/(2Q).
 //! - Energy balance: the dissipated energy is reported (`energy.bat_damping`); the partition
-//!   must still sum to the initial energy (PHYSICS.md conservation).
+//!   must still sum to the initial energy (docs/physics.md conservation).
 //! - Q → ∞ recovers the undamped result.
 
 mod common;

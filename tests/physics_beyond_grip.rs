@@ -7,7 +7,7 @@
 //! - A rigid bat pinned at a pivot (Brody 1986; Cross 1999): angular momentum about the pivot
 //!   and the COR give the impulse J = (1 + e)(v − ω b)/(1/m + b²/I_p), b = z_imp − z_p,
 //!   I_p the moment of inertia about the pivot; computed here independently of the code.
-//! - Nathan, Am. J. Phys. 68, 979 (2000), and PHYSICS.md: a bat pivoted 15 cm from the knob
+//! - Nathan, Am. J. Phys. 68, 979 (2000), and docs/physics.md: a bat pivoted 15 cm from the knob
 //!   gives the same exit speeds as a free bat for barrel impacts (the hands do not matter
 //!   during the collision: the paper's claim).
 //! - Conservation: with a pinned pivot momentum is not conserved, angular momentum about the

@@ -1,7 +1,7 @@
 //! Hoop (ovalling) mode derived from the barrel's shell (`hoop.from_geometry`).
 //!
 //! References:
-//! - Measured hoop modes (PHYSICS.md; D. Russell, Acoustics Today 2017): aluminum/composite
+//! - Measured hoop modes (docs/physics.md; D. Russell, Acoustics Today 2017): aluminum/composite
 //!   bats ≈ 1000–2500 Hz; a corked wood bat above 5500 Hz.
 //! - Ring formula check with an independent number: a thin ring of steel-like values
 //!   (Y = 2e11, ρ = 7850, ν = 0.3, a = 0.1 m, h = 2 mm) has f₂ = 1/(2π)·√(Y h²/(12ρ(1−ν²)a⁴))

@@ -1,7 +1,7 @@
 //! Timoshenko beam (`bat.beam: timoshenko`): shear deformation and rotary inertia.
 //!
 //! References:
-//! - Nathan, Am. J. Phys. 68, 979 (2000), Table II (PHYSICS.md): R161 free–free with shear
+//! - Nathan, Am. J. Phys. 68, 979 (2000), Table II (docs/physics.md): R161 free–free with shear
 //!   modulus 1.05e9 N/m²: 165, 568, 1177, 1851, 2580 Hz (Euler–Bernoulli: 169, 612, 1334,
 //!   2220, 3304 Hz).
 //! - A slender uniform beam converges to Euler–Bernoulli: β_n L = 4.7300, 7.8532, 10.9956
@@ -56,7 +56,7 @@ fn r161_timoshenko_modes_against_nathan() {
             nathan_t[n]
         );
     }
-    // mode 1: this profile table puts the Euler–Bernoulli mode 1 ~5 % high (PHYSICS.md);
+    // mode 1: this profile table puts the Euler–Bernoulli mode 1 ~5 % high (docs/physics.md);
     // the Timoshenko reduction T/EB must match Nathan's within 1.5 % (measured 0.95 %)
     let ratio = t[0] / eb[0];
     assert!(

@@ -1,6 +1,6 @@
 //! Conservation laws of the wave model.
 //!
-//! Reference: PHYSICS.md "Numbers to validate against" — with an elastic ball the total energy
+//! Reference: docs/physics.md "Reference numbers and their sources" — with an elastic ball the total energy
 //! is conserved to the integrator's accuracy, and linear and angular momentum of bat + ball
 //! exactly (free ends), since K's null space is rigid translation + rotation and the contact
 //! force is applied by linear interpolation (its moment about the CM is exact).

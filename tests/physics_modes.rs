@@ -1,6 +1,6 @@
 //! Modal validation of the beam model.
 //!
-//! References: PHYSICS.md "Numbers to validate against" — the uniform Euler–Bernoulli beam
+//! References: docs/physics.md "Reference numbers and their sources" — the uniform Euler–Bernoulli beam
 //! (ω_n = (β_n L)² √(Y I / (ρ A L⁴)), textbook values of β_n L), and Nathan, Am. J. Phys.
 //! 68, 979 (2000), Table II (R161 free–free Euler–Bernoulli frequencies and nodes).
 
@@ -40,7 +40,7 @@ fn exact_frequency(beta_l: f64) -> f64 {
         / (2.0 * std::f64::consts::PI)
 }
 
-// β_n L to 9 digits (the 5-digit values of PHYSICS.md rounded; 4.7300 vs 4.73004 alone is
+// β_n L to 9 digits (the 5-digit values of docs/physics.md rounded; 4.7300 vs 4.73004 alone is
 // a 1.7e-5 frequency error, which would mask the convergence measurement).
 const FREE_FREE: [f64; 5] = [
     4.73004074,
@@ -126,7 +126,7 @@ fn r161_matches_nathan_table_ii() {
             k + 1
         );
     }
-    // nodes, cm from the knob (PHYSICS.md numbering: mode 1 = first flexible mode)
+    // nodes, cm from the knob (docs/physics.md numbering: mode 1 = first flexible mode)
     let expected: [&[f64]; 3] = [&[17.0, 68.0], &[7.0, 39.0, 72.0], &[5.0, 25.0, 50.0, 74.0]];
     for (k, nodes) in expected.iter().enumerate() {
         let got = &p.mode_nodes[k];

@@ -1,8 +1,8 @@
-//! Brody's rigid-body model (the paper's section 2; PHYSICS.md "Rigid-body (Brody) model").
+//! Brody's rigid-body model (the paper's section 2; docs/physics.md "The rigid-body model (Brody)").
 
 use batstudy::model::rigid::rigid_collision;
 
-// The seed paper's bat (PHYSICS.md): M 0.831 kg, I_cm 0.039 kg·m², CM 0.593 m; ball 0.145 kg.
+// The seed paper's bat (docs/physics.md): M 0.831 kg, I_cm 0.039 kg·m², CM 0.593 m; ball 0.145 kg.
 const BAT_MASS: f64 = 0.831;
 const BAT_INERTIA: f64 = 0.039;
 const Z_CM: f64 = 0.593;
@@ -18,13 +18,13 @@ fn peak_position(omega: f64) -> f64 {
         .unwrap()
 }
 
-/// PHYSICS.md: "with ω = 0 the peak is at the CM" — the effective mass is largest there.
+/// docs/physics.md: "with ω = 0 the peak is at the CM" — the effective mass is largest there.
 #[test]
 fn still_bat_peaks_at_the_centre_of_mass() {
     assert!((peak_position(0.0) - Z_CM).abs() < 2e-4);
 }
 
-/// PHYSICS.md / paper Fig. 8: the peak moves toward the barrel as the swing gets faster.
+/// docs/physics.md / paper Fig. 8: the peak moves toward the barrel as the swing gets faster.
 #[test]
 fn faster_swing_moves_the_peak_toward_the_barrel() {
     let peaks: Vec<f64> = [0.0, -10.0, -20.0, -40.0, -60.0]

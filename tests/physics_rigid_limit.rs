@@ -1,6 +1,6 @@
 //! A very stiff bat reproduces Brody's rigid-body model.
 //!
-//! Reference: PHYSICS.md "Rigid-body (Brody) model" and "Numbers to validate against": with
+//! Reference: docs/physics.md "The rigid-body model (Brody)" and "Numbers to validate against": with
 //! Y × 1000 the wave model must give the rigid-body exit speed with e = the ball's COR.
 //! The rigid value is computed here from Brody's three equations, independently of the code:
 //!   M V_f = m (v_i − v_f),  I (ω_f − ω_i) = m l (v_i − v_f),  e (v_i − ω_i l) = −v_f + V_f + ω_f l.

@@ -55,12 +55,21 @@ fn bat(label: &str, n_modes: usize) -> BatVariant {
 }
 
 /// swing_omega (3) × impact_z (9), histories of force, ball velocity and displacement.
+/// The study text's SHA-256, as docs/layout.md defines `study_sha256`.
+fn sha256_hex(text: &str) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(text.as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
 fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
     let text = format!("name: synth\nhistory: {history}\nprecision: {precision:?}\n");
     StudyInfo {
         name: "synth".into(),
         description: "synthetic store test study".into(),
-        study_sha256: format!("{:064x}", text.len() as u64 * 7919 + history as u64),
+        study_sha256: sha256_hex(&text),
         study_text: text,
         study_path: "studies/synth.yaml".into(),
         shape: ResultShape {
@@ -106,7 +115,8 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
 /// A zip dim `point` (ball speed and a label) × impact_z, no history.
 fn zip_study() -> StudyInfo {
     let mut s = study(false, HistoryPrecision::F64);
-    s.study_sha256 = "zip".repeat(20);
+    s.study_text.push_str("zip: true\n");
+    s.study_sha256 = sha256_hex(&s.study_text);
     s.shape.dims[0] = Dim {
         name: "point".into(),
         size: 2,
@@ -592,7 +602,8 @@ fn merge_shards_equals_single_run_and_refuses_bad_sets() {
 /// A single-point study (no dims) and a study over impact_z only (scalar sweet spot).
 fn small_study(dims: Vec<Dim>) -> StudyInfo {
     let mut s = study(false, HistoryPrecision::F64);
-    s.study_sha256 = format!("{:064}", dims.len());
+    s.study_text.push_str(&format!("dims: {}\n", dims.len()));
+    s.study_sha256 = sha256_hex(&s.study_text);
     s.shape.dims = dims;
     s
 }
@@ -655,7 +666,8 @@ fn many_blocks_study() -> StudyInfo {
         index_dim("repeat", 200),
         base.shape.dims[1].clone(),
     ]);
-    s.study_sha256 = format!("{:064}", 72_000);
+    s.study_text.push_str("points: 72000\n");
+    s.study_sha256 = sha256_hex(&s.study_text);
     s
 }
 

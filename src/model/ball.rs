@@ -1,4 +1,4 @@
-//! The ball's force–compression laws (PHYSICS.md "The ball").
+//! The ball's force–compression laws (docs/physics.md "The ball").
 //!
 //! Every lossy law unloads along a lower branch chosen so that a ball on a rigid wall
 //! gives back exactly e² of the energy stored at maximum compression.

@@ -1,4 +1,4 @@
-//! The discretised Euler–Bernoulli beam (PHYSICS.md): N segments of length d, one lumped
+//! The discretised Euler–Bernoulli beam (docs/physics.md): N segments of length d, one lumped
 //! mass per segment at its centre z_i = (i + ½)d, and the symmetric stiffness
 //! K = (Y/d³) Dᵀ diag(I_j) D with D the second difference.
 //!

@@ -21,7 +21,7 @@
 //! The protocol defines the bat–ball COR as relative separation over approach,
 //! `BBCOR = (v_r + V)/v_i`, and infers V from the measured v_r through the line above:
 //! `BBCOR = e_A (1 + r_m) + r_m`, `e_A = v_r/v_i`, `r_m = m/M_e`; conversely
-//! `e_A = (BBCOR − r_m)/(1 + r_m)` (Nathan's form, PHYSICS.md).
+//! `e_A = (BBCOR − r_m)/(1 + r_m)` (Nathan's form, docs/physics.md).
 //! For a *rigid* pivoted bat with a ball of COR e, restitution at the impact point
 //! `V + v_r = e v_i` together with the momentum line gives `V = m (1 + e) v_i/(m + M_e)`,
 //! `v_r = v_i (e − r_m)/(1 + r_m)`: the protocol's BBCOR is exactly e, whatever the bat's

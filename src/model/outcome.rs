@@ -1,7 +1,7 @@
 //! What one collision produces, and what a prepared bat knows about itself.
 //!
 //! Frames: unless a name says `lab`, every velocity is in the frame where the bat's
-//! centre of mass is initially at rest (PHYSICS.md). Positive exit speed = the ball goes
+//! centre of mass is initially at rest (docs/physics.md). Positive exit speed = the ball goes
 //! back toward the pitcher.
 
 use serde::{Deserialize, Serialize};

@@ -1,4 +1,4 @@
-//! Brody's rigid-body recoil model (the paper's section 2, with PHYSICS.md's conventions).
+//! Brody's rigid-body recoil model (the paper's section 2, with docs/physics.md's conventions).
 //!
 //! Three equations fix the collision of a ball (mass m, velocity v_i along +y) with a free
 //! rigid bat (mass M, moment of inertia I about its CM, initial angular velocity ω_i)
@@ -83,7 +83,7 @@ pub fn rigid_collision(
 mod tests {
     use super::*;
 
-    // Typical wood bat (PHYSICS.md, seed paper): M 0.831 kg, I_cm 0.039 kg m², ball 0.145 kg.
+    // Typical wood bat (docs/physics.md, seed paper): M 0.831 kg, I_cm 0.039 kg m², ball 0.145 kg.
     const M: f64 = 0.831;
     const I: f64 = 0.039;
     const M_BALL: f64 = 0.145;
@@ -112,7 +112,7 @@ mod tests {
 
     #[test]
     fn massive_bat_returns_cor_times_speed() {
-        // A wall: exit speed = e v (PHYSICS.md, the ball on a rigid wall).
+        // A wall: exit speed = e v (docs/physics.md, the ball on a rigid wall).
         let o = rigid_collision(M_BALL, 40.0, 1e12, 1e12, 0.1, 0.0, 0.55);
         assert!((o.exit_speed - 0.55 * 40.0).abs() < 1e-9);
     }

@@ -335,7 +335,7 @@ pub struct BallLaw {
     #[serde(default = "default_stiffness")]
     pub stiffness: f64,
     /// Coefficient of restitution on a rigid wall, 0 < e ≤ 1 (`linear_hysteresis`,
-    /// `power_law`; also the rigid model's e). Default 0.5 (PHYSICS.md: baseball e₀ ≈ 0.5).
+    /// `power_law`; also the rigid model's e). Default 0.5 (docs/physics.md: baseball e₀ ≈ 0.5).
     #[serde(default = "default_cor")]
     pub cor: f64,
     /// Loading coefficient k₁ in N/m^α (`power_law`). Default 6.53e7 (Nathan 2000).

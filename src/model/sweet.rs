@@ -31,10 +31,24 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
         .filter(|(a, b)| a.is_finite() && b.is_finite())
         .map(|(a, b)| (*a, *b))
         .unzip();
-    let (position, peak) = find_maximum(&z, &v)?;
+    let (position, peak, curvature) = refined_maximum(&z, &v)?;
     // The zone grows from the best sample (the refined peak lies next to it).
     let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
     let threshold = peak - SWEET_ZONE_DROP;
+    if v[best] < threshold {
+        // On a grid coarser than the zone, every sample lies more than the drop below the
+        // refined peak: interpolating between samples would put the edges outside-in (a
+        // negative width). The zone is then the parabola's own, |z − z*| ≤ √(drop / −c),
+        // which lies between the best sample's neighbours.
+        let half = curvature.map_or(0.0, |c| (SWEET_ZONE_DROP / -c).sqrt());
+        let left = (position - half).max(z[best.saturating_sub(1)]);
+        let right = (position + half).min(z[(best + 1).min(z.len() - 1)]);
+        return Some(SweetSpot {
+            position,
+            exit_speed: peak,
+            width: (right - left).max(0.0),
+        });
+    }
     let crossing = |i: usize, j: usize| {
         // Linear interpolation between a sample above the threshold (i) and one below (j).
         z[i] + (threshold - v[i]) * (z[j] - z[i]) / (v[j] - v[i])
@@ -63,6 +77,12 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
 /// Maximum of `v` over increasing `z` (finite samples only), refined by the parabola through
 /// the best sample and its two neighbours (kept only if its vertex lies between them).
 pub fn find_maximum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
+    refined_maximum(z, v).map(|(position, peak, _)| (position, peak))
+}
+
+/// `find_maximum` with the parabola's curvature c (v ≈ peak + c (z − z*)², c < 0) when the
+/// parabola was used.
+fn refined_maximum(z: &[f64], v: &[f64]) -> Option<(f64, f64, Option<f64>)> {
     if z.len() != v.len() || z.windows(2).any(|w| w[1] <= w[0]) {
         return None;
     }
@@ -73,7 +93,7 @@ pub fn find_maximum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
         .map(|(a, b)| (*a, *b))
         .unzip();
     let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
-    let (mut position, mut peak) = (z[best], v[best]);
+    let (mut position, mut peak, mut curvature) = (z[best], v[best], None);
     if best > 0 && best + 1 < v.len() {
         let (x, y) = (
             [z[best - 1], z[best], z[best + 1]],
@@ -88,10 +108,11 @@ pub fn find_maximum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
             if xv > x[0] && xv < x[2] && yv >= peak {
                 position = xv;
                 peak = yv;
+                curvature = Some(c);
             }
         }
     }
-    Some((position, peak))
+    Some((position, peak, curvature))
 }
 
 #[cfg(test)]
@@ -112,6 +133,23 @@ mod tests {
         assert!((s.exit_speed - 30.0).abs() < 1e-9);
         // Linear interpolation of a parabola's crossings errs by O(h²): 1 cm grid.
         assert!((s.width - 0.1).abs() < 2e-3, "{s:?}");
+    }
+
+    #[test]
+    fn a_grid_coarser_than_the_zone_gives_the_parabolas_width() {
+        // v = 30 − 4000 (z − 0.705)² sampled every 10 cm: every sample is more than 1 m/s
+        // below the peak (the best, at 0.75, by 8.1 m/s). The parabola through three
+        // samples of a parabola is the parabola, so the peak is exact, and so is the zone:
+        // |z − 0.705| ≤ √(1/4000), a width of 2/√4000 = 0.0316 m.
+        let z = [0.45f64, 0.55, 0.65, 0.75, 0.85];
+        let v: Vec<f64> = z
+            .iter()
+            .map(|z| 30.0 - 4000.0 * (z - 0.705).powi(2))
+            .collect();
+        let s = find_sweet_spot(&z, &v).unwrap();
+        assert!((s.position - 0.705).abs() < 1e-9, "{s:?}");
+        assert!((s.exit_speed - 30.0).abs() < 1e-9, "{s:?}");
+        assert!((s.width - 2.0 / 4000f64.sqrt()).abs() < 1e-9, "{s:?}");
     }
 
     #[test]

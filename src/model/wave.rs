@@ -10,7 +10,7 @@
 //! - `Verlet`: plain explicit velocity Verlet in physical coordinates at a step below the
 //!   stability limit of the highest beam mode (the paper's approach; the baseline).
 //!
-//! Sign conventions (PHYSICS.md): y along the incoming ball's velocity; the ball's front
+//! Sign conventions (docs/physics.md): y along the incoming ball's velocity; the ball's front
 //! surface is at w, the contact point of the bat at y_c; compression s = w − y_c (or
 //! w − x_h with a hoop mass at x_h); the ball pushes the bat (or hoop) with +F and is pushed
 //! back with −F. Time 0 = first contact (s = 0).

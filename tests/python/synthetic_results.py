@@ -1,10 +1,12 @@
-"""Write a synthetic batstudy results file that follows docs/layout.md.
+"""Write a synthetic batstudy results file with the parts of docs/layout.md that the figure
+scripts read (not a complete results file: scripts/check_layout.py rejects it, e.g. it has no
+/errors group and no run attributes).
 
 It has the structure of the bundled main study (``studies/param_space.yaml``): summary dims
 (model, impact_z, case), a ``case`` points block varying one factor at a time around case 0,
 histories only for the wave model at impact_z = 0.60 for the base and aluminum cases, and one
 ``/bat`` entry per distinct bat.  The numbers are plausible analytic stand-ins, not
-simulations: the rigid model is Brody's formula (PHYSICS.md), the "wave" curves a peaked
+simulations: the rigid model is Brody's formula (docs/physics.md), the "wave" curves a peaked
 collision efficiency around 0.70 m.  Use it to develop and test the figure scripts without the
 Rust build:
 

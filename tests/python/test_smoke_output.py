@@ -1,13 +1,10 @@
 """The CI smoke study's real output (studies/smoke.yaml, run on 2 threads by scripts/test.sh),
-opened the way users open it: h5py, xarray with the h5netcdf engine, and the shared layout
-check. Physics spot checks compare it with closed forms computed here from the stored bat
-properties, independent of the Rust code.
+opened the way users open it: h5py, xarray with the h5netcdf engine, and the project's
+layout checker (scripts/check_layout.py). Physics spot checks compare it with closed forms
+computed here from the stored bat properties, independent of the Rust code.
 
 Needs SMOKE_H5 (set by scripts/test.sh); skipped without it."""
 import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,8 +12,8 @@ import pytest
 h5py = pytest.importorskip("h5py")
 xr = pytest.importorskip("xarray")
 
-ROOT = Path(__file__).resolve().parents[2]
-CHECK = Path(os.environ.get("BATSTUDY_CHECK_LAYOUT", ROOT.parent / "shared/tools/check_layout.py"))
+from conftest import assert_layout_ok  # noqa: E402
+
 SMOKE = os.environ.get("SMOKE_H5")
 pytestmark = pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
 
@@ -34,11 +31,8 @@ def test_h5py_sees_every_group_and_the_study_text():
         assert f.attrs["complete"] == 1
 
 
-def test_shared_layout_check_passes():
-    if not CHECK.exists():
-        pytest.skip(f"{CHECK} not found")
-    r = subprocess.run([sys.executable, str(CHECK), SMOKE], capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
+def test_layout_check_passes():
+    assert_layout_ok(SMOKE)
 
 
 def test_xarray_dims_coordinates_and_units():
@@ -55,7 +49,7 @@ def test_xarray_dims_coordinates_and_units():
 
 
 def test_rigid_points_match_brody_closed_form():
-    # PHYSICS.md, rigid-body model: v_exit = v (e − m/M*)/(1 + m/M*) at ω = 0,
+    # docs/physics.md, rigid-body model: v_exit = v (e − m/M*)/(1 + m/M*) at ω = 0,
     # M* = M / (1 + M l²/I), l = z − z_cm; M, I, z_cm from /bat.
     s = open_group("summary").sel(model="rigid", swing_omega=0, case=0)
     bat = open_group("bat")

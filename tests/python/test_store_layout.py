@@ -1,11 +1,11 @@
-"""The results layout as outside scripts see it: h5py, xarray (h5netcdf) and the shared
-acceptance check. Builds its fixtures with cargo (tests/store_roundtrip.rs, write_python_fixture).
+"""The results layout as outside scripts see it: h5py, xarray (h5netcdf) and the project's
+layout checker (scripts/check_layout.py). Builds its fixtures with cargo
+(tests/store_roundtrip.rs, write_python_fixture).
 
 Run: pytest tests/python  (needs h5py, xarray, h5netcdf; skipped only when cargo is absent)."""
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,9 +15,9 @@ h5py = pytest.importorskip("h5py")
 xr = pytest.importorskip("xarray")
 pytest.importorskip("h5netcdf")
 
+from conftest import assert_layout_ok  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[2]
-# shared/ sits beside the repository (CI clones it there).
-CHECK = Path(os.environ.get("BATSTUDY_CHECK_LAYOUT", ROOT.parent / "shared/tools/check_layout.py"))
 
 
 @pytest.fixture(scope="module")
@@ -36,13 +36,9 @@ def files(tmp_path_factory):
 GROUPS = ["summary", "sweet_spot", "history", "bat", "errors"]
 
 
-def test_check_layout_passes(files):
-    if not CHECK.exists():
-        pytest.skip(f"{CHECK} not found")
-    r = subprocess.run([sys.executable, str(CHECK), str(files / "synth.h5")],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert "layout ok" in r.stdout
+@pytest.mark.parametrize("name", ["synth.h5", "zip.h5", "partial.h5", "single.h5"])
+def test_check_layout_passes(files, name):
+    assert_layout_ok(files / name)
 
 
 def test_root_attributes(files):
