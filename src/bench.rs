@@ -400,7 +400,7 @@ fn bench_integrators(sz: &Sizes) -> Result<IntegratorBench, String> {
         cratio.push(vc / mc);
     }
     let figures = |o: &crate::model::outcome::Outcome,
-                   d: &crate::model::wave::Diagnostics,
+                   d: &crate::model::collision::wave::Diagnostics,
                    t: f64,
                    c: f64| IntegratorFigures {
         exit_speed: o.exit_speed,

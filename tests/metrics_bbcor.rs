@@ -9,11 +9,11 @@
 
 mod common;
 
-use batstudy::model::metrics::{
+use batstudy::model::measures::metrics::{
     bbcor_from_efficiency, bbcor_scan, moment_of_inertia_about, rigid_pivoted_collision,
-    BBCOR_BALL_SPEED, KNOB6,
 };
 use batstudy::model::prepare_bat;
+use batstudy::model::protocol::{BBCOR_BALL_SPEED, KNOB6};
 use batstudy::model::spec::{BallSpec, NumericsSpec};
 
 /// Independent solution of the pivoted rigid collision: unknowns the ball's final velocity
@@ -80,7 +80,7 @@ fn r161_wave_bbcor_peaks_in_the_barrel() {
     let spec = common::base_spec(0.7);
     let numerics = NumericsSpec::default();
     let bat = prepare_bat(&spec.bat, &numerics).unwrap();
-    let m = batstudy::model::metrics::bat_metrics(&bat, &spec.bat, &numerics).unwrap();
+    let m = batstudy::model::measures::metrics::bat_metrics(&bat, &spec.bat, &numerics).unwrap();
     assert!(
         m.bbcor_max_position > m.node1_barrel - 0.01
             && m.bbcor_max_position < m.node2_barrel + 0.01,

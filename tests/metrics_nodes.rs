@@ -6,7 +6,7 @@
 //! (mode 1) and 72 cm (mode 2) — docs/physics.md says our profile table reproduces the nodes
 //! within 1 cm.
 
-use batstudy::model::metrics::{barrel_node, bat_metrics};
+use batstudy::model::measures::metrics::{barrel_node, bat_metrics};
 use batstudy::model::prepare_bat;
 use batstudy::model::spec::{BatSpec, MaterialSpec, NumericsSpec, ProfileSpec};
 

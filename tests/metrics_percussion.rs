@@ -7,7 +7,8 @@
 
 mod common;
 
-use batstudy::model::metrics::{centre_of_percussion, KNOB6};
+use batstudy::model::measures::metrics::centre_of_percussion;
+use batstudy::model::protocol::KNOB6;
 use batstudy::model::spec::{BatSpec, MaterialSpec, ModelKind, NumericsSpec, ProfileSpec};
 use batstudy::model::{prepare_bat, simulate};
 

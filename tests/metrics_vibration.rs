@@ -13,8 +13,9 @@
 
 mod common;
 
-use batstudy::model::metrics::{bat_metrics, KNOB6};
-use batstudy::model::sweet_defs::vibration_sweet_spot;
+use batstudy::model::measures::metrics::bat_metrics;
+use batstudy::model::measures::sweet_defs::vibration_sweet_spot;
+use batstudy::model::protocol::KNOB6;
 use batstudy::model::{prepare_bat, simulate};
 
 #[test]

@@ -10,8 +10,8 @@
 
 mod common;
 
+use batstudy::model::collision::wave::resolve_hoop;
 use batstudy::model::spec::*;
-use batstudy::model::wave::resolve_hoop;
 use batstudy::model::{prepare_bat, simulate};
 
 fn geometric_hoop() -> Option<HoopSpec> {

@@ -139,8 +139,8 @@ fn sweet_spot_moves_little_with_timoshenko() {
     // case R161, 40 m/s, ω = 0 and −40 rad/s) from Euler–Bernoulli to Timoshenko. The
     // paper's claim (section 3.3) is that the beam theory is not what sets the sweet spot;
     // shear softens the high modes the ball hardly excites in 1.6 ms. Bound: 2 cm.
+    use batstudy::model::measures::sweet::find_sweet_spot;
     use batstudy::model::simulate;
-    use batstudy::model::sweet::find_sweet_spot;
     let z: Vec<f64> = (0..=16).map(|i| 0.60 + 0.0125 * i as f64).collect();
     for omega in [0.0, -40.0] {
         let mut spots = Vec::new();

@@ -1,6 +1,6 @@
 //! Brody's rigid-body model (the paper's section 2; docs/physics.md "The rigid-body model (Brody)").
 
-use batstudy::model::rigid::rigid_collision;
+use batstudy::model::collision::rigid::rigid_collision;
 
 // The seed paper's bat (docs/physics.md): M 0.831 kg, I_cm 0.039 kg·m², CM 0.593 m; ball 0.145 kg.
 const BAT_MASS: f64 = 0.831;

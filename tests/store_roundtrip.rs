@@ -328,7 +328,7 @@ fn sweet_spot_group_matches_function() {
         let (zz, vv): (Vec<f64>, Vec<f64>) = (0..9)
             .filter_map(|q| outcome(&info, w * 9 + q).ok().map(|o| (z[q], o.exit_speed)))
             .unzip();
-        let want = batstudy::model::sweet::find_sweet_spot(&zz, &vv).unwrap();
+        let want = batstudy::model::measures::sweet::find_sweet_spot(&zz, &vv).unwrap();
         assert_eq!(p.to_bits(), want.position.to_bits());
     }
 }

@@ -6,7 +6,7 @@
 //! compression that increases monotonically (unloading branch below s_max, loading above),
 //! which is what makes the integrators' implicit contact solve well posed.
 
-use super::spec::{BallLaw, BallLawKind};
+use crate::model::spec::{BallLaw, BallLawKind};
 
 /// A force law F(s; s_max) ≥ 0 for compression s (> 0 in contact).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,33 +1,28 @@
 //! The physics: one fully specified collision in, one `Outcome` out.
 //! No I/O, no threads, no printing.
 //!
-//! Modules, one idea each: `profile` (outer radius R(z)), `section` (resolved geometry and
-//! cross-sections), `beam` (lumped Euler–Bernoulli beam), `modal` (eigenmodes), `bat`
-//! (`PreparedBat`), `ball` (force laws), `wave` (time integration), `history` (sampling),
-//! `validate` (spec checks), `plausible` (the values real bats and balls have), `simulate` (dispatch), `rigid` (Brody's model), `sweet`
-//! (sweet-spot finder), `sweet_defs` (least-vibration sweet spots, extremum finder),
-//! `metrics` (centre of percussion, barrel nodes, BBCOR, grip vibration), `error`.
+//! Rooms, each importing only the ones above it:
+//! - `spec`, `error`, `protocol`, `outcome`, `plausible`: what a collision is (parameters,
+//!   errors, certification constants, results) and the values real bats and balls have.
+//! - `bat/`: the bat — outer profile, cross-sections, the discretised beam, its modes, the
+//!   prepared bat, and the motion of a bat state (grip vibration, recoil).
+//! - `ball`: the ball's force–compression laws.
+//! - `collision/`: one collision — what makes it computable (`validate`), the wave model's
+//!   integrators (`wave/`), Brody's rigid model, history sampling, and the dispatch.
+//! - `measures/`: what is measured over many collisions — sweet spots, least vibration,
+//!   centre of percussion, nodes, BBCOR.
 
 pub mod ball;
 pub mod bat;
-pub mod beam;
+pub mod collision;
 pub mod error;
-mod history;
-pub mod metrics;
-pub mod modal;
+pub mod measures;
 pub mod outcome;
 pub mod plausible;
-pub mod profile;
-pub mod rigid;
-pub mod section;
-pub mod simulate;
+pub mod protocol;
 pub mod spec;
-pub mod sweet;
-pub mod sweet_defs;
-pub mod validate;
-pub mod wave;
 
 pub use bat::{prepare_bat, PreparedBat};
+pub use collision::simulate::{simulate, simulate_with_diagnostics};
+pub use collision::validate::validate_spec;
 pub use error::ModelError;
-pub use simulate::{simulate, simulate_with_diagnostics};
-pub use validate::validate_spec;

@@ -4,6 +4,7 @@
 //! centre of mass is initially at rest (docs/physics.md). Positive exit speed = the ball goes
 //! back toward the pitcher.
 
+use crate::model::protocol::{BBCOR_BALL_SPEED, KNOB6};
 use serde::{Deserialize, Serialize};
 
 /// Which time histories to record, on one common time axis.
@@ -124,8 +125,8 @@ pub struct Outcome {
     /// 0.5 ms after each separation, or longer if histories ask for it).
     pub recontact: bool,
     /// Largest displacement of the bat's free vibration at the grip (6 in from the knob,
-    /// `metrics::KNOB6`) after the ball has left, rigid motion excluded, m (0 for the rigid
-    /// model). See `metrics::grip_vibration_amplitude`.
+    /// `protocol::KNOB6`) after the ball has left, rigid motion excluded, m (0 for the rigid
+    /// model). See `bat::motion::grip_vibration_amplitude`.
     pub grip_vibration_amplitude: f64,
     /// Change of the grip point's rigid-body velocity caused by the collision, m/s, + along
     /// the incoming ball (zero for an impact at the grip's centre of percussion).
@@ -159,5 +160,43 @@ pub struct BatProperties {
     pub mode_nodes: Vec<Vec<f64>>,
     /// Sweet-spot definitions and standard metrics of the bat (centre of percussion, barrel
     /// nodes, BBCOR): filled by `metrics::bat_metrics`, NaN until then.
-    pub metrics: super::metrics::BatMetrics,
+    pub metrics: crate::model::outcome::BatMetrics,
+}
+
+/// The bat-only sweet-spot definitions and standard metrics of one bat.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatMetrics {
+    /// Pivot (hands) position used for the centre of percussion and BBCOR, m from the knob.
+    pub pivot: f64,
+    /// Centre of percussion for the pivot, m from the knob.
+    pub centre_of_percussion: f64,
+    /// Barrel-side node of free–free mode 1, m.
+    pub node1_barrel: f64,
+    /// Barrel-side node of free–free mode 2, m.
+    pub node2_barrel: f64,
+    /// Ball speed of the BBCOR scan, m/s.
+    pub bbcor_ball_speed: f64,
+    /// Impact positions of the BBCOR scan, m.
+    pub bbcor_z: Vec<f64>,
+    /// BBCOR at `bbcor_z` (NaN where a collision failed).
+    pub bbcor: Vec<f64>,
+    /// Maximum BBCOR (parabola-refined), and where, m.
+    pub bbcor_max: f64,
+    pub bbcor_max_position: f64,
+}
+
+impl Default for BatMetrics {
+    fn default() -> Self {
+        Self {
+            pivot: KNOB6,
+            centre_of_percussion: f64::NAN,
+            node1_barrel: f64::NAN,
+            node2_barrel: f64::NAN,
+            bbcor_ball_speed: BBCOR_BALL_SPEED,
+            bbcor_z: Vec::new(),
+            bbcor: Vec::new(),
+            bbcor_max: f64::NAN,
+            bbcor_max_position: f64::NAN,
+        }
+    }
 }

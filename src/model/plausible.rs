@@ -8,8 +8,8 @@
 //! results file records it. The same table feeds the JSON schema (`minimum`/`maximum`) and
 //! docs/study-files.md, where each bound's reason is given.
 
-use super::error::ModelError;
-use super::spec::CollisionSpec;
+use crate::model::error::ModelError;
+use crate::model::spec::CollisionSpec;
 
 /// One plausible range of a parameter.
 #[derive(Debug, Clone, Copy)]

@@ -2,7 +2,7 @@
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
 use super::traits::{Simulator, Sink};
-use crate::model::metrics::bat_metrics;
+use crate::model::measures::metrics::bat_metrics;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{prepare_bat, simulate, PreparedBat};

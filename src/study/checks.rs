@@ -2,8 +2,8 @@
 //! study file. The checks themselves are the model's (`model::validate_spec`): one
 //! definition of what is physically allowed.
 
+use crate::model::bat::section::BatGeometry;
 use crate::model::plausible::check_plausible;
-use crate::model::section::BatGeometry;
 use crate::model::spec::{BatSpec, CollisionSpec};
 use crate::model::validate_spec;
 

@@ -1,9 +1,9 @@
 //! A bat resolved to numbers: outer and inner radius, material and fill along z, and the
 //! cross-section properties (A, I, mass per length) with exact-enough integrals over z.
 
-use super::error::{out_of_range, ModelError};
-use super::profile::{handle_factor, Profile};
-use super::spec::{BatPreset, BatSpec, HandleSpec, ProfileSpec};
+use crate::model::bat::profile::{handle_factor, Profile};
+use crate::model::error::{out_of_range, ModelError};
+use crate::model::spec::{BatPreset, BatSpec, HandleSpec, ProfileSpec};
 
 /// Wood (R161, Nathan 2000).
 pub const WOOD_DENSITY: f64 = 649.0;

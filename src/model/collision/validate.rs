@@ -1,10 +1,10 @@
 //! Physical checks of a spec without heavy work: every error names the field by its dotted
 //! path and the allowed range.
 
-use super::error::{out_of_range, ModelError};
-use super::outcome::HistoryRequest;
-use super::section::BatGeometry;
-use super::spec::CollisionSpec;
+use crate::model::bat::section::BatGeometry;
+use crate::model::error::{out_of_range, ModelError};
+use crate::model::outcome::HistoryRequest;
+use crate::model::spec::CollisionSpec;
 
 /// Lowest and highest hoop frequency accepted, Hz.
 pub const HOOP_FREQUENCY_RANGE: (f64, f64) = (1.0, 1.0e5);
@@ -101,7 +101,7 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
             check("hoop.length", l, l > 0.0, "(0, ∞) m")?;
         }
     }
-    if spec.model == super::spec::ModelKind::Rigid && spec.bat.grip.is_some() {
+    if spec.model == crate::model::spec::ModelKind::Rigid && spec.bat.grip.is_some() {
         return Err(ModelError::Unsupported(
             "bat.grip with the rigid model (it is a free bat)",
         ));
@@ -114,7 +114,10 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         &format!("on the bat: 0 <= z <= {length} m"),
     )?;
     if let Some(n) = spec.numerics.segments {
-        let (lo, hi) = (super::bat::MIN_SEGMENTS, super::bat::MAX_SEGMENTS);
+        let (lo, hi) = (
+            crate::model::bat::MIN_SEGMENTS,
+            crate::model::bat::MAX_SEGMENTS,
+        );
         check(
             "numerics.segments",
             n as f64,
@@ -141,8 +144,10 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
 /// the user's `numerics.dt`, or the default fraction of 1/ω where ω² = k_t/m uses the ball's
 /// stiffest tangent alone (the bat and a hoop only make the real ω larger, the step smaller).
 fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError> {
-    use super::spec::Integrator;
-    use super::wave::{step_budget, COAST_TIME, MODAL_STEP_FRACTION, VERLET_STEP_FRACTION};
+    use crate::model::collision::wave::{
+        step_budget, COAST_TIME, MODAL_STEP_FRACTION, VERLET_STEP_FRACTION,
+    };
+    use crate::model::spec::Integrator;
     let dt = match spec.numerics.dt {
         Some(dt) => dt,
         None => {
@@ -151,7 +156,7 @@ fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError
             if approach <= 0.0 {
                 return Ok(()); // no bound; the run's own budget check still holds
             }
-            let law = super::ball::ContactLaw::from_spec(&spec.ball.law);
+            let law = crate::model::ball::ContactLaw::from_spec(&spec.ball.law);
             let omega = (law.max_tangent(spec.ball.mass, approach) / spec.ball.mass).sqrt();
             let fraction = match spec.numerics.integrator {
                 Integrator::Modal => MODAL_STEP_FRACTION,
@@ -166,7 +171,7 @@ fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError
     if least > budget as f64 {
         let cause = match (spec.numerics.dt, spec.ball.law.kind) {
             (Some(_), _) => "numerics.dt",
-            (None, super::spec::BallLawKind::PowerLaw) => "ball.law.k1",
+            (None, crate::model::spec::BallLawKind::PowerLaw) => "ball.law.k1",
             (None, _) => "ball.law.stiffness",
         };
         return Err(ModelError::StepBudget {
@@ -192,7 +197,7 @@ pub fn validate_history(request: &HistoryRequest) -> Result<(), ModelError> {
     check(
         "history duration",
         duration,
-        duration <= super::wave::MAX_TIME,
-        &format!("[0, {}] s", super::wave::MAX_TIME),
+        duration <= crate::model::collision::wave::MAX_TIME,
+        &format!("[0, {}] s", crate::model::collision::wave::MAX_TIME),
     )
 }

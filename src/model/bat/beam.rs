@@ -12,8 +12,8 @@
 
 use nalgebra::DMatrix;
 
-use super::section::BatGeometry;
-use super::spec::{BeamTheory, EndCondition, EndsSpec, GripKind, GripSpec};
+use crate::model::bat::section::BatGeometry;
+use crate::model::spec::{BeamTheory, EndCondition, EndsSpec, GripKind, GripSpec};
 
 /// One strain measure: Σ coef·u[dof] over up to four taps (dof −1 = a ghost held at zero),
 /// with stiffness `weight`; K = Σ weight · r rᵀ (symmetric positive semi-definite).

@@ -4,8 +4,8 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use super::beam::Beam;
-use super::spec::EndsSpec;
+use crate::model::bat::beam::Beam;
+use crate::model::spec::EndsSpec;
 
 /// Modes of a beam, lowest first.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,7 @@
 //! Sampling time histories on the request's grid t = k·interval from integrator steps,
 //! by linear interpolation between the states at the ends of each step.
 
-use super::outcome::{History, HistoryField, HistoryRequest};
+use crate::model::outcome::{History, HistoryField, HistoryRequest};
 
 /// The recordable quantities at one instant.
 #[derive(Debug, Clone, Default)]

@@ -2,12 +2,12 @@
 //! properties. Read-only after construction, so one `PreparedBat` is shared by every point
 //! of a study that uses the same (bat, numerics).
 
-use super::beam::Beam;
-use super::error::{out_of_range, ModelError};
-use super::modal::ModalBasis;
-use super::outcome::BatProperties;
-use super::section::BatGeometry;
-use super::spec::{BatSpec, EndsSpec, GripKind, GripSpec, NumericsSpec};
+use crate::model::bat::beam::Beam;
+use crate::model::bat::modal::ModalBasis;
+use crate::model::bat::section::BatGeometry;
+use crate::model::error::{out_of_range, ModelError};
+use crate::model::outcome::BatProperties;
+use crate::model::spec::{BatSpec, EndsSpec, GripKind, GripSpec, NumericsSpec};
 
 /// Default segment length, m: the largest that keeps the exit speed within 0.1 % of the
 /// halved-segment value and the uniform-beam modes 1–5 within 0.1 % (see tests).

@@ -1,13 +1,13 @@
 //! One collision: check the spec, dispatch on the model.
 
-use super::bat::PreparedBat;
-use super::error::ModelError;
-use super::outcome::EnergyPartition;
-use super::outcome::{HistoryRequest, Outcome};
-use super::rigid::rigid_collision;
-use super::spec::{CollisionSpec, ModelKind};
-use super::validate::validate_spec;
-use super::wave::{simulate_wave, Diagnostics};
+use crate::model::bat::PreparedBat;
+use crate::model::collision::rigid::rigid_collision;
+use crate::model::collision::validate::validate_spec;
+use crate::model::collision::wave::{simulate_wave, Diagnostics};
+use crate::model::error::ModelError;
+use crate::model::outcome::EnergyPartition;
+use crate::model::outcome::{HistoryRequest, Outcome};
+use crate::model::spec::{CollisionSpec, ModelKind};
 
 /// Simulate one collision of `spec` with the prepared `bat` (which must have been prepared
 /// from `spec.bat` and `spec.numerics`).
@@ -27,10 +27,10 @@ pub fn simulate_with_diagnostics(
 ) -> Result<(Outcome, Diagnostics), ModelError> {
     validate_spec(spec)?;
     if let Some(request) = history {
-        super::validate::validate_history(request)?;
+        crate::model::collision::validate::validate_history(request)?;
     }
     if !(spec.impact.z >= 0.0 && spec.impact.z <= bat.length()) {
-        return Err(super::error::out_of_range(
+        return Err(crate::model::error::out_of_range(
             "impact.z",
             spec.impact.z,
             &format!("[0, {}] m (on the bat)", bat.length()),
@@ -78,13 +78,13 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
         },
         recontact: false,
         grip_vibration_amplitude: 0.0,
-        grip_recoil_speed: super::metrics::grip_recoil_speed(
+        grip_recoil_speed: crate::model::bat::motion::grip_recoil_speed(
             r.impulse,
             r.impulse * lever_arm,
             properties.mass,
             properties.moment_of_inertia,
             properties.z_cm,
-            super::metrics::KNOB6,
+            crate::model::protocol::KNOB6,
         ),
         history: None,
     }

@@ -1,7 +1,7 @@
 //! Standard bat metrics and the bat-only sweet-spot definitions: centre of percussion for a
 //! pivot at the hands, barrel nodes of the first two free–free modes, BBCOR (NCAA / ASTM
 //! F2219) and its maximum along the barrel; plus the per-collision "felt at the hands"
-//! quantities (grip vibration amplitude, grip recoil) computed from a final bat state.
+//! quantities' building blocks live in `bat::motion`.
 //!
 //! # Centre of percussion (Brody, Am. J. Phys. 54, 640 (1986); Cross, Am. J. Phys. 66, 772 (1998))
 //! A rigid bat (mass M, CM at z_cm, moment of inertia I_cm) receives an impulse J at z. Just
@@ -32,18 +32,15 @@
 //! (l = z − z_cm); the two effective masses are equal exactly at the centre of percussion of
 //! the pivot (the conjugate point).
 
-use super::bat::PreparedBat;
-use super::error::ModelError;
-use super::simulate::simulate;
-use super::spec::{
+use crate::model::bat::PreparedBat;
+use crate::model::collision::simulate::simulate;
+use crate::model::error::ModelError;
+use crate::model::outcome::BatMetrics;
+use crate::model::protocol::{BBCOR_BALL_SPEED, KNOB6};
+use crate::model::spec::{
     BallSpec, BatSpec, CollisionSpec, EndsSpec, ImpactSpec, ModelKind, NumericsSpec, SwingSpec,
 };
 
-/// The NCAA/ASTM pivot and grip point: 6 in (0.1524 m) from the knob.
-pub const KNOB6: f64 = 0.1524;
-/// Protocol ball speed toward the stationary bat, m/s: 136 mph (NCAA BBCOR protocol, as
-/// quoted in the work order; 136 × 0.44704 = 60.80 m/s).
-pub const BBCOR_BALL_SPEED: f64 = 136.0 * 0.44704;
 /// Spacing of the BBCOR scan along the barrel, m.
 pub const BBCOR_SCAN_STEP: f64 = 0.005;
 /// The scan stops this far from the barrel end (the ball's radius, 3.66 cm, so the ball is
@@ -127,90 +124,6 @@ pub fn barrel_node(nodes: &[f64]) -> f64 {
         .fold(f64::NAN, f64::max)
 }
 
-/// Largest displacement the free (undamped) vibration reaches at `z_grip` after the ball has
-/// left: `Σ_n |φ_n(z_grip)| A_n` over the flexible modes, `A_n = √(q_n² + (q̇_n/ω_n)²)`
-/// (the bound is approached arbitrarily closely since the modes' frequencies are
-/// incommensurate). `q`, `qd`: modal coordinates (mass-normalised shapes) of the first
-/// `q.len()` modes of `bat`; rigid modes (ω = 0) are skipped. Metres.
-pub fn grip_vibration_amplitude(bat: &PreparedBat, q: &[f64], qd: &[f64], z_grip: f64) -> f64 {
-    let (k, a) = bat.beam.interpolation(z_grip);
-    let shapes = &bat.modes.shapes;
-    q.iter()
-        .zip(qd)
-        .zip(&bat.modes.omega)
-        .enumerate()
-        .filter(|(_, (_, &w))| w > 0.0)
-        .map(|(j, ((&x, &xd), &w))| {
-            let phi = (1.0 - a) * shapes[(k, j)] + a * shapes[(k + 1, j)];
-            phi.abs() * (x * x + (xd / w).powi(2)).sqrt()
-        })
-        .sum()
-}
-
-/// Modal coordinates `q_n = Σ_i m_i φ_n,i y_i` of nodal values `y` (all modes).
-pub fn modal_coordinates(bat: &PreparedBat, y: &[f64]) -> Vec<f64> {
-    let beam = &bat.beam;
-    (0..bat.modes.omega.len())
-        .map(|j| {
-            let col = bat.modes.shapes.column(j);
-            (0..beam.len()).map(|i| beam.mass[i] * col[i] * y[i]).sum()
-        })
-        .collect()
-}
-
-/// Change of the rigid-body velocity of the point `z_grip` caused by the collision, m/s
-/// (+ along the incoming ball): `ΔP/M + ΔL (z_grip − z_cm)/I_cm` from the bat's changes of
-/// momentum ΔP and of angular momentum about the CM ΔL. Zero when the impact is at the
-/// centre of percussion of `z_grip` (rigid bat).
-pub fn grip_recoil_speed(
-    momentum_change: f64,
-    angular_momentum_change: f64,
-    mass: f64,
-    inertia_cm: f64,
-    z_cm: f64,
-    z_grip: f64,
-) -> f64 {
-    momentum_change / mass + angular_momentum_change * (z_grip - z_cm) / inertia_cm
-}
-
-/// The bat-only sweet-spot definitions and standard metrics of one bat.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BatMetrics {
-    /// Pivot (hands) position used for the centre of percussion and BBCOR, m from the knob.
-    pub pivot: f64,
-    /// Centre of percussion for the pivot, m from the knob.
-    pub centre_of_percussion: f64,
-    /// Barrel-side node of free–free mode 1, m.
-    pub node1_barrel: f64,
-    /// Barrel-side node of free–free mode 2, m.
-    pub node2_barrel: f64,
-    /// Ball speed of the BBCOR scan, m/s.
-    pub bbcor_ball_speed: f64,
-    /// Impact positions of the BBCOR scan, m.
-    pub bbcor_z: Vec<f64>,
-    /// BBCOR at `bbcor_z` (NaN where a collision failed).
-    pub bbcor: Vec<f64>,
-    /// Maximum BBCOR (parabola-refined), and where, m.
-    pub bbcor_max: f64,
-    pub bbcor_max_position: f64,
-}
-
-impl Default for BatMetrics {
-    fn default() -> Self {
-        Self {
-            pivot: KNOB6,
-            centre_of_percussion: f64::NAN,
-            node1_barrel: f64::NAN,
-            node2_barrel: f64::NAN,
-            bbcor_ball_speed: BBCOR_BALL_SPEED,
-            bbcor_z: Vec::new(),
-            bbcor: Vec::new(),
-            bbcor_max: f64::NAN,
-            bbcor_max_position: f64::NAN,
-        }
-    }
-}
-
 /// Every bat-only metric of a prepared bat, pivot at [`KNOB6`]. `bat_spec` and `numerics` must
 /// be those `bat` was prepared with. The BBCOR scan runs the wave model (see [`bbcor_scan`]).
 pub fn bat_metrics(
@@ -222,7 +135,8 @@ pub fn bat_metrics(
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
     let (bbcor_z, bbcor) = bbcor_scan(bat, bat_spec, numerics, &BallSpec::default())?;
     let (bbcor_max_position, bbcor_max) =
-        super::sweet::find_maximum(&bbcor_z, &bbcor).unwrap_or((f64::NAN, f64::NAN));
+        crate::model::measures::sweet::find_maximum(&bbcor_z, &bbcor)
+            .unwrap_or((f64::NAN, f64::NAN));
     Ok(BatMetrics {
         pivot: KNOB6,
         centre_of_percussion: centre_of_percussion(p.mass, p.z_cm, p.moment_of_inertia, KNOB6),

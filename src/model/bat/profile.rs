@@ -1,11 +1,11 @@
 //! The bat's outer radius R(z): piecewise-linear knots, the embedded R161 table, the
 //! handle-thickness variant and the barrel extension.
 
-use super::error::ModelError;
-use super::spec::HandleSpec;
+use crate::model::error::ModelError;
+use crate::model::spec::HandleSpec;
 
 /// The R161 table (diameter per 1-cm slice), embedded at build time.
-const R161_CSV: &str = include_str!("../../data/r161_profile.csv");
+const R161_CSV: &str = include_str!("../../../data/r161_profile.csv");
 
 /// An outer-radius profile: knots (z, R) in m, z from 0 (knob) strictly increasing,
 /// linear between knots.

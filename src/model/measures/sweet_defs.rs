@@ -40,7 +40,7 @@ pub fn find_minimum(z: &[f64], v: &[f64]) -> Option<(f64, f64)> {
         return None;
     }
     let neg: Vec<f64> = v.iter().map(|x| -x).collect();
-    super::sweet::find_maximum(z, &neg).map(|(p, m)| (p, -m))
+    crate::model::measures::sweet::find_maximum(z, &neg).map(|(p, m)| (p, -m))
 }
 
 #[cfg(test)]

@@ -1,0 +1,12 @@
+//! The bat: outer profile R(z) (`profile`), resolved cross-sections and material
+//! (`section`), the lumped beam (`beam`), its modes (`modal`), all of it prepared once per
+//! distinct bat (`prepared`), and the motion of a bat state (`motion`).
+
+pub mod beam;
+pub mod modal;
+pub mod motion;
+pub mod prepared;
+pub mod profile;
+pub mod section;
+
+pub use prepared::*;

@@ -1,0 +1,9 @@
+//! One collision: whether it can be computed (`validate`), the wave model (`wave/`: time
+//! step, contact, hoop, the modal and Verlet integrators), Brody's rigid model (`rigid`),
+//! the sampling of time histories (`history`), and the dispatch between models (`simulate`).
+
+pub(crate) mod history;
+pub mod rigid;
+pub mod simulate;
+pub mod validate;
+pub mod wave;

@@ -1,0 +1,68 @@
+//! Contact bookkeeping shared by the integrators: first contact, separations, re-contact,
+//! peak force and compression, the energy the ball's loop dissipates.
+
+use super::COAST_TIME;
+use crate::model::ball::ContactLaw;
+use crate::model::collision::history::Recorder;
+
+/// Contact bookkeeping shared by the integrators.
+#[derive(Default)]
+pub(super) struct Contact {
+    pub(super) in_contact: bool,
+    pub(super) separations: usize,
+    pub(super) start: f64,
+    pub(super) first_duration: f64,
+    pub(super) last_separation: f64,
+    pub(super) peak_force: f64,
+    pub(super) max_compression: f64,
+    pub(super) ball_loss: f64,
+    pub(super) recontact: bool,
+    pub(super) s_max: f64,
+}
+
+impl Contact {
+    pub(super) fn started() -> Self {
+        Self {
+            in_contact: true,
+            ..Self::default()
+        }
+    }
+
+    /// After a step from (t0, s0) to (t1, s1) with end force f1.
+    pub(super) fn update(&mut self, law: &ContactLaw, t0: f64, s0: f64, t1: f64, s1: f64, f1: f64) {
+        let crossing = || {
+            if s0 != s1 {
+                t0 + (t1 - t0) * s0 / (s0 - s1)
+            } else {
+                t1
+            }
+        };
+        if s1 > 0.0 {
+            if !self.in_contact {
+                self.in_contact = true;
+                self.recontact = true;
+                self.start = crossing();
+            }
+            self.s_max = self.s_max.max(s1);
+            self.peak_force = self.peak_force.max(f1);
+            self.max_compression = self.max_compression.max(s1);
+        } else if self.in_contact {
+            let t_sep = crossing();
+            if self.separations == 0 {
+                self.first_duration = t_sep - self.start;
+            }
+            self.separations += 1;
+            self.last_separation = t_sep;
+            self.ball_loss += law.loop_loss(self.s_max);
+            self.s_max = 0.0;
+            self.in_contact = false;
+        }
+    }
+
+    pub(super) fn finished(&self, t: f64, recorder: &Option<Recorder>) -> bool {
+        !self.in_contact
+            && self.separations > 0
+            && t >= self.last_separation + COAST_TIME
+            && recorder.as_ref().is_none_or(|r| r.done())
+    }
+}

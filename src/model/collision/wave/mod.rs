@@ -1,0 +1,290 @@
+//! Time integration of the wave model: beam + ball (+ optional hoop mode).
+//!
+//! Two integrators share the set-up and the bookkeeping:
+//! - `Modal` (default): the linear beam is advanced exactly in its modal basis (precomputed in
+//!   `PreparedBat`) under a contact force that varies linearly over each step; the force at
+//!   the end of the step is found implicitly (one scalar equation: compression is affine in
+//!   the new force), so the step is set by the contact (µs), not by the highest beam mode.
+//!   For the ball (and hoop) this is the linear-acceleration method, stable for
+//!   ω_c·dt < 2√3 and second-order accurate.
+//! - `Verlet`: plain explicit velocity Verlet in physical coordinates at a step below the
+//!   stability limit of the highest beam mode (the paper's approach; the baseline).
+//!
+//! Sign conventions (docs/physics.md): y along the incoming ball's velocity; the ball's front
+//! surface is at w, the contact point of the bat at y_c; compression s = w − y_c (or
+//! w − x_h with a hoop mass at x_h); the ball pushes the bat (or hoop) with +F and is pushed
+//! back with −F. Time 0 = first contact (s = 0).
+
+use crate::model::ball::ContactLaw;
+use crate::model::bat::motion::grip_recoil_speed;
+use crate::model::bat::PreparedBat;
+use crate::model::collision::history::Recorder;
+use crate::model::error::ModelError;
+use crate::model::outcome::{EnergyPartition, HistoryRequest, Outcome};
+use crate::model::protocol::KNOB6;
+use crate::model::spec::{BeamTheory, CollisionSpec, Integrator};
+
+mod contact;
+mod hoop;
+mod modal;
+mod step;
+mod verlet;
+
+use contact::Contact;
+pub use hoop::{default_hoop_length, resolve_hoop, Hoop, HOOP_WAVE_NUMBER};
+use modal::run_modal;
+use step::contact_omega;
+pub use step::{approach_speed, stability_limit, step_budget, time_step};
+use verlet::run_verlet;
+
+/// Time simulated after the last separation to catch a re-contact, s.
+pub const COAST_TIME: f64 = 0.5e-3;
+/// Upper bound of the simulated time, s.
+pub const MAX_TIME: f64 = 20e-3;
+/// Default step budget of one collision (`numerics.max_steps`): a few seconds of computing
+/// for the explicit baseline, thousands of times what a default collision takes.
+pub const DEFAULT_MAX_STEPS: u64 = 10_000_000;
+/// Default modal step as a fraction of the contact's time scale 1/ω_c (ω_c from the ball's
+/// stiffest tangent, plus the hoop): ≈ 3.4 µs for the base case, exit speed within 4e-5 of
+/// the converged value.
+pub const MODAL_STEP_FRACTION: f64 = 0.02;
+/// Largest modal step accepted, as a fraction of 1/ω_c.
+pub const MODAL_MAX_STEP_FRACTION: f64 = 0.2;
+/// Modes with ω_n above this multiple of the contact's frequency scale are treated
+/// quasi-statically by the modal integrator (their dynamic correction is ~(ω_c/ω_n)²).
+pub const MODE_CUTOFF_FACTOR: f64 = 50.0;
+/// Fewest modes the modal integrator keeps.
+const MIN_MODES: usize = 12;
+/// Default Verlet step as a fraction of its stability limit.
+pub const VERLET_STEP_FRACTION: f64 = 0.9;
+
+/// Conservation checks of one run (for tests and benchmarks). Without a grip: bat-CM frame,
+/// angular momentum about z_cm. With a grip: the frame of the hands, angular momentum about
+/// the grip point (conserved: the grip force has no moment about it), and linear momentum
+/// is not conserved (the hands push).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Diagnostics {
+    pub momentum_initial: f64,
+    pub momentum_final: f64,
+    pub angular_momentum_initial: f64,
+    pub angular_momentum_final: f64,
+    /// Sum of the final energy partition (must equal `energy.initial`).
+    pub energy_final: f64,
+    pub dt: f64,
+    pub steps: usize,
+    pub segments: usize,
+    /// Modes time-stepped (modal integrator; all segments for Verlet).
+    pub modes: usize,
+}
+
+/// Everything of one collision that both integrators need.
+struct Collision {
+    law: ContactLaw,
+    ball_mass: f64,
+    /// Ball velocity toward the bat in the collision's frame (the hands' with a grip).
+    ball_speed: f64,
+    omega: f64,
+    /// Velocity of the frame (the hands) in the bat-CM frame: ω (z_grip − z_cm), or 0.
+    frame_velocity: f64,
+    hoop: Option<Hoop>,
+    /// Impact point: node pair k, k+1 and weight a of node k+1; lever arm z − z_cm.
+    k: usize,
+    a: f64,
+    lever: f64,
+    dt: f64,
+    /// Most steps this collision may take.
+    budget: u64,
+    /// Modes above this angular frequency are treated quasi-statically (modal integrator).
+    mode_cutoff: f64,
+}
+
+/// What an integrator hands back at the end.
+struct FinalState {
+    ball_velocity: f64,
+    bat_energy: f64,
+    /// Energy of the rigid modes (rotation about the grip) with a grip; unused without.
+    bat_rigid_energy: f64,
+    /// Dissipated by material damping.
+    bat_damping: f64,
+    /// Dissipated by the grip damper.
+    grip_loss: f64,
+    bat_momentum: f64,
+    bat_angular_momentum: f64,
+    hoop_energy: f64,
+    hoop_velocity: f64,
+    /// Free-vibration amplitude at the grip at the end (`bat::motion::grip_vibration_amplitude`).
+    grip_amplitude: f64,
+    steps: usize,
+    modes: usize,
+}
+
+/// Run one wave-model collision.
+pub fn simulate_wave(
+    spec: &CollisionSpec,
+    bat: &PreparedBat,
+    history: Option<&HistoryRequest>,
+) -> Result<(Outcome, Diagnostics), ModelError> {
+    let approach = approach_speed(spec, bat);
+    if approach <= 0.0 {
+        return Err(ModelError::NoApproach {
+            approach_speed: approach,
+        });
+    }
+    if spec.numerics.integrator == Integrator::Verlet {
+        if bat.beam.pin.is_some() {
+            return Err(ModelError::Unsupported(
+                "a pinned grip needs the modal integrator",
+            ));
+        }
+        if bat.damping_ratio > 0.0 || bat.grip_damping > 0.0 {
+            return Err(ModelError::Unsupported(
+                "material damping needs the modal integrator",
+            ));
+        }
+        if spec.bat.beam == BeamTheory::Timoshenko {
+            return Err(ModelError::Unsupported(
+                "the Timoshenko beam needs the modal integrator",
+            ));
+        }
+    }
+    let hoop = resolve_hoop(spec, bat)?;
+    let dt = time_step(spec, bat)?;
+    // The run lasts at least the re-contact watch after the ball has left.
+    let budget = step_budget(spec);
+    let least = (COAST_TIME / dt).ceil();
+    if least > budget as f64 {
+        return Err(ModelError::StepBudget {
+            steps: least,
+            dt,
+            budget,
+            cause: "numerics.max_steps",
+            provable: true,
+        });
+    }
+    let (k, a) = bat.beam.interpolation(spec.impact.z);
+    let frame_velocity = bat
+        .beam
+        .grip_z
+        .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
+    let collision = Collision {
+        law: ContactLaw::from_spec(&spec.ball.law),
+        ball_mass: spec.ball.mass,
+        ball_speed: spec.ball.speed - frame_velocity,
+        omega: spec.swing.omega,
+        frame_velocity,
+        hoop,
+        k,
+        a,
+        lever: spec.impact.z - bat.z_cm,
+        dt,
+        budget,
+        mode_cutoff: MODE_CUTOFF_FACTOR
+            * contact_omega(spec, hoop, &ContactLaw::from_spec(&spec.ball.law), approach),
+    };
+    let mut recorder = history.map(Recorder::new);
+    let mut contact = Contact::started();
+    let fin = match spec.numerics.integrator {
+        Integrator::Modal => run_modal(&collision, bat, &mut contact, &mut recorder)?,
+        Integrator::Verlet => run_verlet(&collision, bat, &mut contact, &mut recorder)?,
+    };
+
+    let m = collision.ball_mass;
+    let u = collision.frame_velocity;
+    // back to the bat-CM frame
+    let exit_speed = -(fin.ball_velocity + u);
+    let total_mass = bat.beam.total_mass();
+    let bat_rigid = if bat.beam.grip_z.is_some() {
+        fin.bat_rigid_energy
+    } else {
+        0.5 * fin.bat_momentum.powi(2) / total_mass
+            + 0.5 * fin.bat_angular_momentum.powi(2) / bat.inertia_cm
+    };
+    let hoop_initial_velocity = collision.omega * collision.lever - u;
+    let hoop_mass = collision.hoop.map_or(0.0, |h| h.mass);
+    let energy = EnergyPartition {
+        initial: 0.5 * m * collision.ball_speed.powi(2)
+            + 0.5 * collision.omega.powi(2) * bat.inertia_cm
+            + 0.5 * total_mass * u * u
+            + 0.5 * hoop_mass * hoop_initial_velocity.powi(2),
+        ball_final: 0.5 * m * fin.ball_velocity.powi(2),
+        ball_loss: contact.ball_loss,
+        bat_rigid,
+        bat_vibration: fin.bat_energy - bat_rigid,
+        hoop: fin.hoop_energy,
+        bat_damping: fin.bat_damping,
+        grip_damping: fin.grip_loss,
+    };
+    let outcome = Outcome {
+        exit_speed,
+        exit_speed_lab: exit_speed + spec.swing.cm_speed,
+        // v_exit = e_A v_pitch + (1 + e_A) v_bat with v_pitch = ball.speed and the bat's
+        // impact-point speed toward the pitcher v_bat = −ω l: e_A = (exit + ω l)/approach.
+        collision_efficiency: (exit_speed + collision.omega * collision.lever) / approach,
+        approach_speed: approach,
+        contact_time: contact.first_duration,
+        peak_force: contact.peak_force,
+        max_compression: contact.max_compression,
+        impulse: m * (collision.ball_speed - fin.ball_velocity),
+        energy,
+        recontact: contact.recontact,
+        grip_vibration_amplitude: fin.grip_amplitude,
+        grip_recoil_speed: grip_recoil_speed(
+            fin.bat_momentum,
+            fin.bat_angular_momentum - collision.omega * bat.inertia_cm,
+            bat.beam.total_mass(),
+            bat.inertia_cm,
+            bat.z_cm,
+            KNOB6,
+        ),
+        history: recorder.map(|r| r.finish()),
+    };
+    // about the grip (with one) or the CM; bat angular momentum about the CM → about centre
+    let centre = bat.beam.grip_z.unwrap_or(bat.z_cm);
+    let lever = spec.impact.z - centre;
+    let shift = bat.z_cm - centre;
+    let bat_momentum_initial = -total_mass * u;
+    let diagnostics = Diagnostics {
+        momentum_initial: m * collision.ball_speed
+            + hoop_mass * hoop_initial_velocity
+            + bat_momentum_initial,
+        momentum_final: m * fin.ball_velocity + fin.bat_momentum + hoop_mass * fin.hoop_velocity,
+        angular_momentum_initial: (m * collision.ball_speed + hoop_mass * hoop_initial_velocity)
+            * lever
+            + collision.omega * bat.inertia_cm
+            + shift * bat_momentum_initial,
+        angular_momentum_final: (m * fin.ball_velocity + hoop_mass * fin.hoop_velocity) * lever
+            + fin.bat_angular_momentum
+            + shift * fin.bat_momentum,
+        energy_final: energy.ball_final
+            + energy.ball_loss
+            + energy.bat_rigid
+            + energy.bat_vibration
+            + energy.hoop
+            + energy.bat_damping
+            + energy.grip_damping,
+        dt,
+        steps: fin.steps,
+        segments: bat.beam.len(),
+        modes: fin.modes,
+    };
+    Ok((outcome, diagnostics))
+}
+
+/// Interpolation weights of the requested z (NaN marks points beyond the bat).
+fn displacement_points(
+    bat: &PreparedBat,
+    request: Option<&HistoryRequest>,
+) -> Vec<(usize, f64, bool)> {
+    request.map_or(Vec::new(), |r| {
+        r.z.iter()
+            .map(|&z| {
+                let (k, a) = bat.beam.interpolation(z);
+                (k, a, (0.0..=bat.length()).contains(&z))
+            })
+            .collect()
+    })
+}
+
+fn spec_history<'a>(recorder: &'a Option<Recorder>) -> Option<&'a HistoryRequest> {
+    recorder.as_ref().map(|r| r.request())
+}
