@@ -1,0 +1,69 @@
+//! What several commands share: the located output check, loading a study with its exit
+//! code, `--jobs`, and the output's lock.
+
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
+use super::{EXIT_BAD_INPUT, EXIT_RUN_FAILED};
+use crate::store;
+use crate::study;
+use crate::study::output::check_output;
+use crate::study::output::Existing;
+use crate::study::LoadOptions;
+use crate::study::Study;
+use crate::study::StudyError;
+use std::path::Path;
+
+pub(super) fn check_output_of(
+    study: &Study,
+    output: &Path,
+    from_cli: bool,
+    existing: Existing,
+) -> Result<(), StudyError> {
+    check_output(output, existing).map_err(|(msg, allowed)| {
+        let e = StudyError::new(&study.path, msg)
+            .value(output.display().to_string())
+            .allowed(allowed);
+        if from_cli {
+            e.field("--output")
+        } else {
+            e.field("output").at(study.position_of("output"))
+        }
+    })
+}
+
+/// Load a study; on bad input print the located error and give the exit code.
+pub(super) fn load_or_report(path: &Path, max_points: usize) -> Result<Study, i32> {
+    study::load(path, &LoadOptions { max_points }).map_err(|e| {
+        eprintln!("{e}");
+        EXIT_BAD_INPUT
+    })
+}
+
+pub(super) fn jobs_or_all(jobs: Option<usize>, file: &Path) -> Result<usize, StudyError> {
+    match jobs {
+        Some(0) => Err(StudyError::new(file, "bad --jobs")
+            .field("--jobs")
+            .value("0")
+            .allowed("a number of threads >= 1")),
+        Some(j) => Ok(j),
+        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+    }
+}
+
+/// Take the output's lock (`OUT.h5.lock`) before anything of it is touched: a second
+/// process on the same output is refused (exit 2) and changes nothing.
+pub(super) fn lock_output(output: &Path) -> Result<store::lock::OutputLock, i32> {
+    if let Some(dir) = output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("error: cannot create {}: {e}", dir.display());
+            return Err(EXIT_RUN_FAILED);
+        }
+    }
+    store::lock::OutputLock::acquire(output).map_err(|e| {
+        eprintln!("error: {e}");
+        match e {
+            store::lock::LockError::Held { .. } => EXIT_BAD_INPUT,
+            store::lock::LockError::Io { .. } => EXIT_RUN_FAILED,
+        }
+    })
+}

@@ -1,0 +1,127 @@
+//! The command line: a thin layer over the library. Each command has its own module
+//! (`run`, `plan`, `validate`, `merge`, `slurm`; `inspect`, `schema` and `bench` are one
+//! call each, below); its raw flags become one validated settings value before anything
+//! runs or is written, then one library call. `common` holds what several commands share.
+//! Exit codes: 0 all points ok, 1 some points failed
+//! (results written), 2 bad input (message on stderr, nothing written), 3 a failure of
+//! the run itself (I/O), 130 interrupted (Ctrl-C; resume with `--resume`).
+
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
+use crate::store;
+use crate::study::{self, DEFAULT_MAX_POINTS};
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+mod common;
+pub mod merge;
+pub mod plan;
+pub mod run;
+pub mod slurm;
+pub mod validate;
+
+pub use merge::MergeArgs;
+pub use plan::PlanArgs;
+pub use run::{exit_code, run_with, shard_output, RunArgs, RunSettings};
+pub use slurm::SlurmArgs;
+
+pub const EXIT_OK: i32 = 0;
+pub const EXIT_POINTS_FAILED: i32 = 1;
+pub const EXIT_BAD_INPUT: i32 = 2;
+pub const EXIT_RUN_FAILED: i32 = 3;
+pub const EXIT_INTERRUPTED: i32 = 130;
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "batstudy",
+    version,
+    about = "Baseball bat–ball collision parameter studies"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a study: simulate every point on all cores into one HDF5 file.
+    Run(RunArgs),
+    /// Show what a study expands to: points, axes, estimated run time and output size.
+    Plan(PlanArgs),
+    /// Check study files without running them.
+    Validate {
+        /// Study files.
+        #[arg(required = true)]
+        studies: Vec<PathBuf>,
+        /// Largest number of points allowed.
+        #[arg(long, default_value_t = DEFAULT_MAX_POINTS)]
+        max_points: usize,
+    },
+    /// Print the JSON Schema of study files.
+    Schema,
+    /// Show what a results file holds.
+    Inspect {
+        /// A results file.
+        file: PathBuf,
+    },
+    /// Measure speed, parallel efficiency, HDF5 write share and peak memory.
+    Bench {
+        /// Shrink every case (a few seconds; for tests).
+        #[arg(long)]
+        quick: bool,
+        /// Also write the figures as JSON to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
+    /// Merge shard files (`run --shard I/N`) into one results file.
+    Merge(MergeArgs),
+    /// Write Slurm job scripts: an array of shards and a merge job that depends on it.
+    Slurm(SlurmArgs),
+}
+
+/// Parse the process's arguments and run; returns the exit code.
+pub fn main_exit_code() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                EXIT_BAD_INPUT
+            } else {
+                EXIT_OK
+            };
+        }
+    };
+    run_command(cli.command)
+}
+
+/// Run one subcommand; returns the exit code.
+pub fn run_command(cmd: Command) -> i32 {
+    match cmd {
+        Command::Run(a) => run::cmd_run(&a),
+        Command::Plan(a) => plan::cmd_plan(&a),
+        Command::Validate {
+            studies,
+            max_points,
+        } => validate::cmd_validate(&studies, max_points),
+        Command::Schema => {
+            print!("{}", study::schema_json());
+            EXIT_OK
+        }
+        Command::Merge(a) => merge::cmd_merge(&a),
+        Command::Slurm(a) => slurm::cmd_slurm(&a),
+        Command::Bench { quick, json } => {
+            crate::bench::main(&crate::bench::BenchOptions { quick }, json.as_deref())
+        }
+        Command::Inspect { file } => match store::inspect(&file) {
+            Ok(text) => {
+                print!("{text}");
+                EXIT_OK
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                EXIT_BAD_INPUT
+            }
+        },
+    }
+}

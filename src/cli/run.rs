@@ -1,0 +1,317 @@
+//! `batstudy run`: flags → one validated `RunSettings` → the run, under the output's lock.
+
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
+use super::common::{check_output_of, lock_output};
+use super::{EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_POINTS_FAILED, EXIT_RUN_FAILED};
+use crate::results::StudyInfo;
+use crate::run::ModelSimulator;
+use crate::run::RunOptions;
+use crate::run::RunReport;
+use crate::run::Shard;
+use crate::run::Simulator;
+use crate::run::Sink;
+use crate::run::StoreSink;
+use crate::store;
+use crate::study;
+use crate::study::output::Existing;
+use crate::study::LoadOptions;
+use crate::study::Study;
+use crate::study::StudyError;
+use crate::study::DEFAULT_MAX_POINTS;
+use clap::Args;
+use std::path::Path;
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+use std::sync::atomic::Ordering;
+use std::sync::Arc;
+
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The study file (YAML).
+    pub study: PathBuf,
+    /// Output file (default: the study's `output`, else results/<name>.h5).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(short, long)]
+    pub jobs: Option<usize>,
+    /// Continue an interrupted run in the same output file (only missing points run).
+    #[arg(long, conflicts_with = "force")]
+    pub resume: bool,
+    /// Replace an existing output file.
+    #[arg(long)]
+    pub force: bool,
+    /// Stop at the first failed point.
+    #[arg(long)]
+    pub fail_fast: bool,
+    /// No progress bar and no summary on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Largest number of points allowed.
+    #[arg(long, default_value_t = DEFAULT_MAX_POINTS)]
+    pub max_points: usize,
+    /// Run the I-th of N disjoint subsets of the points (1 <= I <= N), e.g. 2/8.
+    #[arg(long)]
+    pub shard: Option<Shard>,
+}
+
+/// Everything `run` needs, validated.
+#[derive(Debug)]
+pub struct RunSettings {
+    pub study: Study,
+    pub output: PathBuf,
+    pub existing: Existing,
+    pub options: RunOptions,
+    pub quiet: bool,
+}
+
+impl RunSettings {
+    /// Validate raw flags and the study; touches nothing.
+    pub fn from_args(a: &RunArgs) -> Result<RunSettings, StudyError> {
+        let study = study::load(
+            &a.study,
+            &LoadOptions {
+                max_points: a.max_points,
+            },
+        )?;
+        let jobs = match a.jobs {
+            Some(0) => {
+                return Err(StudyError::new(&a.study, "bad --jobs")
+                    .field("--jobs")
+                    .value("0")
+                    .allowed("a number of threads >= 1"))
+            }
+            Some(j) => j,
+            None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        };
+        let existing = match (a.resume, a.force) {
+            (true, _) => Existing::Resume,
+            (_, true) => Existing::Overwrite,
+            _ => Existing::Refuse,
+        };
+        let output = match (a.shard, &a.output) {
+            (Some(sh), None) => shard_output(&study.output_path(None), sh),
+            _ => study.output_path(a.output.as_deref()),
+        };
+        check_output_of(&study, &output, a.output.is_some(), existing)?;
+        Ok(RunSettings {
+            output,
+            existing,
+            options: RunOptions {
+                jobs,
+                fail_fast: a.fail_fast,
+                progress: !a.quiet,
+                shard: a.shard,
+                ..RunOptions::default()
+            },
+            quiet: a.quiet,
+            study,
+        })
+    }
+}
+
+/// Default output of a shard: the study's output with `.shard-I-of-N.h5` for `.h5`
+/// (`results/<name>.shard-I-of-N.h5`).
+pub fn shard_output(study_output: &Path, shard: Shard) -> PathBuf {
+    let s = study_output.display().to_string();
+    let stem = s.strip_suffix(".h5").unwrap_or(&s);
+    PathBuf::from(format!(
+        "{stem}.shard-{}-of-{}.h5",
+        shard.index, shard.count
+    ))
+}
+
+pub(super) fn cmd_run(a: &RunArgs) -> i32 {
+    let settings = match RunSettings::from_args(a) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let _lock = match lock_output(&settings.output) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    // Checked again under the lock: another run may have finished the file meanwhile.
+    if let Err(e) = check_output_of(
+        &settings.study,
+        &settings.output,
+        a.output.is_some(),
+        settings.existing,
+    ) {
+        eprintln!("{e}");
+        return EXIT_BAD_INPUT;
+    }
+    let stop = Arc::new(AtomicBool::new(false));
+    {
+        let stop = Arc::clone(&stop);
+        let _ = ctrlc::set_handler(move || {
+            if stop.swap(true, Ordering::SeqCst) {
+                eprintln!("\nsecond interrupt: exiting now (resume with --resume)");
+                std::process::exit(EXIT_INTERRUPTED);
+            }
+            eprintln!("\ninterrupt: finishing the points in flight…");
+        });
+    }
+    let store_options = |existing: Existing| store::StoreOptions {
+        resume: existing == Existing::Resume,
+        force: existing == Existing::Overwrite,
+        run_meta: store::RunMeta {
+            threads: settings.options.jobs,
+            shard: settings
+                .options
+                .shard
+                .map(|s| format!("{}/{}", s.index, s.count)),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let output = &settings.output;
+    let shape = &settings.study.plan.shape;
+    run_with(
+        &settings,
+        &ModelSimulator,
+        || store::begin(output, shape),
+        |path, info, existing, begun| {
+            let mut o = store_options(existing);
+            o.run_meta.shard_range = settings.options.shard.map(|sh| {
+                let r = crate::run::shard_range(&settings.study.plan, info.history.as_ref(), sh);
+                (r.start, r.end)
+            });
+            begun
+                .and_then(|b| store::open_begun(path, info, &o, Some(b)))
+                .map(StoreSink::new)
+                .map_err(|e| e.to_string())
+        },
+        &stop,
+    )
+}
+
+/// The run itself, against any simulator and sink. `begin` runs while the bats are
+/// prepared (the store begins its file there); `open` then creates the sink for the output
+/// path with what `begin` made. Prints the summary; returns the exit code.
+pub fn run_with<S, K, E, B, F>(
+    settings: &RunSettings,
+    sim: &S,
+    begin: B,
+    open: F,
+    stop: &AtomicBool,
+) -> i32
+where
+    S: Simulator,
+    K: Sink,
+    E: Send,
+    B: FnOnce() -> E + Send,
+    F: FnOnce(&Path, &StudyInfo, Existing, E) -> Result<K, String>,
+{
+    let plan = &settings.study.plan;
+    let pool = match crate::run::build_pool(settings.options.jobs) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_RUN_FAILED;
+        }
+    };
+    if let Some(dir) = settings
+        .output
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+    {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("error: cannot create {}: {e}", dir.display());
+            return EXIT_RUN_FAILED;
+        }
+    }
+    let started = std::time::Instant::now();
+    let preparing = crate::run::progress::spinner(
+        settings.options.progress,
+        format!(
+            "preparing {} bat{}",
+            plan.bats().len(),
+            if plan.bats().len() == 1 { "" } else { "s" }
+        ),
+    );
+    let (bats, begun) = crate::run::prepare_bats_alongside(sim, plan, &pool, begin);
+    preparing.finish_and_clear();
+    let history = settings.study.history_request(bats.max_length());
+    let info = settings.study.info(bats.variants.clone(), history.clone());
+    let sink = match open(&settings.output, &info, settings.existing, begun) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {}: {e}", settings.output.display());
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let result = crate::run::run_plan(
+        plan,
+        sim,
+        &bats,
+        history.as_ref(),
+        sink,
+        &pool,
+        &settings.options,
+        stop,
+    );
+    match result {
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_RUN_FAILED
+        }
+        Ok((report, _sink)) => {
+            if !settings.quiet {
+                print_report(settings, &report, started.elapsed());
+            }
+            exit_code(&report)
+        }
+    }
+}
+
+/// Exit code of a finished run.
+pub fn exit_code(r: &RunReport) -> i32 {
+    if r.interrupted {
+        EXIT_INTERRUPTED
+    } else if r.failed > 0 || r.aborted {
+        EXIT_POINTS_FAILED
+    } else {
+        EXIT_OK
+    }
+}
+
+fn print_report(s: &RunSettings, r: &RunReport, elapsed: std::time::Duration) {
+    eprintln!(
+        "{}: {} points: {} ok, {} failed, {} already done{}; {} ({})",
+        s.output.display(),
+        r.total,
+        r.ok,
+        r.failed,
+        r.skipped,
+        if r.remaining() > 0 {
+            format!(", {} not run", r.remaining())
+        } else {
+            String::new()
+        },
+        crate::run::progress::duration_text(elapsed.as_secs_f64()),
+        crate::run::progress::rate_text((r.ok + r.failed) as u64, elapsed)
+    );
+    for (i, e) in &r.failures {
+        eprintln!("  point {i} ({}): {e}", s.study.plan.describe(*i));
+    }
+    if r.failed > r.failures.len() {
+        eprintln!("  … and {} more failures", r.failed - r.failures.len());
+    }
+    if r.interrupted || r.aborted {
+        // As this process was invoked, so that it can be pasted.
+        let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());
+        let mut cmd = format!(
+            "{program} run {} --resume -o {}",
+            s.study.path.display(),
+            s.output.display()
+        );
+        if let Some(sh) = s.options.shard {
+            cmd.push_str(&format!(" --shard {sh}"));
+        }
+        eprintln!("stopped early; to finish the study run:\n  {cmd}");
+    }
+}

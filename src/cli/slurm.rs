@@ -1,0 +1,175 @@
+//! `batstudy slurm`: the job array, merge job and submit scripts for a Slurm cluster.
+
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
+use super::common::load_or_report;
+use super::{EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED};
+use crate::study::output::check_output;
+use crate::study::output::Existing;
+use crate::study::StudyError;
+use crate::study::DEFAULT_MAX_POINTS;
+use clap::Args;
+use std::path::Path;
+use std::path::PathBuf;
+
+#[derive(Debug, Args)]
+pub struct SlurmArgs {
+    /// The study file (YAML).
+    pub study: PathBuf,
+    /// Number of shards (array tasks).
+    #[arg(long)]
+    pub shards: usize,
+    /// Time limit of each array task (Slurm format, e.g. 02:00:00 or 1-00:00:00).
+    #[arg(long)]
+    pub time: Option<String>,
+    /// Time limit of the merge job (default: --time).
+    #[arg(long)]
+    pub merge_time: Option<String>,
+    /// Slurm partition.
+    #[arg(long)]
+    pub partition: Option<String>,
+    /// Cores per array task (its rayon threads).
+    #[arg(long, default_value_t = 1)]
+    pub cpus_per_task: usize,
+    /// Memory per task (Slurm format, e.g. 4G).
+    #[arg(long)]
+    pub mem: Option<String>,
+    /// The merged results file (default: the study's `output`, else results/<name>.h5).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Folder for the scripts, the shard files and the logs (default: slurm/<name>).
+    #[arg(long)]
+    pub dir: Option<PathBuf>,
+    /// Largest number of points allowed.
+    #[arg(long, default_value_t = DEFAULT_MAX_POINTS)]
+    pub max_points: usize,
+}
+
+/// An absolute path (relative ones against the working folder; nothing is resolved).
+fn absolute(p: &Path) -> PathBuf {
+    if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        std::env::current_dir()
+            .map(|d| d.join(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    }
+}
+
+/// `batstudy slurm`: write the job array, merge job and submit scripts.
+pub(super) fn cmd_slurm(a: &SlurmArgs) -> i32 {
+    let study = match load_or_report(&a.study, a.max_points) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let flag = |name: &str, value: String, allowed: &str| {
+        eprintln!(
+            "{}",
+            StudyError::new(&a.study, format!("bad {name}"))
+                .field(name)
+                .value(value)
+                .allowed(allowed)
+        );
+        EXIT_BAD_INPUT
+    };
+    if a.shards == 0 {
+        return flag("--shards", "0".into(), "a number of shards >= 1");
+    }
+    if a.cpus_per_task == 0 {
+        return flag("--cpus-per-task", "0".into(), "a number of cores >= 1");
+    }
+    for (name, v) in [("--time", &a.time), ("--merge-time", &a.merge_time)] {
+        if let Some(t) = v.as_ref().filter(|t| !crate::slurm::valid_time(t)) {
+            return flag(
+                name,
+                t.clone(),
+                "a Slurm time limit: MM, HH:MM:SS, D-HH or D-HH:MM:SS",
+            );
+        }
+    }
+    if let Some(m) = a.mem.as_ref().filter(|m| !crate::slurm::valid_mem(m)) {
+        return flag("--mem", m.clone(), "a size such as 4G or 500M");
+    }
+    if let Some(p) = a
+        .partition
+        .as_ref()
+        .filter(|p| !crate::slurm::sbatch_safe(p))
+    {
+        return flag("--partition", p.clone(), "a partition name");
+    }
+    let binary = match std::env::current_exe().and_then(|p| p.canonicalize()) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot find the batstudy binary's path: {e}");
+            return EXIT_RUN_FAILED;
+        }
+    };
+    let study_path = match a.study.canonicalize() {
+        Ok(p) => p,
+        Err(e) => return flag("STUDY", format!("{} ({e})", a.study.display()), "a file"),
+    };
+    let name = study.file.name.clone();
+    let dir = absolute(
+        &a.dir
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("slurm").join(&name)),
+    );
+    if !crate::slurm::sbatch_safe(&dir.display().to_string()) {
+        return flag(
+            "--dir",
+            dir.display().to_string(),
+            "a folder path without spaces, quotes, `$`, `#` or `;` (it goes into #SBATCH lines)",
+        );
+    }
+    let output = absolute(&study.output_path(a.output.as_deref()));
+    if let Err((msg, allowed)) = check_output(&output, Existing::Refuse) {
+        if output.exists() {
+            eprintln!("warning: {msg}: the merge job will refuse to replace it; remove it or choose another -o before submitting");
+        } else {
+            return flag("--output", output.display().to_string(), &allowed);
+        }
+    }
+    let n = study.plan.n_points();
+    if a.shards > n {
+        eprintln!(
+            "warning: {} shards for {n} points: {} shards will be empty",
+            a.shards,
+            a.shards - n
+        );
+    }
+    let job = crate::slurm::SlurmJob {
+        binary,
+        study: study_path,
+        name,
+        shards: a.shards,
+        merge_time: a.merge_time.clone().or_else(|| a.time.clone()),
+        time: a.time.clone(),
+        partition: a.partition.clone(),
+        cpus_per_task: a.cpus_per_task,
+        mem: a.mem.clone(),
+        output,
+        dir,
+    };
+    match job.write() {
+        Ok(paths) => {
+            for p in &paths {
+                println!("wrote {}", p.display());
+            }
+            println!(
+                "submit with: bash {}   ({} array tasks of {} cores, then the merge into {})",
+                job.dir.join("submit.sh").display(),
+                job.shards,
+                job.cpus_per_task,
+                job.output.display()
+            );
+            EXIT_OK
+        }
+        Err(e) => {
+            eprintln!(
+                "error: cannot write the scripts into {}: {e}",
+                job.dir.display()
+            );
+            EXIT_RUN_FAILED
+        }
+    }
+}
