@@ -91,3 +91,15 @@ pub fn did_you_mean<'a>(
         .min_by_key(|(d, _)| *d)
         .map(|(_, c)| c.to_string())
 }
+
+/// "allowed" text from a serde message (`…, expected X`).
+pub(crate) fn allowed_from_serde(msg: &str) -> Option<String> {
+    if msg.starts_with("missing field") {
+        return Some("this field is required".into());
+    }
+    msg.split_once(", expected ").map(|(_, a)| match a {
+        "f64" | "f32" => "a number".to_string(),
+        "usize" | "u64" | "u32" => "a whole number >= 0".to_string(),
+        _ => a.to_string(),
+    })
+}

@@ -8,16 +8,21 @@
 
 pub mod checks;
 pub mod error;
+mod expand;
+mod history_only;
 pub mod load;
+mod locate;
 pub mod output;
 pub mod paths;
 pub mod plan;
 pub mod profile;
 pub mod source;
+mod syntax;
 pub mod types;
 pub mod unused;
 
 pub use error::StudyError;
-pub use load::{load, load_str, LoadOptions, Study, DEFAULT_MAX_POINTS};
+pub use expand::{LoadOptions, DEFAULT_MAX_POINTS, FULL_CHECK_LIMIT, MAX_BATS};
+pub use load::{load, load_str, Study};
 pub use plan::{point_id, BatChoice, Plan, PlanDim, Point, PointError};
 pub use types::{schema_json, AxisValues, HistorySpec, StudyFile, ZipGroup};

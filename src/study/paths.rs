@@ -180,6 +180,20 @@ pub fn units(path: &str) -> (&'static str, String) {
     (u, long)
 }
 
+/// The base tree with every defaulted field filled in (as far as the base deserializes
+/// with a placeholder impact), so that coordinates show the values points really use.
+pub fn with_defaults(base: &Value) -> Value {
+    let mut v = base.clone();
+    if super::paths::get_path(&v, "impact.z").is_none() {
+        let _ = set_path(&mut v, "impact.z", Value::from(0.0));
+    }
+    serde_json::to_value(&v)
+        .ok()
+        .and_then(|j| serde_json::from_value::<crate::model::spec::CollisionSpec>(j).ok())
+        .and_then(|spec| serde_yaml_ng::to_value(spec).ok())
+        .unwrap_or_else(|| base.clone())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
