@@ -7,7 +7,7 @@ Prints one line per problem and exits 1 if there is any, 0 (after "layout ok") i
 none, and 2 if the file cannot be checked at all (missing, not HDF5, or h5py / xarray /
 h5netcdf not installed).
 
-What is checked (layout_version 1, as docs/layout.md describes it):
+What is checked (layout_version 2, as docs/layout.md describes it):
 
 - root attributes: every documented one is present with its type; `Conventions` is CF-1.8;
   `title` names the study; `study_sha256` is the SHA-256 of `study_yaml`; `created` is ISO 8601
@@ -52,7 +52,7 @@ import json
 import re
 import sys
 
-LAYOUT_VERSION = 1
+LAYOUT_VERSION = 2
 
 # ---- the public names of docs/layout.md ------------------------------------------------
 
@@ -68,7 +68,7 @@ SUMMARY_FLOATS = {
     "impulse": "N s", "energy_initial": "J", "energy_ball_final": "J", "energy_ball_loss": "J",
     "energy_bat_rigid": "J", "energy_bat_vibration": "J", "energy_hoop": "J",
     "grip_vibration_amplitude": "m", "grip_recoil_speed": "m/s", "energy_bat_damping": "J",
-    "energy_grip_damping": "J",
+    "energy_grip_damping": "J", "impulse_time_99": "s",
 }
 # name: (numpy dtype string, units)
 SUMMARY_INTS = {"recontact": ("int8", "1"), "status": ("int8", "1"),

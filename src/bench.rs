@@ -578,7 +578,7 @@ fn process_cpu_seconds() -> f64 {
 /// Wall and CPU seconds of one null-sink run.
 fn run_null(
     study: &Study,
-    bats: &run::PreparedBats<crate::model::PreparedBat>,
+    bats: &run::PreparedBats<crate::model::Target>,
     pool: &rayon::ThreadPool,
 ) -> Result<(f64, f64), String> {
     let stop = AtomicBool::new(false);

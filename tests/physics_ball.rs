@@ -8,11 +8,14 @@ use batstudy::model::ball::{wall_rebound_speed, ContactLaw};
 use batstudy::model::spec::{BallLaw, BallLawKind};
 
 fn rebound(kind: BallLawKind, cor: f64, speed: f64) -> f64 {
-    let law = ContactLaw::from_spec(&BallLaw {
-        kind,
-        cor,
-        ..BallLaw::default()
-    });
+    let law = ContactLaw::new(
+        &BallLaw {
+            kind,
+            cor,
+            ..BallLaw::default()
+        },
+        speed,
+    );
     wall_rebound_speed(&law, 0.145, speed)
 }
 

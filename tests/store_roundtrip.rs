@@ -175,6 +175,7 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
         collision_efficiency: 0.2 + 0.001 * index as f64,
         approach_speed: 50.0 - w * z,
         contact_time: 6e-4 + 1e-7 * index as f64,
+        impulse_time_99: 4e-4 + 1e-7 * index as f64,
         peak_force: 2e4 + index as f64,
         max_compression: 0.012,
         impulse: 12.3 + index as f64 / 3.0,

@@ -6,7 +6,32 @@
 //! compression that increases monotonically (unloading branch below s_max, loading above),
 //! which is what makes the integrators' implicit contact solve well posed.
 
-use crate::model::spec::{BallLaw, BallLawKind};
+use crate::model::spec::{BallLaw, BallLawKind, Loading};
+
+/// `speed_dependent`: default reference speed, m/s (85 ft/s, the MLB ball specification's
+/// wall-test speed).
+pub const DEFAULT_REFERENCE_SPEED: f64 = 25.9;
+/// `speed_dependent`: default change of the wall COR per m/s. Nathan (2000) takes e = 0.50
+/// for his 71 m/s game-speed case; the rule-book ball has 0.546 at 25.9 m/s: a line
+/// through both falls by 0.001 per m/s (docs/physics.md, "The ball").
+pub const DEFAULT_COR_SLOPE: f64 = -0.001;
+/// `speed_dependent`: the COR line is clamped to this range (below 0.05 the unloading
+/// exponent exceeds 800; above 1 the ball would gain energy).
+pub const COR_RANGE: (f64, f64) = (0.05, 1.0);
+
+/// The wall COR the law gives a ball that meets the target at normal speed `v`, m/s:
+/// `cor` for the fixed laws (the rigid model's e, also for `elastic`), the clamped line for
+/// `speed_dependent`.
+pub fn cor_at_speed(law: &BallLaw, v: f64) -> f64 {
+    match law.kind {
+        BallLawKind::SpeedDependent => {
+            let reference = law.reference_speed.unwrap_or(DEFAULT_REFERENCE_SPEED);
+            let slope = law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE);
+            (law.cor + slope * (v - reference)).clamp(COR_RANGE.0, COR_RANGE.1)
+        }
+        _ => law.cor,
+    }
+}
 
 /// A force law F(s; s_max) ≥ 0 for compression s (> 0 in contact).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,22 +52,33 @@ pub enum ContactLaw {
 }
 
 impl ContactLaw {
-    /// The law a spec asks for.
-    pub fn from_spec(law: &BallLaw) -> Self {
+    /// The law a spec asks for, for a ball that meets the target at normal speed
+    /// `approach` (m/s; only `speed_dependent` uses it: its loop is set once, at first
+    /// contact, from the COR at that speed).
+    pub fn new(law: &BallLaw, approach: f64) -> Self {
+        let linear = |e: f64| Self::LinearHysteresis {
+            stiffness: law.stiffness,
+            exponent: 2.0 / (e * e) - 1.0,
+        };
+        let power = |e: f64| Self::PowerLaw {
+            k1: law.k1,
+            alpha: law.alpha,
+            beta: (1.0 + law.alpha) / (e * e) - 1.0,
+            cor: e,
+        };
         match law.kind {
-            BallLawKind::LinearHysteresis => Self::LinearHysteresis {
-                stiffness: law.stiffness,
-                exponent: 2.0 / (law.cor * law.cor) - 1.0,
-            },
-            BallLawKind::PowerLaw => Self::PowerLaw {
-                k1: law.k1,
-                alpha: law.alpha,
-                beta: (1.0 + law.alpha) / (law.cor * law.cor) - 1.0,
-                cor: law.cor,
-            },
+            BallLawKind::LinearHysteresis => linear(law.cor),
+            BallLawKind::PowerLaw => power(law.cor),
             BallLawKind::Elastic => Self::Elastic {
                 stiffness: law.stiffness,
             },
+            BallLawKind::SpeedDependent => {
+                let e = cor_at_speed(law, approach);
+                match law.loading.unwrap_or_default() {
+                    Loading::Linear => linear(e),
+                    Loading::Power => power(e),
+                }
+            }
         }
     }
 
@@ -283,10 +319,13 @@ mod tests {
 
     #[test]
     fn branches_meet_at_s_max() {
-        let law = ContactLaw::from_spec(&BallLaw {
-            kind: BallLawKind::PowerLaw,
-            ..BallLaw::default()
-        });
+        let law = ContactLaw::new(
+            &BallLaw {
+                kind: BallLawKind::PowerLaw,
+                ..BallLaw::default()
+            },
+            40.0,
+        );
         let s_max = 0.01;
         let below = law.force(s_max * (1.0 - 1e-12), s_max);
         assert!((below / law.force(s_max, s_max) - 1.0).abs() < 1e-9);
@@ -294,7 +333,7 @@ mod tests {
 
     #[test]
     fn implicit_solve_satisfies_its_equation() {
-        let law = ContactLaw::from_spec(&BallLaw::default());
+        let law = ContactLaw::new(&BallLaw::default(), 40.0);
         let (f, s) = law.solve_implicit(0.01, 1e-8, 0.012, 0.0);
         assert!((s + 1e-8 * f - 0.01).abs() < 1e-15);
         assert!((law.force(s, 0.012) - f).abs() < 1e-9 * f);

@@ -23,6 +23,7 @@ pub mod protocol;
 pub mod spec;
 
 pub use bat::{prepare_bat, PreparedBat};
-pub use collision::simulate::{simulate, simulate_with_diagnostics};
+pub use collision::simulate::{simulate, simulate_target, simulate_with_diagnostics};
+pub use collision::target::Target;
 pub use collision::validate::validate_spec;
 pub use error::ModelError;

@@ -119,6 +119,10 @@ pub struct Outcome {
     pub max_compression: f64,
     /// Impulse delivered to the ball, N·s.
     pub impulse: f64,
+    /// Time from first contact until the ball has received 99 % of its impulse, s (Nathan
+    /// 2000's "collision time"; NaN for the rigid model). Shorter than `contact_time`: the
+    /// unloading branch ends in a long tail of almost no force.
+    pub impulse_time_99: f64,
     /// Energy partition, J.
     pub energy: EnergyPartition,
     /// The ball came back into contact after first separating (within the simulated time:

@@ -71,6 +71,10 @@ pub enum BatPreset {
     /// Louisville Slugger R161 wood bat (Nathan 2000), solid, ρ 649 kg/m³, Y 1.814e10 N/m².
     #[default]
     R161,
+    /// A rigid, immovable wall: the target of ball certification. The ball comes back at
+    /// e(v) v, so exit speed / approach speed is the wall COR. Bat fields other than
+    /// `preset` do not apply; `impact.z` and `swing` are ignored.
+    Wall,
     /// The paper's aluminum bat: R161 outer profile as a 3 mm shell, ρ 2700 kg/m³, Y 6.9e10 N/m².
     Aluminum,
     /// R161 with the barrel hollowed to a 1 cm shell from z = 0.55 m, filled with cork (240 kg/m³).
@@ -321,6 +325,22 @@ pub enum BallLawKind {
     PowerLaw,
     /// Linear spring F = k s without loss (the paper's Fig. 7b).
     Elastic,
+    /// A ball whose wall COR falls with speed, as measured baseballs' does:
+    /// e(v) = cor + cor_slope (v − reference_speed), clamped to [0.05, 1], at the normal
+    /// speed v the ball meets at first contact; loading `linear` (stiffness) or `power`
+    /// (k1, alpha), unloading as `linear_hysteresis` or `power_law` with that e.
+    SpeedDependent,
+}
+
+/// Loading branch of the `speed_dependent` law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Loading {
+    /// F = k s with k = `stiffness` (the paper's loading).
+    #[default]
+    Linear,
+    /// F = k₁ s^α with `k1`, `alpha` (Nathan 2000's).
+    Power,
 }
 
 /// The ball's force law. One flat record so that any field can be swept whatever the kind;
@@ -344,6 +364,18 @@ pub struct BallLaw {
     /// Loading exponent α (`power_law`). Default 1.84 (Nathan 2000).
     #[serde(default = "default_alpha")]
     pub alpha: f64,
+    /// `speed_dependent`: the normal impact speed in m/s at which the wall COR is `cor`.
+    /// Default 25.9 (85 ft/s, the speed of the MLB ball specification's wall test).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_speed: Option<f64>,
+    /// `speed_dependent`: change of the wall COR per m/s of normal impact speed, 1/(m/s),
+    /// usually negative. Default −0.001 (docs/physics.md, "The ball").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cor_slope: Option<f64>,
+    /// `speed_dependent`: `linear` (uses `stiffness`) or `power` (uses `k1`, `alpha`).
+    /// Default `linear`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loading: Option<Loading>,
 }
 
 impl Default for BallLaw {
@@ -354,6 +386,9 @@ impl Default for BallLaw {
             cor: default_cor(),
             k1: default_k1(),
             alpha: default_alpha(),
+            reference_speed: None,
+            cor_slope: None,
+            loading: None,
         }
     }
 }

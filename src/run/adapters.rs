@@ -5,7 +5,7 @@ use super::traits::{Simulator, Sink};
 use crate::model::measures::metrics::bat_metrics;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
-use crate::model::{prepare_bat, simulate, PreparedBat};
+use crate::model::{simulate_target, Target};
 use crate::results::PointRecord;
 use crate::store::Session;
 
@@ -13,28 +13,30 @@ use crate::store::Session;
 pub struct ModelSimulator;
 
 impl Simulator for ModelSimulator {
-    type Bat = PreparedBat;
+    type Bat = Target;
 
     fn prepare(
         &self,
         bat: &BatSpec,
         numerics: &NumericsSpec,
-    ) -> Result<(BatProperties, PreparedBat), String> {
-        let prepared = prepare_bat(bat, numerics).map_err(|e| e.to_string())?;
-        let mut properties = prepared.properties().clone();
-        properties.metrics = bat_metrics(&prepared, bat, numerics).map_err(|e| e.to_string())?;
-        Ok((properties, prepared))
+    ) -> Result<(BatProperties, Target), String> {
+        let target = Target::prepare(bat, numerics).map_err(|e| e.to_string())?;
+        let mut properties = target.properties();
+        if let Some(prepared) = target.bat() {
+            properties.metrics = bat_metrics(prepared, bat, numerics).map_err(|e| e.to_string())?;
+        }
+        Ok((properties, target))
     }
 
     fn simulate(
         &self,
-        bat: &PreparedBat,
+        bat: &Target,
         spec: &CollisionSpec,
         history: Option<&HistoryRequest>,
     ) -> Result<Outcome, String> {
         // The rigid model has no time histories.
         let history = history.filter(|_| spec.model == crate::model::spec::ModelKind::Wave);
-        simulate(spec, bat, history).map_err(|e| e.to_string())
+        simulate_target(spec, bat, history).map_err(|e| e.to_string())
     }
 }
 

@@ -4,7 +4,7 @@
 use crate::model::outcome::{History, HistoryField, Outcome};
 
 /// Version of the file layout documented in docs/layout.md.
-pub const LAYOUT_VERSION: u32 = 1;
+pub const LAYOUT_VERSION: u32 = 2;
 
 pub const GROUP_SUMMARY: &str = "summary";
 pub const GROUP_ERRORS: &str = "errors";
@@ -32,7 +32,7 @@ const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> 
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 18;
+pub const N_SUMMARY_FLOATS: usize = 19;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -94,6 +94,11 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "J",
         "energy dissipated by the grip's damper (the hands)",
     ),
+    v(
+        "impulse_time_99",
+        "s",
+        "time from first contact to 99 % of the impulse (collision time)",
+    ),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
@@ -122,6 +127,7 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.grip_recoil_speed,
         o.energy.bat_damping,
         o.energy.grip_damping,
+        o.impulse_time_99,
     ]
 }
 
@@ -136,6 +142,7 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
         peak_force: f[5],
         max_compression: f[6],
         impulse: f[7],
+        impulse_time_99: f[18],
         grip_vibration_amplitude: f[14],
         grip_recoil_speed: f[15],
         ..Default::default()

@@ -34,27 +34,54 @@ fn law(t: &Value) -> &str {
     text(t, "ball.law.kind", "linear_hysteresis")
 }
 
+fn loading(t: &Value) -> &str {
+    text(t, "ball.law.loading", "linear")
+}
+
+fn speed_dependent(t: &Value) -> bool {
+    law(t) == "speed_dependent"
+}
+
 /// Every field that an option can make irrelevant.
 pub const RULES: &[Rule] = &[
     Rule {
         field: "ball.law.stiffness",
-        used_when: "by the wave model with ball.law.kind linear_hysteresis or elastic",
-        uses: |t| wave(t) && matches!(law(t), "linear_hysteresis" | "elastic"),
+        used_when: "by the wave model with ball.law.kind linear_hysteresis or elastic, or speed_dependent with loading linear",
+        uses: |t| {
+            wave(t)
+                && (matches!(law(t), "linear_hysteresis" | "elastic")
+                    || speed_dependent(t) && loading(t) == "linear")
+        },
     },
     Rule {
         field: "ball.law.cor",
-        used_when: "by ball.law.kind linear_hysteresis or power_law, and by the rigid model",
-        uses: |t| !wave(t) || matches!(law(t), "linear_hysteresis" | "power_law"),
+        used_when: "by ball.law.kind linear_hysteresis, power_law or speed_dependent, and by the rigid model",
+        uses: |t| !wave(t) || matches!(law(t), "linear_hysteresis" | "power_law" | "speed_dependent"),
     },
     Rule {
         field: "ball.law.k1",
-        used_when: "by the wave model with ball.law.kind power_law",
-        uses: |t| wave(t) && law(t) == "power_law",
+        used_when: "by the wave model with ball.law.kind power_law, or speed_dependent with loading power",
+        uses: |t| wave(t) && (law(t) == "power_law" || speed_dependent(t) && loading(t) == "power"),
     },
     Rule {
         field: "ball.law.alpha",
-        used_when: "by the wave model with ball.law.kind power_law",
-        uses: |t| wave(t) && law(t) == "power_law",
+        used_when: "by the wave model with ball.law.kind power_law, or speed_dependent with loading power",
+        uses: |t| wave(t) && (law(t) == "power_law" || speed_dependent(t) && loading(t) == "power"),
+    },
+    Rule {
+        field: "ball.law.reference_speed",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
+        field: "ball.law.cor_slope",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
+        field: "ball.law.loading",
+        used_when: "by the wave model with ball.law.kind speed_dependent",
+        uses: |t| wave(t) && speed_dependent(t),
     },
     Rule {
         field: "hoop.length",

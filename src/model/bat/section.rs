@@ -79,6 +79,11 @@ impl BatGeometry {
             }
         };
         let (density, youngs, shell, fill) = match bat.preset {
+            BatPreset::Wall => {
+                return Err(ModelError::Unsupported(
+                    "bat geometry of a wall (it is a rigid target, not a bat)",
+                ))
+            }
             BatPreset::R161 => (WOOD_DENSITY, WOOD_YOUNGS_MODULUS, None, 0.0),
             BatPreset::Aluminum => (
                 ALUMINUM_DENSITY,

@@ -2,8 +2,9 @@
 
 use crate::model::bat::PreparedBat;
 use crate::model::collision::rigid::rigid_collision;
+use crate::model::collision::target::Target;
 use crate::model::collision::validate::validate_spec;
-use crate::model::collision::wave::{simulate_wave, Diagnostics};
+use crate::model::collision::wave::{simulate_wall, simulate_wave, Diagnostics};
 use crate::model::error::ModelError;
 use crate::model::outcome::EnergyPartition;
 use crate::model::outcome::{HistoryRequest, Outcome};
@@ -42,7 +43,55 @@ pub fn simulate_with_diagnostics(
     }
 }
 
-/// Brody's rigid-body model with e = `ball.law.cor`, on the prepared bat's mass properties.
+/// Simulate one collision of `spec` with a prepared target: a bat (as [`simulate`]) or the
+/// rigid wall, where the wave model's ball bounces off an immovable target and the rigid
+/// model gives back e(v)·v.
+pub fn simulate_target(
+    spec: &CollisionSpec,
+    target: &Target,
+    history: Option<&HistoryRequest>,
+) -> Result<Outcome, ModelError> {
+    match target {
+        Target::Bat(bat) => simulate(spec, bat, history),
+        Target::Wall => {
+            validate_spec(spec)?;
+            if let Some(request) = history {
+                crate::model::collision::validate::validate_history(request)?;
+            }
+            match spec.model {
+                ModelKind::Wave => simulate_wall(spec, history).map(|(o, _)| o),
+                ModelKind::Rigid => Ok(rigid_wall(spec)),
+            }
+        }
+    }
+}
+
+/// Brody's model against an immovable wall: the ball comes back at e(v)·v.
+fn rigid_wall(spec: &CollisionSpec) -> Outcome {
+    let (m, v) = (spec.ball.mass, spec.ball.speed);
+    let e = crate::model::ball::cor_at_speed(&spec.ball.law, v);
+    Outcome {
+        exit_speed: e * v,
+        exit_speed_lab: e * v,
+        collision_efficiency: e,
+        approach_speed: v,
+        contact_time: f64::NAN,
+        impulse_time_99: f64::NAN,
+        peak_force: f64::NAN,
+        max_compression: f64::NAN,
+        impulse: m * (1.0 + e) * v,
+        energy: EnergyPartition {
+            initial: 0.5 * m * v * v,
+            ball_final: 0.5 * m * (e * v).powi(2),
+            ball_loss: 0.5 * m * v * v * (1.0 - e * e),
+            ..EnergyPartition::default()
+        },
+        ..Outcome::default()
+    }
+}
+
+/// Brody's rigid-body model with e = `ball.law.cor` (its value at the approach speed for
+/// `speed_dependent`), on the prepared bat's mass properties.
 /// It has no time scale of its own: contact time, peak force and compression are NaN, the
 /// hoop mode is ignored, and the energy lost counts as lost in the ball.
 fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
@@ -55,7 +104,11 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
         properties.moment_of_inertia,
         lever_arm,
         spec.swing.omega,
-        spec.ball.law.cor,
+        // The COR at the relative normal speed of ball and bat surface at the impact point.
+        crate::model::ball::cor_at_speed(
+            &spec.ball.law,
+            spec.ball.speed - spec.swing.omega * lever_arm,
+        ),
     );
     Outcome {
         exit_speed: r.exit_speed,
@@ -63,6 +116,7 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
         collision_efficiency: r.collision_efficiency,
         approach_speed: r.approach_speed,
         contact_time: f64::NAN,
+        impulse_time_99: f64::NAN,
         peak_force: f64::NAN,
         max_compression: f64::NAN,
         impulse: r.impulse,

@@ -22,7 +22,13 @@ fn check(path: &str, v: f64, ok: bool, allowed: &str) -> Result<(), ModelError> 
 /// Check a collision spec: positive quantities, 0 < cor ≤ 1, shell thinner than the radius
 /// wherever it applies, impact inside the bat, hoop in a sane range, numerics sane.
 pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
-    let geometry = BatGeometry::resolve(&spec.bat)?;
+    let wall = spec.bat.preset == crate::model::spec::BatPreset::Wall;
+    // A wall has no geometry: nothing to hit off the bat, no length to bound the approach.
+    let length = if wall {
+        0.0
+    } else {
+        BatGeometry::resolve(&spec.bat)?.length
+    };
     let ball = &spec.ball;
     check(
         "ball.mass",
@@ -55,6 +61,22 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         law.k1 > 0.0,
         "a finite number > 0 N/m^α",
     )?;
+    if let Some(v) = law.reference_speed {
+        check(
+            "ball.law.reference_speed",
+            v,
+            v > 0.0,
+            "a finite number > 0 m/s",
+        )?;
+    }
+    if let Some(slope) = law.cor_slope {
+        check(
+            "ball.law.cor_slope",
+            slope,
+            true,
+            "a finite number, 1/(m/s)",
+        )?;
+    }
     check(
         "ball.law.alpha",
         law.alpha,
@@ -106,13 +128,14 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
             "bat.grip with the rigid model (it is a free bat)",
         ));
     }
-    let length = geometry.length;
-    check(
-        "impact.z",
-        spec.impact.z,
-        spec.impact.z >= 0.0 && spec.impact.z <= length,
-        &format!("on the bat: 0 <= z <= {length} m"),
-    )?;
+    if !wall {
+        check(
+            "impact.z",
+            spec.impact.z,
+            spec.impact.z >= 0.0 && spec.impact.z <= length,
+            &format!("on the bat: 0 <= z <= {length} m"),
+        )?;
+    }
     if let Some(n) = spec.numerics.segments {
         let (lo, hi) = (
             crate::model::bat::MIN_SEGMENTS,
@@ -156,7 +179,14 @@ fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError
             if approach <= 0.0 {
                 return Ok(()); // no bound; the run's own budget check still holds
             }
-            let law = crate::model::ball::ContactLaw::from_spec(&spec.ball.law);
+            // A speed-dependent loop is bounded by its loading branch alone (the COR at the
+            // real speed is not known here): the tangent, and so ω, is a lower bound.
+            let mut loading_only = spec.ball.law.clone();
+            if loading_only.kind == crate::model::spec::BallLawKind::SpeedDependent {
+                loading_only.cor = 1.0;
+                loading_only.cor_slope = Some(0.0);
+            }
+            let law = crate::model::ball::ContactLaw::new(&loading_only, approach);
             let omega = (law.max_tangent(spec.ball.mass, approach) / spec.ball.mass).sqrt();
             let fraction = match spec.numerics.integrator {
                 Integrator::Modal => MODAL_STEP_FRACTION,

@@ -1,5 +1,6 @@
 //! Contact bookkeeping shared by the integrators: first contact, separations, re-contact,
-//! peak force and compression, the energy the ball's loop dissipates.
+//! peak force and compression, the energy the ball's loop dissipates, and the impulse as it
+//! builds up (for the time to 99 % of it, Nathan's "collision time").
 
 use super::COAST_TIME;
 use crate::model::ball::ContactLaw;
@@ -18,6 +19,12 @@ pub(super) struct Contact {
     pub(super) ball_loss: f64,
     pub(super) recontact: bool,
     pub(super) s_max: f64,
+    /// ∫F dt on the ball so far, N·s (trapezoid over the steps).
+    impulse: f64,
+    /// Force at the end of the last step, N.
+    last_force: f64,
+    /// (t, ∫F dt) at the end of every step that added impulse.
+    impulse_path: Vec<(f64, f64)>,
 }
 
 impl Contact {
@@ -28,8 +35,29 @@ impl Contact {
         }
     }
 
+    /// Time from first contact until the impulse on the ball reached `fraction` of its
+    /// total, s (linear within a step); NaN without impulse.
+    pub(super) fn impulse_time(&self, fraction: f64) -> f64 {
+        let target = fraction * self.impulse;
+        let mut previous = (0.0, 0.0);
+        for &(t, j) in &self.impulse_path {
+            if j >= target {
+                let (t0, j0) = previous;
+                return t0 + (t - t0) * (target - j0) / (j - j0);
+            }
+            previous = (t, j);
+        }
+        f64::NAN
+    }
+
     /// After a step from (t0, s0) to (t1, s1) with end force f1.
     pub(super) fn update(&mut self, law: &ContactLaw, t0: f64, s0: f64, t1: f64, s1: f64, f1: f64) {
+        let step_impulse = 0.5 * (self.last_force + f1) * (t1 - t0);
+        if step_impulse > 0.0 {
+            self.impulse += step_impulse;
+            self.impulse_path.push((t1, self.impulse));
+        }
+        self.last_force = f1;
         let crossing = || {
             if s0 != s1 {
                 t0 + (t1 - t0) * s0 / (s0 - s1)

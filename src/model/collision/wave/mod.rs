@@ -29,6 +29,7 @@ mod hoop;
 mod modal;
 mod step;
 mod verlet;
+mod wall;
 
 use contact::Contact;
 pub use hoop::{default_hoop_length, resolve_hoop, Hoop, HOOP_WAVE_NUMBER};
@@ -36,6 +37,7 @@ use modal::run_modal;
 use step::contact_omega;
 pub use step::{approach_speed, stability_limit, step_budget, time_step};
 use verlet::run_verlet;
+pub use wall::simulate_wall;
 
 /// Time simulated after the last separation to catch a re-contact, s.
 pub const COAST_TIME: f64 = 0.5e-3;
@@ -167,7 +169,7 @@ pub fn simulate_wave(
         .grip_z
         .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
     let collision = Collision {
-        law: ContactLaw::from_spec(&spec.ball.law),
+        law: ContactLaw::new(&spec.ball.law, approach),
         ball_mass: spec.ball.mass,
         ball_speed: spec.ball.speed - frame_velocity,
         omega: spec.swing.omega,
@@ -179,7 +181,12 @@ pub fn simulate_wave(
         dt,
         budget,
         mode_cutoff: MODE_CUTOFF_FACTOR
-            * contact_omega(spec, hoop, &ContactLaw::from_spec(&spec.ball.law), approach),
+            * contact_omega(
+                spec,
+                hoop,
+                &ContactLaw::new(&spec.ball.law, approach),
+                approach,
+            ),
     };
     let mut recorder = history.map(Recorder::new);
     let mut contact = Contact::started();
@@ -222,6 +229,7 @@ pub fn simulate_wave(
         collision_efficiency: (exit_speed + collision.omega * collision.lever) / approach,
         approach_speed: approach,
         contact_time: contact.first_duration,
+        impulse_time_99: contact.impulse_time(0.99),
         peak_force: contact.peak_force,
         max_compression: contact.max_compression,
         impulse: m * (collision.ball_speed - fin.ball_velocity),

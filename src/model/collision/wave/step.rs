@@ -32,8 +32,8 @@ pub(super) fn contact_omega(
 /// springs, bounded by λ_max(A + B) ≤ λ_max(A) + λ_max(B)); for the modal integrator a
 /// resolution limit well inside its stability limit (see `MODAL_MAX_STEP_FRACTION`).
 pub fn stability_limit(spec: &CollisionSpec, bat: &PreparedBat) -> f64 {
-    let law = ContactLaw::from_spec(&spec.ball.law);
     let approach = approach_speed(spec, bat);
+    let law = ContactLaw::new(&spec.ball.law, approach.abs());
     let hoop = resolve_hoop(spec, bat).ok().flatten();
     let wc = contact_omega(spec, hoop, &law, approach.abs());
     match spec.numerics.integrator {

@@ -1,0 +1,49 @@
+//! What the ball hits: a prepared bat, or a rigid wall (the ball-certification target,
+//! `bat.preset: wall`). Prepared once per distinct bat, shared read-only by every point.
+
+use crate::model::bat::{prepare_bat, PreparedBat};
+use crate::model::error::ModelError;
+use crate::model::outcome::BatProperties;
+use crate::model::spec::{BatPreset, BatSpec, NumericsSpec};
+
+/// A prepared target.
+#[derive(Debug, Clone)]
+pub enum Target {
+    /// A bat: geometry, beam, modes, properties.
+    Bat(Box<PreparedBat>),
+    /// A rigid, immovable wall.
+    Wall,
+}
+
+impl Target {
+    /// Prepare the target a bat spec names (a wall needs no preparation).
+    pub fn prepare(bat: &BatSpec, numerics: &NumericsSpec) -> Result<Target, ModelError> {
+        if bat.preset == BatPreset::Wall {
+            return Ok(Target::Wall);
+        }
+        prepare_bat(bat, numerics).map(|b| Target::Bat(Box::new(b)))
+    }
+
+    /// The bat's properties; a wall has none (every number NaN, no profile, no modes).
+    pub fn properties(&self) -> BatProperties {
+        match self {
+            Target::Bat(b) => b.properties().clone(),
+            Target::Wall => BatProperties {
+                length: f64::NAN,
+                mass: f64::NAN,
+                z_cm: f64::NAN,
+                moment_of_inertia: f64::NAN,
+                moment_of_inertia_knob6: f64::NAN,
+                ..BatProperties::default()
+            },
+        }
+    }
+
+    /// The prepared bat, if the target is one.
+    pub fn bat(&self) -> Option<&PreparedBat> {
+        match self {
+            Target::Bat(b) => Some(b),
+            Target::Wall => None,
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! The ball against a rigid, immovable wall: the target of ball certification (a ball fired
+//! at a massive wall or block; its rebound over approach speed is the ball's COR). The same
+//! contact law, step rule, contact bookkeeping and history sampling as the bat collisions,
+//! with the bat replaced by a wall that never moves: compression s = ball travel since first
+//! contact, m s̈ = −F(s; s_max).
+//!
+//! Integration: the linear-acceleration method, as for the ball in the modal integrator,
+//! with the end-of-step force found implicitly (`ContactLaw::solve_implicit`).
+
+use super::contact::Contact;
+use super::{Diagnostics, COAST_TIME, MAX_TIME, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
+use crate::model::ball::ContactLaw;
+use crate::model::collision::history::{Recorder, Sample};
+use crate::model::error::{out_of_range, ModelError};
+use crate::model::outcome::{EnergyPartition, HistoryRequest, Outcome};
+use crate::model::spec::CollisionSpec;
+
+/// One ball fired at the wall at `ball.speed`.
+pub fn simulate_wall(
+    spec: &CollisionSpec,
+    history: Option<&HistoryRequest>,
+) -> Result<(Outcome, Diagnostics), ModelError> {
+    let m = spec.ball.mass;
+    let v0 = spec.ball.speed;
+    let law = ContactLaw::new(&spec.ball.law, v0);
+    let omega_c = (law.max_tangent(m, v0) / m).sqrt();
+    let limit = MODAL_MAX_STEP_FRACTION / omega_c;
+    let h = match spec.numerics.dt {
+        Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
+            return Err(out_of_range("numerics.dt", dt, "(0, resolution limit] s"))
+        }
+        Some(dt) if dt > limit => {
+            return Err(ModelError::TimeStepTooLarge {
+                dt,
+                limit,
+                integrator: "wall",
+            })
+        }
+        Some(dt) => dt,
+        None => MODAL_STEP_FRACTION / omega_c,
+    };
+    let budget = super::step_budget(spec);
+    let least = (COAST_TIME / h).ceil();
+    if least > budget as f64 {
+        return Err(ModelError::StepBudget {
+            steps: least,
+            dt: h,
+            budget,
+            cause: "numerics.max_steps",
+            provable: true,
+        });
+    }
+    let h2_over_6m = h * h / (6.0 * m);
+    let mut recorder = history.map(Recorder::new);
+    let sample = |rec: &Recorder, force: f64, s: f64, v: f64| Sample {
+        force,
+        compression: s.max(0.0),
+        ball_velocity: v,
+        displacement: vec![
+            0.0;
+            if rec.wants_displacement {
+                rec.request().z.len()
+            } else {
+                0
+            }
+        ],
+        ..Sample::default()
+    };
+    if let Some(rec) = recorder.as_mut() {
+        let first = sample(rec, 0.0, 0.0, v0);
+        rec.push(0.0, first);
+    }
+    let mut contact = Contact::started();
+    let (mut s, mut v, mut a) = (0.0, v0, 0.0);
+    let mut steps = 0usize;
+    loop {
+        let (t_prev, s_prev) = (steps as f64 * h, s);
+        // s₁ = s + h v + h² (a/3 + a₁/6) with a₁ = −F(s₁)/m.
+        let free = s + h * v + h * h * a / 3.0;
+        let (force, s1) = law.solve_implicit(free, h2_over_6m, contact.s_max, s);
+        let a1 = -force / m;
+        v += 0.5 * h * (a + a1);
+        a = a1;
+        s = s1;
+        steps += 1;
+        let t = steps as f64 * h;
+        contact.update(&law, t_prev, s_prev, t, s, force);
+        if let Some(rec) = recorder.as_mut().filter(|r| r.wants(t, h)) {
+            let smp = sample(rec, force, s, v);
+            rec.push(t, smp);
+        }
+        if contact.finished(t, &recorder) {
+            break;
+        }
+        if t > MAX_TIME {
+            if contact.in_contact {
+                return Err(ModelError::NoSeparation { t });
+            }
+            break;
+        }
+        if steps as u64 >= budget {
+            return Err(ModelError::StepBudget {
+                steps: steps as f64,
+                dt: h,
+                budget,
+                cause: "numerics.max_steps",
+                provable: false,
+            });
+        }
+    }
+    let exit_speed = -v;
+    let energy = EnergyPartition {
+        initial: 0.5 * m * v0 * v0,
+        ball_final: 0.5 * m * v * v,
+        ball_loss: contact.ball_loss,
+        ..EnergyPartition::default()
+    };
+    let outcome = Outcome {
+        exit_speed,
+        exit_speed_lab: exit_speed,
+        // An immovable target has an infinite effective mass: e_A is the COR itself.
+        collision_efficiency: exit_speed / v0,
+        approach_speed: v0,
+        contact_time: contact.first_duration,
+        impulse_time_99: contact.impulse_time(0.99),
+        peak_force: contact.peak_force,
+        max_compression: contact.max_compression,
+        impulse: m * (v0 - v),
+        energy,
+        recontact: contact.recontact,
+        grip_vibration_amplitude: 0.0,
+        grip_recoil_speed: 0.0,
+        history: recorder.map(|r| r.finish()),
+    };
+    let diagnostics = Diagnostics {
+        energy_final: energy.ball_final + energy.ball_loss,
+        dt: h,
+        steps,
+        ..Diagnostics::default()
+    };
+    Ok((outcome, diagnostics))
+}
