@@ -19,9 +19,11 @@ fig05b bat_length ≈ 1.10 vs base                fig13a bat_preset == corked vs
 fig06  varying swing_omega, wave and rigid      fig13b bat_preset == aluminum vs base
 fig07a varying swing_omega, approach_speed      fig14  displacement + rigid motion histories,
 fig07b the same with ball_law_kind == elastic          base and aluminum, impact near 0.60
+fig07c the same with ball_law_kind == speed_dependent
 fig08  /sweet_spot/position, varying omega      fig15  hoop_frequency > 0 and the no-hoop bat
 anim   as fig14                                 bat_profiles  /bat profile and mode nodes
 sweet_spot_definitions  /bat profiles with every sweet-spot definition (/bat, /sweet_spot)
+ball_tests  the wall test: COR and contact times vs ball_speed per ball law (studies/ball_tests.yaml)
 """
 
 from __future__ import annotations
@@ -189,16 +191,17 @@ def fig05b(res, path):
                   where={"bat_length": lambda v: abs(v - 1.10) < 0.005}, free={"bat_ends_barrel"})  # fmt: skip
 
 
-def _omega_curves(res, elastic=False):
-    """Wave curves varying swing_omega (with the base ball law, or elastic ones)."""
+def _omega_curves(res, law=None):
+    """Wave curves varying swing_omega, with the base ball law or with ``law`` (a
+    ``ball_law_kind`` such as ``elastic``)."""
     base = res.base(res.main_model())
-    if elastic:
-        curves = select(res.curves, base, free={"swing_omega"}, where={"ball_law_kind": "elastic"})
+    if law:
+        curves = select(res.curves, base, free={"swing_omega"}, where={"ball_law_kind": law})
         curves.sort(key=lambda c: c.params.get("swing_omega", 0.0))
     else:
         curves = one_factor(res.curves, base, "swing_omega")
     if len(curves) < 2:
-        raise Skip("no swing_omega variation" + (" with an elastic ball" if elastic else ""))
+        raise Skip("no swing_omega variation" + (f" with a {law} ball" if law else ""))
     return curves
 
 
@@ -208,18 +211,23 @@ def fig06(res, path):
                  curves, twins=True, always=("swing_omega",))  # fmt: skip
 
 
-def _excess_figure(res, path, title, elastic):
-    curves = _omega_curves(res, elastic)
+def _excess_figure(res, path, title, law):
+    curves = _omega_curves(res, law)
     curve_figure(res, path, title, curves, res.base(), value=excess_speed, always=("swing_omega",),
                  ylabel="exit speed − approach speed (m/s)\napproach = v_ball − ω (z − z_cm)")  # fmt: skip
 
 
 def fig07a(res, path):
-    _excess_figure(res, path, "Fig. 7a: excess exit speed vs impact position at several ω (with hysteresis)", False)
+    _excess_figure(res, path, "Fig. 7a: excess exit speed vs impact position at several ω (with hysteresis)", None)
 
 
 def fig07b(res, path):
-    _excess_figure(res, path, "Fig. 7b: excess exit speed vs impact position at several ω (elastic ball)", True)
+    _excess_figure(res, path, "Fig. 7b: excess exit speed vs impact position at several ω (elastic ball)", "elastic")
+
+
+def fig07c(res, path):
+    _excess_figure(res, path, "Fig. 7a with a ball whose COR falls with speed (e = 0.5 at 40 m/s, −0.001 per m/s)",
+                   "speed_dependent")  # fmt: skip
 
 
 def fig08(res, path):
@@ -387,6 +395,69 @@ def bat_profiles(res, path):
     save(fig, path)
 
 
+# Published points for the ball-test figure (docs/physics.md, "The ball"; docs/results.md).
+MLB_SPEC = (25.9, 0.546, 0.032)  # 85 ft/s, COR 0.546 ± 0.032 on northern white ash
+CROSS_LOW_SPEED = (1.0, 0.64)  # measured on a hard floor (Nathan 2000, §III.B)
+NATHAN_MODEL_COR = [(58.0, 0.53), (71.0, 0.50)]  # Nathan's (2000) choices, not measurements
+NATHAN_FIG3 = [(1.0, 2.2), (11.0, 1.0), (45.0, 0.7), (67.0, 0.6)]  # ms to 99 % of the impulse
+
+
+def _law_label(summary, i: int) -> str:
+    def coord(name):
+        if name not in summary.coords:
+            return None
+        v = summary[name].isel(law=i).values.item()
+        return v.decode() if isinstance(v, bytes) else v
+
+    kind = coord("ball_law_kind") or "?"
+    text = kind.replace("_", " ")
+    cor = coord("ball_law_cor")
+    if cor is not None and np.isfinite(cor) and kind != "elastic":
+        text += f", e = {cor:g}" + (" at 25.9 m/s" if kind == "speed_dependent" else "")
+    loading = coord("ball_law_loading")
+    if kind == "speed_dependent" and loading:
+        text += f", {loading} loading"
+    return text
+
+
+def ball_tests(res, path):
+    """The wall test: COR and contact times against impact speed, one line per ball law."""
+    s = res.summary
+    if s is None or "ball_speed" not in s.dims or "law" not in s.dims or "approach_speed" not in s:
+        raise Skip("not a wall test over ball_speed and law (studies/ball_tests.yaml)")
+    if "preset: wall" not in str(res.attrs.get("study_yaml", "")):
+        raise Skip("the target is not the wall")
+    v = s["ball_speed"].values
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11.5, 4.6), layout="constrained")
+    fig.suptitle(f"Balls fired at a rigid wall (study: {res.name})", fontsize=10)
+    for i in range(s.sizes["law"]):
+        label = _law_label(s, i)
+        row = s.isel(law=i)
+        cor = (row["exit_speed"] / row["approach_speed"]).values
+        left.plot(v, cor, "-", color=COLORS[i % len(COLORS)], label=label)
+        if "impulse_time_99" in row and np.isfinite(row["impulse_time_99"].values).any():
+            right.plot(v, row["contact_time"].values * 1e3, "-", color=COLORS[i % len(COLORS)], label=label)
+            right.plot(v, row["impulse_time_99"].values * 1e3, "--", color=COLORS[i % len(COLORS)])
+    sv, sc, su = MLB_SPEC
+    left.errorbar([sv], [sc], yerr=[su], fmt="s", color="black", capsize=4, label="MLB specification (25.9 m/s)")
+    left.plot(*CROSS_LOW_SPEED, "o", color="black", label="measured, 1 m/s (Cross, in Nathan 2000)")
+    left.plot(*zip(*NATHAN_MODEL_COR), "o", mfc="none", color="black", label="Nathan 2000's assumed e (model)")
+    left.set_xlabel("impact speed (m/s)")
+    left.set_ylabel("wall COR = rebound / impact speed")
+    left.set_ylim(0.4, 1.02)
+    left.grid(alpha=0.3)
+    left.legend(fontsize=7, loc="center right")
+    right.plot(*zip(*NATHAN_FIG3), "D", color="black", label="Nathan 2000 Fig. 3 (99 % of impulse)")
+    right.plot([], [], "-", color="gray", label="contact time (compression back to 0)")
+    right.plot([], [], "--", color="gray", label="time to 99 % of the impulse")
+    right.set_xlabel("impact speed (m/s)")
+    right.set_ylabel("time (ms)")
+    right.set_ylim(bottom=0)
+    right.grid(alpha=0.3)
+    right.legend(fontsize=7)
+    save(fig, path)
+
+
 # Output name -> drawing function.
 FIGURES = {
     "fig02_rigid_model": fig02,
@@ -397,6 +468,7 @@ FIGURES = {
     "fig06_exit_speed_vs_omega": fig06,
     "fig07a_excess_exit_speed": fig07a,
     "fig07b_excess_no_hysteresis": fig07b,
+    "fig07c_excess_speed_dependent_ball": fig07c,
     "fig08_optimal_position_vs_omega": fig08,
     "fig10_density": fig10,
     "fig11a_modulus": fig11a,
@@ -409,6 +481,7 @@ FIGURES = {
     "bat_profiles": bat_profiles,
     "sweet_spot_definitions": sweet_spot_definitions,
     "anim_displacement": anim,
+    "ball_tests": ball_tests,
 }
 
 

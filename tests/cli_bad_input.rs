@@ -156,7 +156,7 @@ const CASES: &[(&str, &[&str])] = &[
             "`bat.preset`",
             "value: aluminium",
             "did you mean `aluminum`",
-            "allowed: r161, aluminum, corked",
+            "allowed: r161, aluminum, corked, wall",
         ],
     ),
     (
@@ -264,7 +264,7 @@ const CASES: &[(&str, &[&str])] = &[
             "unused_law_field.yaml:5:28",
             "`ball.law.stiffness`",
             "no point of the study uses it",
-            "allowed: leave it out (it is used only by the wave model with ball.law.kind linear_hysteresis or elastic)",
+            "allowed: leave it out (it is used only by the wave model with ball.law.kind linear_hysteresis or elastic, or speed_dependent with loading linear)",
         ],
     ),
     (

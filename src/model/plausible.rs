@@ -173,6 +173,22 @@ pub const RANGES: &[Range] = &[
         get: |s| Some(s.ball.law.alpha),
     },
     Range {
+        path: "ball.law.reference_speed",
+        min: 1.0,
+        max: 100.0,
+        unit: "m/s",
+        reason: "balls are certified at 25.9 m/s (85 ft/s); bat tests run up to about 70 m/s",
+        get: |s| s.ball.law.reference_speed,
+    },
+    Range {
+        path: "ball.law.cor_slope",
+        min: -0.02,
+        max: 0.02,
+        unit: "1/(m/s)",
+        reason: "measured baseballs lose a few thousandths of COR per m/s; 0.02 would halve a COR over 25 m/s",
+        get: |s| s.ball.law.cor_slope,
+    },
+    Range {
         path: "swing.omega",
         min: -200.0,
         max: 200.0,

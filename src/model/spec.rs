@@ -71,14 +71,14 @@ pub enum BatPreset {
     /// Louisville Slugger R161 wood bat (Nathan 2000), solid, ρ 649 kg/m³, Y 1.814e10 N/m².
     #[default]
     R161,
-    /// A rigid, immovable wall: the target of ball certification. The ball comes back at
-    /// e(v) v, so exit speed / approach speed is the wall COR. Bat fields other than
-    /// `preset` do not apply; `impact.z` and `swing` are ignored.
-    Wall,
     /// The paper's aluminum bat: R161 outer profile as a 3 mm shell, ρ 2700 kg/m³, Y 6.9e10 N/m².
     Aluminum,
     /// R161 with the barrel hollowed to a 1 cm shell from z = 0.55 m, filled with cork (240 kg/m³).
     Corked,
+    /// A rigid, immovable wall: the target of ball certification. The ball comes back at
+    /// e(v) v, so exit speed / approach speed is the wall COR. Bat fields other than
+    /// `preset` do not apply; `impact.z` and `swing` are ignored.
+    Wall,
 }
 
 /// The bat. Unset fields take the preset's values.
