@@ -6,6 +6,7 @@
 use super::chunks;
 use super::dimscale::{self as h5u, attr_num, attr_str, attr_vec, describe, Attacher};
 use super::error::{H5Ctx, StoreError};
+use super::header::{history_vars, JournalHeader, HEADER_ATTR};
 use super::journal::{decode_record, encode_record, RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
 use super::{RunMeta, Summary};
@@ -26,13 +27,6 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-
-/// Indices into [`l::HISTORY_VARS`] of the variables a request stores.
-pub fn history_vars(h: &HistoryRequest) -> Vec<usize> {
-    (0..l::HISTORY_VARS.len())
-        .filter(|&k| h.fields.contains(&l::HISTORY_VARS[k].1))
-        .collect()
-}
 
 /// Chunk shape of the summary arrays: the whole `impact_z` axis, then growing along the last
 /// dims up to [`l::SUMMARY_CHUNK_ELEMS`] elements.
@@ -1110,9 +1104,9 @@ fn root_attrs(
     s("host", &meta.host)?;
     s("command_line", &meta.command_line)?;
     s("shard", meta.shard.as_deref().unwrap_or(""))?;
-    let header = super::journal::JournalHeader::of(info);
+    let header = JournalHeader::of(info);
     s(
-        super::read::HEADER_ATTR,
+        HEADER_ATTR,
         &serde_json::to_string(&header).expect("header serialises"),
     )?;
     let n = |k: &str, v: i64| attr_num(f, k, v).ctx(out, "write root attributes");

@@ -9,14 +9,15 @@
 //! when no journal is left. The final file's data depend only on the set of records, never on
 //! their order or on interruptions, so a resumed run's data equal an uninterrupted run's.
 //!
-//! Modules: [`layout`] (names, units), [`dimscale`] (HDF5 dimension scales and helpers),
-//! [`journal`], [`build`] (journal → HDF5), [`read`] (reading back, inspect),
+//! Modules: [`layout`] (names, units), [`header`] (what identifies a study's journal and
+//! file), [`dimscale`] (HDF5 dimension scales and helpers), [`journal`], [`build`] (journal → HDF5), [`read`] (reading back, inspect),
 //! [`lock`] (one process per output).
 
 pub mod build;
 pub mod chunks;
 pub mod dimscale;
 pub mod error;
+pub mod header;
 pub mod journal;
 pub mod layout;
 pub mod lock;
@@ -288,7 +289,7 @@ pub fn open_begun(
         build_memory: opts.build_memory,
         skeleton,
         gathered: None,
-        history_keep: info.history.as_ref().map(build::history_vars),
+        history_keep: info.history.as_ref().map(header::history_vars),
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
         last_flush: Instant::now(),
