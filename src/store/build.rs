@@ -9,7 +9,7 @@ use super::error::{H5Ctx, StoreError};
 use super::header::{history_vars, JournalHeader, HEADER_ATTR};
 use super::journal::{decode_record, encode_record, RecordReader, Scan};
 use super::layout::{self as l, VarDef, N_SUMMARY_FLOATS};
-use super::{RunMeta, Summary};
+use super::options::{RunMeta, Summary};
 use crate::model::measures::sweet::find_sweet_spot;
 use crate::model::measures::sweet_defs::vibration_sweet_spot;
 use crate::model::outcome::BatMetrics;
