@@ -3,7 +3,7 @@
 
 use super::dimscale::block;
 use super::error::{H5Ctx, StoreError};
-use super::journal::JournalHeader;
+use super::header::{JournalHeader, HEADER_ATTR};
 use super::layout::{self as l, N_SUMMARY_FLOATS};
 use crate::model::outcome::History;
 use crate::pointset::PointSet;
@@ -11,9 +11,6 @@ use crate::results::PointRecord;
 use hdf5::types::VarLenUnicode;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-
-/// Root attribute holding the store's identification of the study (JSON of [`JournalHeader`]).
-pub const HEADER_ATTR: &str = "batstudy_store_header";
 
 /// A results file read back.
 #[derive(Debug, Clone)]

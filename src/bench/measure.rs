@@ -1,0 +1,83 @@
+//! The measuring tools: CPU-time clocks, timing a call, the peak-resident-memory mark, the
+//! median of repeats, and the error text of a case that could not run.
+
+use std::time::Instant;
+
+pub(super) fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    if n == 0 {
+        f64::NAN
+    } else if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// CPU seconds of a POSIX CPU-time clock (NaN if it cannot be read).
+pub(super) fn cpu_clock_seconds(clock: libc::clockid_t) -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one timespec through a valid pointer.
+    if unsafe { libc::clock_gettime(clock, &mut t) } != 0 {
+        return f64::NAN;
+    }
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
+/// CPU seconds this thread has run (ns resolution). On a shared machine a thread waits for a
+/// core part of the wall time; its CPU time does not. A clock call, not a /proc read: the
+/// store's calls are timed one by one, and reading /proc for each cost ~15 µs, more than a
+/// journal write (issue 7: it inflated the measured store share).
+pub(super) fn thread_cpu_seconds() -> f64 {
+    cpu_clock_seconds(libc::CLOCK_THREAD_CPUTIME_ID)
+}
+
+/// (wall, CPU) seconds per call of `f`, calling it until at least `min_time` of wall time has
+/// passed (at least once).
+pub(super) fn time_per_call(min_time: f64, mut f: impl FnMut()) -> (f64, f64) {
+    let c0 = thread_cpu_seconds();
+    let t0 = Instant::now();
+    let mut calls = 0u64;
+    loop {
+        f();
+        calls += 1;
+        let e = t0.elapsed().as_secs_f64();
+        if e >= min_time {
+            let c = thread_cpu_seconds() - c0;
+            return (e / calls as f64, c / calls as f64);
+        }
+    }
+}
+
+pub(super) fn proc_status_kib(key: &str) -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    s.lines()
+        .find(|l| l.starts_with(key))?
+        .split_whitespace()
+        .nth(1)?
+        .parse()
+        .ok()
+}
+
+/// Reset the peak-RSS mark (Linux ≥ 4.0); returns the current RSS in bytes.
+pub(super) fn reset_peak() -> Option<u64> {
+    std::fs::write("/proc/self/clear_refs", "5").ok()?;
+    proc_status_kib("VmRSS:").map(|k| k * 1024)
+}
+
+pub(super) fn peak_rss() -> Option<u64> {
+    proc_status_kib("VmHWM:").map(|k| k * 1024)
+}
+
+pub(super) fn err<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> String + '_ {
+    move |e| format!("{what}: {e}")
+}
+
+/// CPU seconds (user + system) of this process so far, all threads (ns resolution).
+pub(super) fn process_cpu_seconds() -> f64 {
+    cpu_clock_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
+}

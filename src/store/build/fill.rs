@@ -1,0 +1,103 @@
+//! Filling a skeleton with the journal's records, window by window: the summary and sweet
+//! spots, `/errors`, `/history`, then the counts; memory bounded by the build's budget.
+
+use super::attrs::final_attrs;
+use super::errors::write_errors;
+use super::grid::{plan_windows, summary_chunk, BlockGrid};
+use super::history::write_histories;
+use super::pieces::{block_pieces, compress_and_write, Piece};
+use super::skeleton::Skeleton;
+use super::spill::{Source, Spill};
+use super::window::{Gathered, Tally, Window};
+use crate::results::StudyInfo;
+use crate::store::error::{H5Ctx, StoreError};
+use crate::store::journal::{RecordReader, Scan};
+use crate::store::options::Summary;
+use hdf5::Dataset;
+use rayon::prelude::*;
+use std::path::Path;
+
+/// Fill a skeleton with the journal's records, write the counts and `created`, and close
+/// the file. Memory: `memory` bytes of summary values at most (a study larger than that is
+/// built window by window, its journal first split into one spill file per window), one
+/// history, the failed points' messages; nothing else grows with the study.
+pub fn fill(
+    sk: Skeleton,
+    journal: &Path,
+    scan: &Scan,
+    info: &StudyInfo,
+    created: &str,
+    memory: usize,
+    mut gathered: Option<Gathered>,
+) -> Result<Summary, StoreError> {
+    let out = sk.out.as_path();
+    let n_points = info.shape.n_points();
+    let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
+    let chunk = summary_chunk(&info.shape.dims);
+    let mut tally = Tally::default();
+    let blocks = BlockGrid::new(&shape, &chunk);
+    let windows = plan_windows(&blocks, memory);
+    // the datasets a block writes to, in the order of [`block_pieces`]
+    let mut targets: Vec<&Dataset> = sk.floats.iter().collect();
+    targets.extend([&sk.recontact, &sk.status, &sk.point_id, &sk.bat_index]);
+    if let Some((_, vars, _)) = &sk.sweet {
+        targets.extend(vars.iter());
+    }
+    // One window: read the journal directly. Several: route the records to one spill file
+    // per window in a single pass, so that the journal is read once, not once per window.
+    let spill = if windows.len() > 1 {
+        Some(Spill::split(journal, scan, out, &blocks, &windows)?)
+    } else {
+        None
+    };
+    for (k, &(b0, b1)) in windows.iter().enumerate() {
+        let w = match gathered.take() {
+            // one window, gathered while the run wrote its journal: nothing to read back
+            Some(g) if windows.len() == 1 => {
+                tally.add(g.tally);
+                g.window
+            }
+            _ => {
+                let mut w = Window::of_blocks(&blocks, b0, b1);
+                let mut source = match &spill {
+                    Some(sp) => Source::Spill(sp.reader(k)?),
+                    None => Source::Journal(RecordReader::open(journal, scan)?),
+                };
+                while let Some(rec) = source.next()? {
+                    w.put(&rec, &blocks, b0, b1, &mut tally);
+                }
+                w
+            }
+        };
+        // a small study is one block: parallel over (block, variable), not blocks alone
+        let pieces: Vec<Piece> = (b0..b1)
+            .into_par_iter()
+            .flat_map_iter(|b| block_pieces(&w, b - b0, &blocks, &chunk, b, sk.sweet.as_ref()))
+            .collect();
+        compress_and_write(pieces, &targets, out)?;
+    }
+    drop(spill);
+
+    let Tally {
+        n_done,
+        n_failed,
+        errors,
+    } = tally;
+    // ---- /errors: made empty with the skeleton; grown only when points failed
+    write_errors(&sk.errors, errors, out)?;
+
+    // ---- /history
+    if let Some(h) = &info.history {
+        write_histories(&sk.history, h, info, journal, scan, out)?;
+    }
+
+    let f = &sk.f;
+    final_attrs(f, created, (n_done, n_failed, n_points), out)?;
+    f.flush().ctx(out, "flush the results file")?;
+    drop(sk);
+    Ok(Summary {
+        n_points,
+        n_done,
+        n_failed,
+    })
+}

@@ -1,0 +1,184 @@
+//! The file's skeleton: groups, coordinates, dimension scales and empty variables, begun
+//! from the study's shape alone and completed with the root attributes, `/history` and `/bat`.
+
+use super::attrs::root_attrs;
+use super::bat::write_bats;
+use super::errors::{create_errors, Errors};
+use super::grid::{summary_chunk, without};
+use super::history::create_history;
+use super::vars::{new_var, study_dims};
+use crate::results::{CoordValues, Dim, ResultShape, StudyInfo};
+use crate::store::dimscale::{attr_str, attr_vec, Attacher};
+use crate::store::error::{H5Ctx, StoreError};
+use crate::store::layout as l;
+use crate::store::options::RunMeta;
+use hdf5::Dataset;
+use std::path::{Path, PathBuf};
+
+/// The results file with everything that does not depend on the points' results: root
+/// attributes, groups, coordinates and dimension scales, every variable (empty), `/bat`. The
+/// store creates it in two steps off the critical path, so that finishing a run only fills
+/// in the data (issue 7: most of a small study's HDF5 time was this fixed part): the
+/// shape's part ([`begin_skeleton`]) while the bats are prepared, the rest
+/// ([`complete_skeleton`]) on the writer thread while the workers compute.
+pub struct Skeleton {
+    pub(super) f: hdf5::File,
+    pub(super) out: PathBuf,
+    /// The shape it was begun for, and whether [`complete_skeleton`] has run.
+    shape: ResultShape,
+    complete: bool,
+    pub(super) floats: Vec<Dataset>,
+    pub(super) recontact: Dataset,
+    pub(super) status: Dataset,
+    pub(super) point_id: Dataset,
+    pub(super) bat_index: Dataset,
+    /// `impact_z`'s position among the dims, the sweet-spot variables and the z values.
+    pub(super) sweet: Option<(usize, Vec<Dataset>, Vec<f64>)>,
+    pub(super) errors: Errors,
+    /// Stored history variables: index into [`l::HISTORY_VARS`], dataset, full shape.
+    pub(super) history: Vec<(usize, Dataset, Vec<usize>)>,
+}
+
+/// Create `out` with everything but the results (see [`Skeleton`]).
+pub fn create_skeleton(
+    info: &StudyInfo,
+    meta: &RunMeta,
+    out: &Path,
+) -> Result<Skeleton, StoreError> {
+    let mut sk = begin_skeleton(&info.shape, out)?;
+    complete_skeleton(&mut sk, info, meta)?;
+    Ok(sk)
+}
+
+/// The part of the skeleton that depends on the study's shape alone: `/summary`,
+/// `/sweet_spot` and `/errors`, with their coordinates and empty variables. It can be made
+/// before the bats are prepared (issue 7: while a one-bat study prepares its bat, a core is
+/// idle); [`complete_skeleton`] adds the rest.
+pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton, StoreError> {
+    let f = hdf5::File::create(out).ctx(out, "create the results file")?;
+
+    let dims = &study_shape.dims;
+    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
+    let chunk = summary_chunk(dims);
+
+    // ---- /summary (and /sweet_spot, computed from the same blocks)
+    let att = Attacher::default();
+    let g = f
+        .create_group(l::GROUP_SUMMARY)
+        .ctx(out, "create group summary")?;
+    let (scales, aux) = study_dims(&g, dims, &att, out)?;
+    let sref: Vec<&Dataset> = scales.iter().collect();
+    let links = (&sref[..], &aux[..], &att);
+    let mut floats = Vec::new();
+    for def in &l::SUMMARY_FLOATS {
+        floats.push(new_var(&g, def, (&shape, &chunk), f64::NAN, links, out)?);
+    }
+    let recontact = new_var(&g, &l::RECONTACT, (&shape, &chunk), -1i8, links, out)?;
+    let status = new_var(
+        &g,
+        &l::STATUS,
+        (&shape, &chunk),
+        l::STATUS_NOT_COMPUTED,
+        links,
+        out,
+    )?;
+    attr_vec(&status, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe status")?;
+    attr_str(&status, "flag_meanings", "not_computed ok failed").ctx(out, "describe status")?;
+    let point_id = new_var(&g, &l::POINT_ID, (&shape, &chunk), 0u64, links, out)?;
+    let bat_index = new_var(&g, &l::BAT_INDEX, (&shape, &chunk), -1i32, links, out)?;
+
+    let iz = dims.iter().position(|d| d.name == l::IMPACT_Z);
+    let sweet = match iz {
+        Some(iz) => {
+            let sg = f
+                .create_group(l::GROUP_SWEET_SPOT)
+                .ctx(out, "create group sweet_spot")?;
+            let rest: Vec<Dim> = dims
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != iz)
+                .map(|(_, d)| d.clone())
+                .collect();
+            let (ss, saux) = study_dims(&sg, &rest, &att, out)?;
+            let ssref: Vec<&Dataset> = ss.iter().collect();
+            let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
+            let rchunk = without(&chunk, iz);
+            let mut vars = Vec::new();
+            for def in [
+                &l::SWEET_POSITION,
+                &l::SWEET_EXIT_SPEED,
+                &l::SWEET_WIDTH,
+                &l::SWEET_MIN_VIBRATION_POSITION,
+                &l::SWEET_MIN_VIBRATION_AMPLITUDE,
+                &l::SWEET_MIN_VIBRATION_ENERGY_POSITION,
+            ] {
+                let links = (&ssref[..], &saux[..], &att);
+                vars.push(new_var(&sg, def, (&rshape, &rchunk), f64::NAN, links, out)?);
+            }
+            let z = match dims[iz]
+                .coords
+                .iter()
+                .find(|c| c.name == l::IMPACT_Z)
+                .map(|c| &c.values)
+            {
+                Some(CoordValues::Numbers(z)) => z.clone(),
+                _ => {
+                    return Err(StoreError::BadRecord {
+                        path: out.to_path_buf(),
+                        what: "dim impact_z has no numeric coordinate impact_z".into(),
+                    })
+                }
+            };
+            Some((iz, vars, z))
+        }
+        None => None,
+    };
+
+    let errors = create_errors(&f, &att, out)?;
+    att.write().ctx(out, "attach the dimension scales")?;
+    Ok(Skeleton {
+        f,
+        out: out.to_path_buf(),
+        shape: study_shape.clone(),
+        complete: false,
+        floats,
+        recontact,
+        status,
+        point_id,
+        bat_index,
+        sweet,
+        errors,
+        history: Vec::new(),
+    })
+}
+
+/// Add what depends on the bats and the run to a begun skeleton: the root attributes,
+/// `/history` and `/bat`; then hand the metadata to the OS.
+pub fn complete_skeleton(
+    sk: &mut Skeleton,
+    info: &StudyInfo,
+    meta: &RunMeta,
+) -> Result<(), StoreError> {
+    let out = sk.out.as_path();
+    if sk.complete {
+        return Ok(());
+    }
+    if !sk.shape.identical(&info.shape) {
+        return Err(StoreError::BegunMismatch {
+            path: out.to_path_buf(),
+            what: "it was begun for another study shape".into(),
+        });
+    }
+    let f = &sk.f;
+    root_attrs(f, info, meta, out)?;
+    let att = Attacher::default();
+    if let Some(h) = &info.history {
+        sk.history = create_history(f, h, info, &att, out)?;
+    }
+    write_bats(f, info, &att, out)?;
+    att.write().ctx(out, "attach the dimension scales")?;
+    // hand the metadata to the OS now, not on the critical path at the end
+    f.flush().ctx(out, "flush the results file")?;
+    sk.complete = true;
+    Ok(())
+}

@@ -1,0 +1,48 @@
+//! The sweet spots of a block's curves along `impact_z` (the `/sweet_spot` variables): the
+//! one place the store calls the physics' sweet-spot finders.
+
+use crate::model::measures::sweet::find_sweet_spot;
+use crate::model::measures::sweet_defs::vibration_sweet_spot;
+use crate::store::layout as l;
+
+/// The sweet-spot variables along `impact_z` for every curve inside one block (`fv` the
+/// block's summary floats).
+pub(super) fn block_sweet_spots(
+    fv: &[&[f64]],
+    count: &[usize],
+    iz: usize,
+    z: &[f64],
+) -> [Vec<f64>; 6] {
+    let m: usize = count.iter().product();
+    let nz = count[iz];
+    let stride: usize = count[iz + 1..].iter().product();
+    let outer = m / nz;
+    let curve = |slot: usize| -> [f64; 6] {
+        let (hi, lo) = (slot / stride, slot % stride);
+        let base = hi * nz * stride + lo;
+        let along = |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
+        let exit = along(0);
+        let (zz, vv): (Vec<f64>, Vec<f64>) = z
+            .iter()
+            .zip(&exit)
+            .filter(|(_, v)| v.is_finite())
+            .map(|(&z, &v)| (z, v))
+            .unzip();
+        let s = find_sweet_spot(&zz, &vv);
+        let v = vibration_sweet_spot(
+            z,
+            &along(l::GRIP_VIBRATION_INDEX),
+            &along(l::VIBRATION_ENERGY_INDEX),
+        );
+        [
+            s.map_or(f64::NAN, |s| s.position),
+            s.map_or(f64::NAN, |s| s.exit_speed),
+            s.map_or(f64::NAN, |s| s.width),
+            v.min_vibration_position,
+            v.min_vibration_amplitude,
+            v.min_vibration_energy_position,
+        ]
+    };
+    let rows: Vec<[f64; 6]> = (0..outer).map(curve).collect();
+    std::array::from_fn(|k| rows.iter().map(|r| r[k]).collect())
+}

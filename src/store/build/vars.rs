@@ -1,0 +1,109 @@
+//! Creating the file's variables: the coordinates and dimension scales of the study's dims
+//! in a group, and empty, chunked, described variables attached to them.
+
+use crate::results::{CoordValues, Dim};
+use crate::store::dimscale::{self as h5u, attr_str, describe, Attacher};
+use crate::store::error::{H5Ctx, StoreError};
+use crate::store::layout::{self as l, VarDef};
+use hdf5::types::VarLenUnicode;
+use hdf5::{Dataset, Group};
+use std::path::Path;
+
+/// Coordinate variables of the study dims in one group; returns the scales (one per dim) and
+/// the names of auxiliary coordinates (for the `coordinates` attribute).
+pub(super) fn study_dims(
+    g: &Group,
+    dims: &[Dim],
+    att: &Attacher,
+    path: &Path,
+) -> Result<(Vec<Dataset>, Vec<String>), StoreError> {
+    let mut scales = Vec::new();
+    let mut aux = Vec::new();
+    for d in dims {
+        let own = d.coords.iter().find(|c| c.name == d.name);
+        let scale = match own {
+            Some(c) => {
+                let def = VarDef {
+                    name: "",
+                    units: leak(&c.units),
+                    long_name: leak(&c.long_name),
+                };
+                let ds = coord_values(g, &d.name, &c.values, path)?;
+                h5u::set_scale(&ds, &d.name).ctx(path, "make a dimension scale")?;
+                describe(&ds, &def).ctx(path, "describe a coordinate")?;
+                attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
+                ds
+            }
+            None => {
+                let idx: Vec<i64> = (0..d.size as i64).collect();
+                let def = VarDef {
+                    name: "",
+                    units: "1",
+                    long_name: leak(&format!("index along {}", d.name)),
+                };
+                h5u::scale_coord(g, &d.name, &idx, &def).ctx(path, "write an index coordinate")?
+            }
+        };
+        for c in d.coords.iter().filter(|c| c.name != d.name) {
+            let ds = coord_values(g, &c.name, &c.values, path)?;
+            attr_str(&ds, "units", &c.units).ctx(path, "describe a coordinate")?;
+            attr_str(&ds, "long_name", &c.long_name).ctx(path, "describe a coordinate")?;
+            attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
+            att.add(&ds, &[&scale]);
+            aux.push(c.name.clone());
+        }
+        scales.push(scale);
+    }
+    Ok((scales, aux))
+}
+
+/// Attribute strings must outlive VarDef; coordinate metadata is small and written once.
+fn leak(s: &str) -> &'static str {
+    Box::leak(s.to_string().into_boxed_str())
+}
+
+fn coord_values(
+    g: &Group,
+    name: &str,
+    v: &CoordValues,
+    path: &Path,
+) -> Result<Dataset, StoreError> {
+    match v {
+        CoordValues::Numbers(x) => h5u::write_1d(g, name, x),
+        CoordValues::Labels(s) => {
+            let s: Vec<VarLenUnicode> = s.iter().map(|s| h5u::vlstr(s)).collect();
+            h5u::write_1d(g, name, &s)
+        }
+    }
+    .ctx(path, &format!("write coordinate {name}"))
+}
+
+pub(super) fn new_var<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
+    g: &Group,
+    def: &VarDef,
+    shape_chunk: (&[usize], &[usize]),
+    fill: T,
+    links: (&[&Dataset], &[String], &Attacher),
+    path: &Path,
+) -> Result<Dataset, StoreError> {
+    new_var_level(g, def, shape_chunk, fill, links, l::DEFLATE_LEVEL, path)
+}
+
+pub(super) fn new_var_level<T: hdf5::H5Type + Into<hdf5::types::OwnedDynValue>>(
+    g: &Group,
+    def: &VarDef,
+    (shape, chunk): (&[usize], &[usize]),
+    fill: T,
+    (scales, aux, att): (&[&Dataset], &[String], &Attacher),
+    level: u8,
+    path: &Path,
+) -> Result<Dataset, StoreError> {
+    let what = format!("create variable {}/{}", g.name(), def.name);
+    let ds = h5u::create_var_level(g, def.name, shape, chunk, fill, level).ctx(path, &what)?;
+    describe(&ds, def).ctx(path, &what)?;
+    if !aux.is_empty() {
+        attr_str(&ds, "coordinates", &aux.join(" ")).ctx(path, &what)?;
+    }
+    att.add(&ds, scales);
+    Ok(ds)
+}

@@ -1,0 +1,131 @@
+//! Merging shard files into one results file, after checking, before anything is written,
+//! that the shards are of one study and hold every point exactly once.
+
+use super::error::StoreError;
+use super::header::JournalHeader;
+use super::layout;
+use super::options::{StoreOptions, Summary};
+use super::read;
+use super::session::open;
+use crate::pointset::PointSet;
+use crate::results::StudyInfo;
+use std::path::{Path, PathBuf};
+
+/// Merge shard files (each the same layout with a subset of the points) into one complete
+/// results file `out`, identical in data to a single-process run. Refuses, before writing
+/// anything, shards of another study or layout version, points present twice, and missing
+/// points. Memory: one flag per point and one record at a time (shards are streamed).
+pub fn merge(
+    out: &Path,
+    info: &StudyInfo,
+    shards: &[PathBuf],
+    opts: &StoreOptions,
+) -> Result<Summary, StoreError> {
+    merge_check(out, info, shards)?;
+    let mut s = open(
+        out,
+        info,
+        &StoreOptions {
+            resume: false,
+            ..opts.clone()
+        },
+    )?;
+    for p in shards {
+        read::for_each_record(p, |r| s.write(r))?;
+    }
+    s.finish()
+}
+
+/// The checks of [`merge`], without writing anything: every shard of this study and layout
+/// version, every point present exactly once.
+pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(), StoreError> {
+    let want = JournalHeader::of(info);
+    let n = info.shape.n_points();
+    // one bit per point (issue 7); the earlier owner of a duplicate is looked up only then
+    let mut seen = PointSet::new(n);
+    let mut declared = Vec::new();
+    for (k, p) in shards.iter().enumerate() {
+        let fi = read::file_info(p)?;
+        if fi.layout_version != layout::LAYOUT_VERSION {
+            return Err(StoreError::CannotMerge {
+                path: p.clone(),
+                what: format!(
+                    "it has layout version {}, this batstudy writes version {}",
+                    fi.layout_version,
+                    layout::LAYOUT_VERSION
+                ),
+            });
+        }
+        if let Some(StoreError::WrongStudy { path, what }) = fi.header.mismatch(&want, p) {
+            return Err(StoreError::CannotMerge { path, what });
+        }
+        if out.exists() && same_file(out, p) {
+            return Err(StoreError::CannotMerge {
+                path: p.clone(),
+                what: "it is also the merge's output file".into(),
+            });
+        }
+        let present = read::present_points(p)?;
+        if let Some(i) = present.iter().find(|&i| seen.contains(i)) {
+            let mut other = None;
+            for q in &shards[..k] {
+                if read::present_points(q)?.contains(i) {
+                    other = Some(q);
+                    break;
+                }
+            }
+            return Err(StoreError::CannotMerge {
+                path: p.clone(),
+                what: format!(
+                    "point at flat index {i} is also in {}: points present twice (each shard may be given once)",
+                    other.map_or_else(|| p.display().to_string(), |q| q.display().to_string())
+                ),
+            });
+        }
+        for i in present.iter() {
+            seen.insert(i);
+        }
+        declared.push((fi.shard, fi.shard_range));
+    }
+    let n_missing = n - seen.count();
+    let shown: Vec<usize> = seen.missing().take(8).collect();
+    if let Some(&first) = shown.first() {
+        let list = format!("{shown:?}{}", if n_missing > 8 { ", ..." } else { "" });
+        let owner_of = declared
+            .iter()
+            .position(|(_, r)| r.is_some_and(|(a, b)| a <= first && first < b));
+        let (path, what) = match owner_of {
+            Some(k) => {
+                let (a, b) = declared[k].1.unwrap_or_default();
+                let lack = (a..b.min(n)).filter(|&i| !seen.contains(i)).count();
+                (
+                    shards[k].clone(),
+                    format!(
+                        "shard {} is incomplete: it lacks {lack} of its {} points (flat indices {list}); the shards lack {} of the study's {n} points in all. Finish it with `batstudy run STUDY --shard {} --resume -o {}`",
+                        declared[k].0,
+                        b - a,
+                        n_missing,
+                        declared[k].0,
+                        shards[k].display()
+                    ),
+                )
+            }
+            None => (
+                out.to_path_buf(),
+                format!(
+                    "the shards lack {} of the study's {n} points (flat indices {list}): a shard file is missing from the list",
+                    n_missing
+                ),
+            ),
+        };
+        return Err(StoreError::CannotMerge { path, what });
+    }
+    Ok(())
+}
+
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}

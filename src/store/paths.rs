@@ -1,0 +1,30 @@
+//! The files next to an output `OUT.h5`: its journal `OUT.h5.journal` and the file being
+//! finished `OUT.h5.partial` (the build's spill files are `OUT.h5.partial.spill-K`).
+
+use super::error::StoreError;
+use std::path::{Path, PathBuf};
+
+/// Path of the journal next to `out`.
+pub fn journal_path(out: &Path) -> PathBuf {
+    with_suffix(out, ".journal")
+}
+
+/// Path of the file being finished next to `out`.
+pub fn partial_path(out: &Path) -> PathBuf {
+    with_suffix(out, ".partial")
+}
+
+fn with_suffix(p: &Path, s: &str) -> PathBuf {
+    let mut o = p.as_os_str().to_owned();
+    o.push(s);
+    PathBuf::from(o)
+}
+
+/// Remove `p`; a file that is not there is not an error.
+pub fn remove_if_exists(p: &Path) -> Result<(), StoreError> {
+    match std::fs::remove_file(p) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(StoreError::io(p, "remove", e)),
+    }
+}

@@ -1,0 +1,389 @@
+//! An open output: [`open`] (a new run, or the continuation of an interrupted one) and the
+//! [`Session`] the runner's writer thread owns, which appends finished points to the journal
+//! and, at [`Session::finish`], builds the final file from it and renames it into place.
+//! [`begin`] makes the file's skeleton ahead of the session.
+
+use super::build;
+use super::error::StoreError;
+use super::header::{history_vars, JournalHeader};
+use super::journal::{self, JournalWriter};
+use super::layout;
+use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
+use super::paths::{journal_path, partial_path, remove_if_exists};
+use super::read;
+use crate::pointset::PointSet;
+use crate::results::{PointRecord, ResultShape, StudyInfo};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// An open output: owned by the runner's single writer thread.
+pub struct Session {
+    path: PathBuf,
+    journal_path: PathBuf,
+    info: StudyInfo,
+    meta: RunMeta,
+    journal: Option<JournalWriter>,
+    /// The points stored so far: one bit each, the session's only per-point state.
+    done: PointSet,
+    /// Memory budget of the final file's build (bytes of summary values held at once).
+    build_memory: usize,
+    /// `OUT.h5.partial` with everything but the results: begun while the bats are prepared
+    /// ([`begin`]) or with the first record, completed with the first record.
+    skeleton: Option<build::Skeleton>,
+    /// The summary gathered as records arrive, when the study fits one build window and
+    /// the journal is this session's own (not resumed).
+    gathered: Option<build::Gathered>,
+    history_keep: Option<Vec<usize>>,
+    flush_interval: Duration,
+    sync_interval: Duration,
+    last_flush: Instant,
+    last_sync: Instant,
+    /// Records recovered on resume (journal records; a dropped torn tail is not counted).
+    pub resumed: usize,
+    /// Bytes of torn or corrupt journal tail dropped on resume.
+    pub dropped_bytes: u64,
+}
+
+fn check_info(info: &StudyInfo, path: &Path) -> Result<(), StoreError> {
+    let bad = |what: String| {
+        Err(StoreError::BadRecord {
+            path: path.to_path_buf(),
+            what,
+        })
+    };
+    for d in &info.shape.dims {
+        for c in &d.coords {
+            if c.values.len() != d.size {
+                return bad(format!(
+                    "coordinate {} has {} values but dim {} has size {}",
+                    c.name,
+                    c.values.len(),
+                    d.name,
+                    d.size
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The final file of output `path` (`OUT.h5.partial`), begun from the study's shape alone
+/// by [`begin`] before the bats are known; [`open_begun`] takes it over. Dropped unused, it
+/// removes its file.
+pub struct BegunFile {
+    path: PathBuf,
+    skeleton: Option<build::Skeleton>,
+}
+
+impl Drop for BegunFile {
+    fn drop(&mut self) {
+        if self.skeleton.take().is_some() {
+            let _ = std::fs::remove_file(partial_path(&self.path));
+        }
+    }
+}
+
+/// Begin the final file of output `path` for a study of this shape: the groups, coordinates
+/// and empty variables that do not depend on the bats. A run does this while it prepares
+/// its bats, when a one-bat study leaves cores idle (issue 7: the file's fixed cost, off the
+/// critical path). Replaces a stale `OUT.h5.partial`; touches nothing else.
+pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> {
+    let partial = partial_path(path);
+    let skeleton = build::begin_skeleton(shape, &partial)?;
+    Ok(BegunFile {
+        path: path.to_path_buf(),
+        skeleton: Some(skeleton),
+    })
+}
+
+/// Open the output `path` for a study: a new run, or (`opts.resume`) the continuation of an
+/// interrupted one. Never overwrites an existing output unless `opts.force`.
+pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Session, StoreError> {
+    open_begun(path, info, opts, None)
+}
+
+/// [`open`], taking over the final file [`begin`] made for the same output and shape.
+pub fn open_begun(
+    path: &Path,
+    info: &StudyInfo,
+    opts: &StoreOptions,
+    begun: Option<BegunFile>,
+) -> Result<Session, StoreError> {
+    check_info(info, path)?;
+    let jpath = journal_path(path);
+    let want = JournalHeader::of(info);
+    let skeleton = match begun {
+        Some(mut b) => {
+            if b.path != path {
+                return Err(StoreError::BegunMismatch {
+                    path: path.to_path_buf(),
+                    what: format!("it was begun for {}", b.path.display()),
+                });
+            }
+            b.skeleton.take()
+        }
+        None => {
+            remove_if_exists(&partial_path(path))?;
+            None
+        }
+    };
+    build::remove_stale_spills(&partial_path(path));
+    let n_points = info.shape.n_points();
+    let mut s = Session {
+        path: path.to_path_buf(),
+        journal_path: jpath.clone(),
+        info: info.clone(),
+        meta: opts.run_meta.clone(),
+        journal: None,
+        done: PointSet::new(n_points),
+        build_memory: opts.build_memory,
+        skeleton,
+        gathered: None,
+        history_keep: info.history.as_ref().map(history_vars),
+        flush_interval: opts.flush_interval,
+        sync_interval: opts.sync_interval,
+        last_flush: Instant::now(),
+        last_sync: Instant::now(),
+        resumed: 0,
+        dropped_bytes: 0,
+    };
+    let out_exists = path.exists();
+    let j_exists = jpath.exists();
+    if opts.resume && j_exists {
+        let done = &mut s.done;
+        let scan = journal::scan(&jpath, |r| {
+            if r.index < n_points {
+                done.insert(r.index);
+            }
+        })?;
+        if let Some(e) = scan.header.mismatch(&want, &jpath) {
+            return Err(e);
+        }
+        s.resumed = s.done.count();
+        s.dropped_bytes = scan.dropped_bytes;
+        s.journal = Some(JournalWriter::append_to(&jpath, &scan)?);
+        return Ok(s);
+    }
+    if opts.resume && out_exists {
+        // a finished (possibly partial, e.g. interrupted-then-finished) file: its records
+        // seed a new journal
+        let fi = read::file_info(path)?;
+        if let Some(e) = fi.header.mismatch(&want, path) {
+            return Err(e);
+        }
+        let mut w = JournalWriter::create(&jpath, &want)?;
+        let done = &mut s.done;
+        read::for_each_record(path, |rec| {
+            if rec.index < n_points && done.insert(rec.index) {
+                w.append(&rec);
+                if w.buffered_bytes() > 1 << 22 {
+                    w.flush()?;
+                }
+            }
+            Ok(())
+        })?;
+        w.sync()?;
+        s.resumed = s.done.count();
+        s.journal = Some(w);
+        return Ok(s);
+    }
+    if !opts.resume && (out_exists || j_exists) {
+        if !opts.force {
+            return Err(StoreError::Exists {
+                path: path.to_path_buf(),
+            });
+        }
+        remove_if_exists(path)?;
+        remove_if_exists(&jpath)?;
+    }
+    s.journal = Some(JournalWriter::create(&jpath, &want)?);
+    // a fresh journal: this session sees every record it will store
+    s.gathered = build::Gathered::new(info, opts.build_memory);
+    Ok(s)
+}
+
+impl Session {
+    /// The output path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Whether the point at this flat index is already stored (resume: skip it). The
+    /// journal's header pins the study's sha256 and shape, so an index names the same point
+    /// (and point id) in every run of that study.
+    pub fn is_done(&self, index: usize) -> bool {
+        self.done.contains(index)
+    }
+
+    /// Number of points stored so far (including those recovered on resume).
+    pub fn n_done(&self) -> usize {
+        self.done.count()
+    }
+
+    fn reject(&self, what: String) -> StoreError {
+        StoreError::BadRecord {
+            path: self.path.clone(),
+            what,
+        }
+    }
+
+    /// Create the final file's skeleton (`OUT.h5.partial`: coordinates, variables, `/bat`),
+    /// or complete the one [`begin`] made, if that is not done yet. The writer thread does
+    /// this with its first record, while the workers compute, so that [`Self::finish`] only
+    /// has the data left to write.
+    fn prepare_final_file(&mut self) -> Result<(), StoreError> {
+        match &mut self.skeleton {
+            Some(sk) => build::complete_skeleton(sk, &self.info, &self.meta),
+            None => {
+                let partial = partial_path(&self.path);
+                self.skeleton = Some(build::create_skeleton(&self.info, &self.meta, &partial)?);
+                Ok(())
+            }
+        }
+    }
+
+    /// Store one finished point (buffered; see the module docs for when it becomes durable).
+    /// A point already stored is ignored.
+    pub fn write(&mut self, mut rec: PointRecord) -> Result<(), StoreError> {
+        let n = self.done.len();
+        if rec.index >= n {
+            return Err(self.reject(format!(
+                "point index {} is outside the study's {} points",
+                rec.index, n
+            )));
+        }
+        if rec.bat as usize >= self.info.bats.len() {
+            return Err(self.reject(format!(
+                "point {} refers to bat {} but the study has {} bats",
+                rec.index,
+                rec.bat,
+                self.info.bats.len()
+            )));
+        }
+        if self.done.contains(rec.index) {
+            return Ok(());
+        }
+        if let Ok(o) = &mut rec.result {
+            match (&self.history_keep, &self.info.history, o.history.as_mut()) {
+                (Some(keep), Some(req), Some(h)) => {
+                    for (k, (def, _, with_z)) in layout::HISTORY_VARS.iter().enumerate() {
+                        let a = layout::history_array_mut(h, k);
+                        if keep.contains(&k) {
+                            let want = req.n_samples * if *with_z { req.z.len() } else { 1 };
+                            if a.len() != want {
+                                return Err(self.reject(format!(
+                                    "point {}: history {} has {} samples, expected {}",
+                                    rec.index,
+                                    def.name,
+                                    a.len(),
+                                    want
+                                )));
+                            }
+                        } else {
+                            a.clear();
+                            a.shrink_to_fit();
+                        }
+                    }
+                }
+                _ => o.history = None,
+            }
+        }
+        let j = self.journal.as_mut().expect("open session has a journal");
+        j.append(&rec);
+        self.done.insert(rec.index);
+        if let Some(g) = self.gathered.as_mut() {
+            g.put(&rec);
+        }
+        if j.buffered_bytes() >= 1 << 22 || self.last_flush.elapsed() >= self.flush_interval {
+            j.flush()?;
+            self.last_flush = Instant::now();
+        }
+        self.sync_if_due()?;
+        self.prepare_final_file()
+    }
+
+    /// fsync the journal when `sync_interval` has passed since the last time.
+    fn sync_if_due(&mut self) -> Result<(), StoreError> {
+        if self.last_sync.elapsed() >= self.sync_interval {
+            if let Some(j) = self.journal.as_mut() {
+                j.sync()?;
+            }
+            self.last_sync = Instant::now();
+        }
+        Ok(())
+    }
+
+    /// Call when no record arrived for a while (e.g. on the channel's `recv_timeout`): hands
+    /// buffered records to the OS, and fsyncs if one is due, so that slow points are not left
+    /// only in this process's memory.
+    pub fn idle(&mut self) -> Result<(), StoreError> {
+        let j = self.journal.as_mut().expect("open session has a journal");
+        j.flush()?;
+        self.last_flush = Instant::now();
+        self.sync_if_due()?;
+        self.prepare_final_file()
+    }
+
+    /// Make everything written so far durable (e.g. on Ctrl-C, before exiting to resume later).
+    pub fn flush(&mut self) -> Result<(), StoreError> {
+        if let Some(j) = self.journal.as_mut() {
+            j.sync()?;
+        }
+        self.last_flush = Instant::now();
+        self.last_sync = Instant::now();
+        Ok(())
+    }
+
+    /// Write the final file from the journal (atomically: `.partial`, fsync, rename), then
+    /// remove the journal. Works for incomplete studies too (missing points have status -1,
+    /// e.g. a shard or an interrupted run); `--resume` continues from such a file.
+    pub fn finish(mut self) -> Result<Summary, StoreError> {
+        // To the OS, not fsync'd: the journal is removed only after the finished file is
+        // fsync'd and renamed into place, and a power loss before that loses at most what an
+        // unfinished run would (issue 7: one fsync less on every run's critical path).
+        let Some(mut j) = self.journal.take() else {
+            return Err(self.reject("the session is already finished".into()));
+        };
+        j.flush()?;
+        // the writer's own extent, not a second scan: every record is checked against its
+        // checksum as the build reads it
+        let scan = j.extent(JournalHeader::of(&self.info));
+        drop(j);
+        self.done = PointSet::default();
+        let partial = partial_path(&self.path);
+        self.prepare_final_file()?;
+        let skeleton = self.skeleton.take().expect("prepared above");
+        let summary = build::fill(
+            skeleton,
+            &self.journal_path,
+            &scan,
+            &self.info,
+            &iso8601_now(),
+            self.build_memory,
+            self.gathered.take(),
+        )?;
+        std::fs::File::open(&partial)
+            .and_then(|f| f.sync_all())
+            .map_err(|e| StoreError::io(&partial, "sync the finished file", e))?;
+        std::fs::rename(&partial, &self.path)
+            .map_err(|e| StoreError::io(&self.path, "rename the finished file into place", e))?;
+        journal::sync_parent_dir(&self.path);
+        // Not synced: the finished file is durable now, and a journal that comes back after
+        // a power loss only makes `--resume` rebuild the same file from it (issue 7: one
+        // directory sync less at the end of every run).
+        remove_if_exists(&self.journal_path)?;
+        Ok(summary)
+    }
+}
+
+impl Drop for Session {
+    fn drop(&mut self) {
+        if let Some(j) = self.journal.as_mut() {
+            let _ = j.sync();
+        }
+        // a session dropped without finishing leaves no half-made final file behind
+        if self.skeleton.take().is_some() {
+            let _ = std::fs::remove_file(partial_path(&self.path));
+        }
+    }
+}
