@@ -68,7 +68,8 @@ SUMMARY_FLOATS = {
     "impulse": "N s", "energy_initial": "J", "energy_ball_final": "J", "energy_ball_loss": "J",
     "energy_bat_rigid": "J", "energy_bat_vibration": "J", "energy_hoop": "J",
     "grip_vibration_amplitude": "m", "grip_recoil_speed": "m/s", "energy_bat_damping": "J",
-    "energy_grip_damping": "J", "impulse_time_99": "s",
+    "energy_grip_damping": "J", "impulse_time_99": "s", "bbcor": "1", "besr": "1", "bpf": "1",
+    "hoop_frequency": "Hz", "hoop_mass": "kg",
 }
 # name: (numpy dtype string, units)
 SUMMARY_INTS = {"recontact": ("int8", "1"), "status": ("int8", "1"),

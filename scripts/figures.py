@@ -481,6 +481,10 @@ FIGURES = {
     "bat_profiles": bat_profiles,
     "sweet_spot_definitions": sweet_spot_definitions,
     "anim_displacement": anim,
+}
+# Figures of other kinds of study, drawn when the file holds one (the paper's set above is
+# what a bat study gives).
+OTHER_FIGURES = {
     "ball_tests": ball_tests,
 }
 
@@ -495,15 +499,18 @@ def short(name: str) -> str:
     return "fig" + m.group(1) if m else name.split("_")[0]
 
 
+ALL_FIGURES = {**FIGURES, **OTHER_FIGURES}
+
+
 def wanted(only: str | None) -> list[str]:
     """Figure names selected by ``--only`` (short or full names, comma separated)."""
     if not only:
-        return list(FIGURES)
+        return list(ALL_FIGURES)
     tokens = {t.strip() for t in only.split(",") if t.strip()}
-    names = [n for n in FIGURES if n in tokens or short(n) in {short(t) for t in tokens}]
-    unknown = {t for t in tokens if not any(t == n or short(t) == short(n) for n in FIGURES)}
+    names = [n for n in ALL_FIGURES if n in tokens or short(n) in {short(t) for t in tokens}]
+    unknown = {t for t in tokens if not any(t == n or short(t) == short(n) for n in ALL_FIGURES)}
     if unknown:
-        raise SystemExit(f"unknown figure(s): {', '.join(sorted(unknown))}; known: {', '.join(FIGURES)}")
+        raise SystemExit(f"unknown figure(s): {', '.join(sorted(unknown))}; known: {', '.join(ALL_FIGURES)}")
     return names
 
 
@@ -520,7 +527,7 @@ def main(argv=None) -> int:
         for name in wanted(args.only):
             path = out / file_name(name)
             try:
-                FIGURES[name](res, path)
+                ALL_FIGURES[name](res, path)
                 print(f"wrote {path}")
             except Skip as why:
                 print(f"skip  {name}: {why}")

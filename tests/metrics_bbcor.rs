@@ -9,11 +9,11 @@
 
 mod common;
 
-use batstudy::model::measures::metrics::{
-    bbcor_from_efficiency, bbcor_scan, moment_of_inertia_about, rigid_pivoted_collision,
-};
+use batstudy::model::measures::metrics::{bbcor_scan, rigid_pivoted_collision};
 use batstudy::model::prepare_bat;
-use batstudy::model::protocol::{BBCOR_BALL_SPEED, KNOB6};
+use batstudy::model::protocol::{
+    bbcor_from_efficiency, moment_of_inertia_about, BBCOR_BALL_SPEED, KNOB6,
+};
 use batstudy::model::spec::{BallSpec, NumericsSpec};
 
 /// Independent solution of the pivoted rigid collision: unknowns the ball's final velocity

@@ -33,6 +33,15 @@ pub fn cor_at_speed(law: &BallLaw, v: f64) -> f64 {
     }
 }
 
+/// The ball's COR on a rigid wall at normal speed `v`: 1 for the elastic ball, else
+/// [`cor_at_speed`].
+pub fn wall_cor(law: &BallLaw, v: f64) -> f64 {
+    match law.kind {
+        BallLawKind::Elastic => 1.0,
+        _ => cor_at_speed(law, v),
+    }
+}
+
 /// A force law F(s; s_max) ≥ 0 for compression s (> 0 in contact).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ContactLaw {

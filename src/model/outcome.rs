@@ -123,6 +123,20 @@ pub struct Outcome {
     /// 2000's "collision time"; NaN for the rigid model). Shorter than `contact_time`: the
     /// unloading branch ends in a long tail of almost no force.
     pub impulse_time_99: f64,
+    /// BBCOR of this collision (NCAA protocol, `protocol`): `e_A (1 + m/M_e) + m/M_e` with
+    /// the bat's effective mass at the impact point — about the pivot for a pinned grip, of the
+    /// free bat otherwise (infinite for the wall). NaN unless the bat is at rest (ω = 0).
+    pub bbcor: f64,
+    /// BESR (NCAA until 2010): `e_A + 1/2`. NaN unless the bat is at rest.
+    pub besr: f64,
+    /// Bat performance factor: `bbcor` over the ball's wall COR at the same approach speed.
+    /// NaN unless the bat is at rest.
+    pub bpf: f64,
+    /// Hoop-mode frequency the collision used, Hz (given, or derived from the shell); NaN
+    /// without a hoop mode.
+    pub hoop_frequency: f64,
+    /// Hoop-mode mass the collision used, kg; NaN without a hoop mode.
+    pub hoop_mass: f64,
     /// Energy partition, J.
     pub energy: EnergyPartition,
     /// The ball came back into contact after first separating (within the simulated time:

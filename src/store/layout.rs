@@ -32,7 +32,7 @@ const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> 
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 19;
+pub const N_SUMMARY_FLOATS: usize = 24;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -99,6 +99,11 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "s",
         "time from first contact to 99 % of the impulse (collision time)",
     ),
+    v("bbcor", "1", "bat-ball COR of a bat at rest (NCAA BBCOR)"),
+    v("besr", "1", "ball exit speed ratio of a bat at rest (e_A + 1/2)"),
+    v("bpf", "1", "bat performance factor: BBCOR over the ball's wall COR"),
+    v("hoop_frequency", "Hz", "hoop-mode frequency used"),
+    v("hoop_mass", "kg", "hoop-mode mass used"),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
@@ -128,6 +133,11 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.energy.bat_damping,
         o.energy.grip_damping,
         o.impulse_time_99,
+        o.bbcor,
+        o.besr,
+        o.bpf,
+        o.hoop_frequency,
+        o.hoop_mass,
     ]
 }
 
@@ -143,6 +153,11 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
         max_compression: f[6],
         impulse: f[7],
         impulse_time_99: f[18],
+        bbcor: f[19],
+        besr: f[20],
+        bpf: f[21],
+        hoop_frequency: f[22],
+        hoop_mass: f[23],
         grip_vibration_amplitude: f[14],
         grip_recoil_speed: f[15],
         ..Default::default()

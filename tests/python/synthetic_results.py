@@ -54,6 +54,10 @@ def cases() -> list[tuple[str, dict]]:
     out += [
         (f"elastic, omega {w:g}", {"ball_law_kind": "elastic", "swing_omega": w}) for w in (0.0, -20.0, -40.0, -60.0)
     ]
+    out += [
+        (f"speed-dependent ball, omega {w:g}", {"ball_law_kind": "speed_dependent", "swing_omega": w})
+        for w in (0.0, -20.0, -40.0, -60.0)
+    ]
     out += [(f"corked {h * 100:g} cm", {"bat_preset": "corked", "bat_shell_thickness": h}) for h in (0.01, 0.015)]
     out += [("aluminum", dict(ALUMINUM))]
     out += [("fixed barrel end", {"bat_ends_barrel": "fixed"})]

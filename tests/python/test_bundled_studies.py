@@ -8,6 +8,7 @@ swing is a one-value grid axis) and a `/history` group with `force` and `displac
 scripts/test.sh); skipped without it."""
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -28,9 +29,18 @@ def test_bundled_study_has_the_public_layout(study, tmp_path):
     r = subprocess.run([BIN, "run", str(study), "-o", str(out), "--jobs", "2", "--quiet"],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+    assert_layout_ok(out)
+    if "preset: wall" in study.read_text():
+        # A ball test (the wall): no bat, no impact position, no sweet spot; its figure.
+        for group in ["summary", "history", "bat", "errors"]:
+            xr.open_dataset(out, engine="h5netcdf", group=group).close()
+        figures_dir = tmp_path / "figures"
+        r = subprocess.run([sys.executable, str(ROOT / "scripts" / "figures.py"), str(out), "-o",
+                            str(figures_dir), "--only", "ball_tests"], capture_output=True, text=True)
+        assert r.returncode == 0 and (figures_dir / "ball_tests.png").stat().st_size > 5_000, r.stdout + r.stderr
+        return
     for group in ["summary", "sweet_spot", "history", "bat", "errors"]:
         xr.open_dataset(out, engine="h5netcdf", group=group).close()
-    assert_layout_ok(out)
     with xr.open_dataset(out, engine="h5netcdf", group="summary") as s:
         assert {"swing_omega", "impact_z"} <= set(s.exit_speed.dims), s.exit_speed.dims
     with xr.open_dataset(out, engine="h5netcdf", group="history") as h:

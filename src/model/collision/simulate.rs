@@ -1,5 +1,6 @@
 //! One collision: check the spec, dispatch on the model.
 
+use crate::model::ball::wall_cor;
 use crate::model::bat::PreparedBat;
 use crate::model::collision::rigid::rigid_collision;
 use crate::model::collision::target::Target;
@@ -8,7 +9,11 @@ use crate::model::collision::wave::{simulate_wall, simulate_wave, Diagnostics};
 use crate::model::error::ModelError;
 use crate::model::outcome::EnergyPartition;
 use crate::model::outcome::{HistoryRequest, Outcome};
-use crate::model::spec::{CollisionSpec, ModelKind};
+use crate::model::protocol::{
+    bbcor_from_efficiency, besr_from_efficiency, free_effective_mass, moment_of_inertia_about,
+    pivoted_effective_mass,
+};
+use crate::model::spec::{CollisionSpec, GripKind, ModelKind};
 
 /// Simulate one collision of `spec` with the prepared `bat` (which must have been prepared
 /// from `spec.bat` and `spec.numerics`).
@@ -37,10 +42,35 @@ pub fn simulate_with_diagnostics(
             &format!("[0, {}] m (on the bat)", bat.length()),
         ));
     }
-    match spec.model {
-        ModelKind::Wave => simulate_wave(spec, bat, history),
-        ModelKind::Rigid => Ok((simulate_rigid(spec, bat), Diagnostics::default())),
+    let (mut outcome, diagnostics) = match spec.model {
+        ModelKind::Wave => simulate_wave(spec, bat, history)?,
+        ModelKind::Rigid => (simulate_rigid(spec, bat), Diagnostics::default()),
+    };
+    let p = bat.properties();
+    let effective_mass = match spec.bat.grip.as_ref() {
+        Some(g) if g.kind == GripKind::Pinned => pivoted_effective_mass(
+            moment_of_inertia_about(p.mass, p.z_cm, p.moment_of_inertia, g.z),
+            g.z,
+            spec.impact.z,
+        ),
+        _ => free_effective_mass(p.mass, p.z_cm, p.moment_of_inertia, spec.impact.z),
+    };
+    certify(spec, spec.swing.omega == 0.0, effective_mass, &mut outcome);
+    Ok((outcome, diagnostics))
+}
+
+/// The protocols' numbers of a collision with a target at rest: BBCOR, BESR, BPF
+/// (`protocol`); NaN for a swung bat. `effective_mass`: the target's at the impact point,
+/// kg (∞ for the wall).
+fn certify(spec: &CollisionSpec, at_rest: bool, effective_mass: f64, o: &mut Outcome) {
+    if !at_rest {
+        (o.bbcor, o.besr, o.bpf) = (f64::NAN, f64::NAN, f64::NAN);
+        return;
     }
+    let e_a = o.collision_efficiency;
+    o.bbcor = bbcor_from_efficiency(e_a, spec.ball.mass, effective_mass);
+    o.besr = besr_from_efficiency(e_a);
+    o.bpf = o.bbcor / wall_cor(&spec.ball.law, o.approach_speed);
 }
 
 /// Simulate one collision of `spec` with a prepared target: a bat (as [`simulate`]) or the
@@ -58,10 +88,13 @@ pub fn simulate_target(
             if let Some(request) = history {
                 crate::model::collision::validate::validate_history(request)?;
             }
-            match spec.model {
-                ModelKind::Wave => simulate_wall(spec, history).map(|(o, _)| o),
-                ModelKind::Rigid => Ok(rigid_wall(spec)),
-            }
+            let mut outcome = match spec.model {
+                ModelKind::Wave => simulate_wall(spec, history)?.0,
+                ModelKind::Rigid => rigid_wall(spec),
+            };
+            // the wall ignores the swing: it is always at rest
+            certify(spec, true, f64::INFINITY, &mut outcome);
+            Ok(outcome)
         }
     }
 }
@@ -80,6 +113,8 @@ fn rigid_wall(spec: &CollisionSpec) -> Outcome {
         peak_force: f64::NAN,
         max_compression: f64::NAN,
         impulse: m * (1.0 + e) * v,
+        hoop_frequency: f64::NAN,
+        hoop_mass: f64::NAN,
         energy: EnergyPartition {
             initial: 0.5 * m * v * v,
             ball_final: 0.5 * m * (e * v).powi(2),
@@ -119,6 +154,11 @@ fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
         impulse_time_99: f64::NAN,
         peak_force: f64::NAN,
         max_compression: f64::NAN,
+        hoop_frequency: f64::NAN,
+        hoop_mass: f64::NAN,
+        bbcor: f64::NAN,
+        besr: f64::NAN,
+        bpf: f64::NAN,
         impulse: r.impulse,
         energy: EnergyPartition {
             initial: r.energy_initial,

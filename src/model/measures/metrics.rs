@@ -36,7 +36,9 @@ use crate::model::bat::PreparedBat;
 use crate::model::collision::simulate::simulate;
 use crate::model::error::ModelError;
 use crate::model::outcome::BatMetrics;
-use crate::model::protocol::{BBCOR_BALL_SPEED, KNOB6};
+use crate::model::protocol::{
+    bbcor_from_efficiency, free_effective_mass, moment_of_inertia_about, BBCOR_BALL_SPEED, KNOB6,
+};
 use crate::model::spec::{
     BallSpec, BatSpec, CollisionSpec, EndsSpec, ImpactSpec, ModelKind, NumericsSpec, SwingSpec,
 };
@@ -47,38 +49,10 @@ pub const BBCOR_SCAN_STEP: f64 = 0.005;
 /// fully on the bat), m.
 pub const BBCOR_SCAN_END_MARGIN: f64 = 0.0366;
 
-/// Moment of inertia about a point `pivot` on the axis, from the CM one (parallel axes).
-pub fn moment_of_inertia_about(mass: f64, z_cm: f64, inertia_cm: f64, pivot: f64) -> f64 {
-    inertia_cm + mass * (z_cm - pivot).powi(2)
-}
-
 /// Centre of percussion for a pivot at `pivot`: `z_p + I_p/(M (z_cm − z_p))` (module docs).
 pub fn centre_of_percussion(mass: f64, z_cm: f64, inertia_cm: f64, pivot: f64) -> f64 {
     let i_p = moment_of_inertia_about(mass, z_cm, inertia_cm, pivot);
     pivot + i_p / (mass * (z_cm - pivot))
-}
-
-/// Effective mass at `z` of a bat pivoted at `pivot`: `I_p/(z − z_p)²`.
-pub fn pivoted_effective_mass(inertia_pivot: f64, pivot: f64, z: f64) -> f64 {
-    inertia_pivot / (z - pivot).powi(2)
-}
-
-/// Effective mass at `z` of a free rigid bat: `1/(1/M + (z − z_cm)²/I_cm)`.
-pub fn free_effective_mass(mass: f64, z_cm: f64, inertia_cm: f64, z: f64) -> f64 {
-    1.0 / (1.0 / mass + (z - z_cm).powi(2) / inertia_cm)
-}
-
-/// The protocol's BBCOR from the collision efficiency e_A = v_r/v_i of a bat at rest:
-/// `e_A (1 + m/M_e) + m/M_e`.
-pub fn bbcor_from_efficiency(efficiency: f64, ball_mass: f64, effective_mass: f64) -> f64 {
-    let r = ball_mass / effective_mass;
-    efficiency * (1.0 + r) + r
-}
-
-/// Inverse of [`bbcor_from_efficiency`]: `e_A = (BBCOR − r)/(1 + r)`.
-pub fn efficiency_from_bbcor(bbcor: f64, ball_mass: f64, effective_mass: f64) -> f64 {
-    let r = ball_mass / effective_mass;
-    (bbcor - r) / (1.0 + r)
 }
 
 /// A rigid bat pivoted at rest hit by a ball (module docs).
@@ -207,6 +181,7 @@ pub fn bbcor_scan(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::protocol::{efficiency_from_bbcor, pivoted_effective_mass};
 
     #[test]
     fn bbcor_round_trip_and_conjugate_point() {

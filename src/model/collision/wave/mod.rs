@@ -230,6 +230,12 @@ pub fn simulate_wave(
         approach_speed: approach,
         contact_time: contact.first_duration,
         impulse_time_99: contact.impulse_time(0.99),
+        hoop_frequency: collision.hoop.map_or(f64::NAN, |h| h.frequency()),
+        hoop_mass: collision.hoop.map_or(f64::NAN, |h| h.mass),
+        // filled for a bat at rest by `collision::simulate`
+        bbcor: f64::NAN,
+        besr: f64::NAN,
+        bpf: f64::NAN,
         peak_force: contact.peak_force,
         max_compression: contact.max_compression,
         impulse: m * (collision.ball_speed - fin.ball_velocity),
