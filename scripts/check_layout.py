@@ -69,7 +69,7 @@ SUMMARY_FLOATS = {
     "energy_bat_rigid": "J", "energy_bat_vibration": "J", "energy_hoop": "J",
     "grip_vibration_amplitude": "m", "grip_recoil_speed": "m/s", "energy_bat_damping": "J",
     "energy_grip_damping": "J", "impulse_time_99": "s", "bbcor": "1", "besr": "1", "bpf": "1",
-    "hoop_frequency": "Hz", "hoop_mass": "kg",
+    "hoop_mode_frequency": "Hz", "hoop_mode_mass": "kg",
 }
 # name: (numpy dtype string, units)
 SUMMARY_INTS = {"recontact": ("int8", "1"), "status": ("int8", "1"),

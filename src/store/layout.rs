@@ -102,8 +102,9 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
     v("bbcor", "1", "bat-ball COR of a bat at rest (NCAA BBCOR)"),
     v("besr", "1", "ball exit speed ratio of a bat at rest (e_A + 1/2)"),
     v("bpf", "1", "bat performance factor: BBCOR over the ball's wall COR"),
-    v("hoop_frequency", "Hz", "hoop-mode frequency used"),
-    v("hoop_mass", "kg", "hoop-mode mass used"),
+    // not `hoop_frequency`/`hoop_mass`: those name the swept parameters' coordinates
+    v("hoop_mode_frequency", "Hz", "hoop-mode frequency the collision used"),
+    v("hoop_mode_mass", "kg", "hoop-mode mass the collision used"),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].

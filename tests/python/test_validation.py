@@ -1,0 +1,33 @@
+"""The validation table (docs/validation.md): the three studies of studies/validation/ run,
+scripts/validation.py evaluates every row, and each row's verdict is the one recorded in the
+script (a row that agreed and drifts out of its band fails, and so does a row that starts to
+agree: the table must then be re-judged). The committed docs/validation.md must be the table
+these files give. Needs BATSTUDY_BIN (set by scripts/test.sh)."""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = os.environ.get("BATSTUDY_BIN")
+pytestmark = pytest.mark.skipif(not BIN, reason="BATSTUDY_BIN not set (scripts/test.sh sets it)")
+
+
+def test_every_row_keeps_its_verdict_and_the_page_is_current(tmp_path):
+    files = []
+    for study in ("certification", "wall", "game"):
+        out = tmp_path / f"{study}.h5"
+        r = subprocess.run([BIN, "run", str(ROOT / "studies" / "validation" / f"{study}.yaml"), "-o", str(out),
+                            "--jobs", "2", "--quiet"], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        files.append(str(out))
+    page = tmp_path / "validation.md"
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "validation.py"), *files, "-o", str(page), "--check"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    rows = [line for line in page.read_text().splitlines() if line.startswith("| ") and "---" not in line]
+    assert len(rows) - 1 >= 12, "at least 12 rows"
+    assert page.read_text() == (ROOT / "docs" / "validation.md").read_text(), (
+        "docs/validation.md is not the table these results give: run bash scripts/validation.sh")
