@@ -196,7 +196,9 @@ def _omega_curves(res, law=None):
     ``ball_law_kind`` such as ``elastic``)."""
     base = res.base(res.main_model())
     if law:
-        curves = select(res.curves, base, free={"swing_omega"}, where={"ball_law_kind": law})
+        # the law's own parameters may be set only where the law is (a `case` of its own)
+        free = {"swing_omega", "ball_law_reference_speed", "ball_law_cor_slope", "ball_law_loading"}
+        curves = select(res.curves, base, free=free, where={"ball_law_kind": law})
         curves.sort(key=lambda c: c.params.get("swing_omega", 0.0))
     else:
         curves = one_factor(res.curves, base, "swing_omega")
