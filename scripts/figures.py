@@ -71,7 +71,7 @@ def new_axes(title: str, xlabel: str, ylabel: str, res: Results):
 
 
 def save(fig, path: Path):
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=110)  # the format follows the file name (png, svg, pdf)
     plt.close(fig)
 
 
@@ -187,7 +187,9 @@ def fig05a(res, path):
 
 
 def fig05b(res, path):
-    factor_figure(res, path, "Fig. 5b: a 110 cm bat vs the base bat",
+    top = float(np.nanmax(res.summary[IMPACT].values)) if res.summary is not None and IMPACT in res.summary else 0.0
+    note = f" (impacts sampled to {top:.2f} m; studies/boundaries.yaml reaches 1.10 m)" if top < 1.0 else ""
+    factor_figure(res, path, "Fig. 5b: a 110 cm bat vs the base bat" + note,
                   where={"bat_length": lambda v: abs(v - 1.10) < 0.005}, free={"bat_ends_barrel"})  # fmt: skip
 
 
@@ -277,11 +279,12 @@ def fig15(res, path):
     chosen = select(res.curves, first, free={"hoop_frequency", "hoop_mass"})  # same bat, with and without hoop
     chosen.sort(key=lambda c: c.params.get("hoop_frequency") if c.params.get("hoop_frequency", 0) > 0 else -1.0)
     no_hoop = [c for c in chosen if not c.params.get("hoop_frequency", 0) > 0]
-    base = no_hoop[0] if no_hoop else first
     wood = res.base(model)
     curves = ([wood] if wood not in chosen else []) + chosen
-    curve_figure(res, path, f"Fig. 15: hoop-mode frequencies (reference: {res.label(base)}) — {model} model",
-                 curves, base)  # fmt: skip
+    # Labelled against the wood base case, as in every other figure ("base case" = the wood bat);
+    # the hoop curves share their bat, so their labels name the hoop.
+    curve_figure(res, path, f"Fig. 15: hoop modes on the {first.params.get('bat_preset', 'hollow')} bat, "
+                 f"and the wood base case ({model} model)", curves, wood)  # fmt: skip
 
 
 def _wood_and_aluminum(res):
@@ -359,30 +362,50 @@ def _profiles(bat):
     return out
 
 
+def short_bat_label(label: str) -> str:
+    """`r161, bat.material.youngs_modulus=14512000000.0` -> `r161, youngs_modulus 1.45e+10`:
+    no repeated preset, no `bat.`/`material.` prefixes, numbers to 3 figures."""
+    parts = [p.strip() for p in label.split(",")]
+    out = [parts[0]]
+    for p in parts[1:]:
+        key, _, value = p.partition("=")
+        if key == "bat.preset":
+            continue
+        key = key.removeprefix("bat.").removeprefix("material.")
+        try:
+            value = f"{float(value):.4g}"
+        except ValueError:
+            pass
+        out.append(f"{key} {value}".strip())
+    return ", ".join(out)
+
+
 def bat_profiles(res, path):
     bat = res.bat
     if bat is None or "outer_radius" not in bat:
         raise Skip("no /bat profiles")
     bat = bat.load()
-    fig, (top, low) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 3.2 + 0.25 * bat.sizes["bat"]),
+    fig, (top, low) = plt.subplots(2, 1, sharex=True, figsize=(11.0, 4.2 + 0.25 * bat.sizes["bat"]),
                                    height_ratios=[2, 1.2], layout="constrained")  # fmt: skip
     top.set_title(f"Bat profiles (outer radius solid, inner dashed) and mode nodes\n(study: {res.name})", fontsize=10)
     for k, (labels, z, outer, inner) in enumerate(_profiles(bat)):
         color = COLORS[k % len(COLORS)]
-        names = ", ".join(labels) if len(labels) <= 4 else ", ".join(labels[:3]) + f" (+{len(labels) - 3})"
+        short = [short_bat_label(lab) for lab in labels]
+        names = "; ".join(short) if len(short) <= 2 else "; ".join(short[:2]) + f" (+{len(short) - 2} more)"
         top.plot(z, outer * 1e3, color=color, lw=1.5, label=names)
-        if np.nanmax(inner) > 0:
-            top.plot(z, inner * 1e3, color=color, ls="--", lw=1)
+        if np.nanmax(inner) > 0:  # the hollow part only
+            top.plot(z, np.where(inner > 0, inner, np.nan) * 1e3, color=color, ls="--", lw=1)
     top.set_ylabel("radius (mm)")
     top.grid(alpha=0.3)
-    top.legend(fontsize=7)
+    top.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     markers = ["v", "^", "s", "D", "P"]
     n_modes = min(3, bat.sizes.get("mode", 0)) if "mode_nodes" in bat else 0
     ticks = []
     for i in range(bat.sizes["bat"]):
         b = bat.isel(bat=i)
         freqs = b["mode_frequency"].values[:n_modes] if "mode_frequency" in b else []
-        ticks.append(f"{b['bat'].item()}: {float(b['mass']):.3f} kg, f = {', '.join(f'{f:.0f}' for f in freqs)} Hz")
+        ticks.append(f"{short_bat_label(str(b['bat'].item()))}: {float(b['mass']):.3f} kg, "
+                     f"f = {', '.join(f'{f:.0f}' for f in freqs)} Hz")  # fmt: skip
         for m in range(n_modes):
             nodes = b["mode_nodes"].isel(mode=m).values
             nodes = nodes[np.isfinite(nodes)]
@@ -491,8 +514,8 @@ OTHER_FIGURES = {
 }
 
 
-def file_name(name: str) -> str:
-    return name + (".gif" if name.startswith("anim") else ".png")
+def file_name(name: str, fmt: str = "png") -> str:
+    return name + (".gif" if name.startswith("anim") else f".{fmt}")
 
 
 def short(name: str) -> str:
@@ -516,26 +539,50 @@ def wanted(only: str | None) -> list[str]:
     return names
 
 
+def draw(results: str, names: list[str], out: Path, fmt: str) -> tuple[list[str], int]:
+    """Draw `names` from one results file; returns (messages, number failed)."""
+    messages, failed = [], 0
+    with Results(results) as res:
+        for name in names:
+            path = out / file_name(name, fmt)
+            try:
+                ALL_FIGURES[name](res, path)
+                messages.append(f"wrote {path}")
+            except Skip as why:
+                messages.append(f"skip  {name}: {why}")
+            except Exception as err:  # one broken figure must not stop the others
+                failed += 1
+                messages.append(f"FAIL  {name}: {type(err).__name__}: {err}")
+    return messages, failed
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("results", help="batstudy results file (HDF5)")
     ap.add_argument("-o", "--outdir", default="figures", help="output directory (default: figures)")
     ap.add_argument("--only", help="comma-separated figures, e.g. fig6,fig14,anim,bat_profiles")
+    ap.add_argument("-j", "--jobs", type=int, default=1, help="processes drawing in parallel (default 1)")
+    ap.add_argument("--format", choices=["png", "svg", "pdf"], default="png",
+                    help="figure format (png at 110 dpi; svg and pdf are vector, for print)")
     args = ap.parse_args(argv)
     out = Path(args.outdir)
     out.mkdir(parents=True, exist_ok=True)
+    names = wanted(args.only)
+    if args.jobs > 1 and len(names) > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        # Round-robin shares: the costly figures (the animation, Fig. 14) land on different workers.
+        shares = [names[k :: args.jobs] for k in range(args.jobs)]
+        with ProcessPoolExecutor(args.jobs) as pool:
+            done = list(pool.map(draw, [args.results] * len(shares), shares, [out] * len(shares),
+                                 [args.format] * len(shares)))  # fmt: skip
+    else:
+        done = [draw(args.results, names, out, args.format)]
     failed = 0
-    with Results(args.results) as res:
-        for name in wanted(args.only):
-            path = out / file_name(name)
-            try:
-                ALL_FIGURES[name](res, path)
-                print(f"wrote {path}")
-            except Skip as why:
-                print(f"skip  {name}: {why}")
-            except Exception as err:  # one broken figure must not stop the others
-                failed += 1
-                print(f"FAIL  {name}: {type(err).__name__}: {err}", file=sys.stderr)
+    for messages, n_failed in done:
+        failed += n_failed
+        for m in messages:
+            print(m, file=sys.stderr if m.startswith("FAIL") else sys.stdout)
     return 1 if failed else 0
 
 

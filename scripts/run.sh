@@ -13,5 +13,5 @@ if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then study=$1; shift; fi
 ./target/release/batstudy run "$study" --force "$@"
 # The figures of the default study (scripts/figures.py reads only the HDF5 file).
 if [ "$study" = studies/param_space.yaml ] && [ $# -eq 0 ]; then
-  .venv/bin/python scripts/figures.py results/param_space.h5 -o figures/param_space
+  .venv/bin/python scripts/figures.py results/param_space.h5 -o figures/param_space --jobs 2
 fi

@@ -44,6 +44,29 @@ def _bat_rank(label: str) -> tuple:
     return (ORDER.index(head) if head in ORDER else len(ORDER), label)
 
 
+def _shown_bats(labels: list[str], most: int = 6) -> list[int]:
+    """Up to `most` bats: first the plainest bat of each kind (wood, corked, aluminum — the
+    comparison the figure is for), then the variants, in ORDER and label order."""
+    ranked = sorted(range(len(labels)), key=lambda i: (_bat_rank(labels[i])[0], labels[i].count(","), labels[i]))
+    firsts, seen = [], set()
+    for i in ranked:
+        head = labels[i].split(",")[0].strip()
+        if head not in seen:
+            seen.add(head)
+            firsts.append(i)
+    rest = [i for i in ranked if i not in firsts]
+    return sorted((firsts + rest)[:most], key=lambda i: ranked.index(i))
+
+
+def _at_edge(summary, v: float) -> bool:
+    """An extremum found at the first or last sampled impact position is the edge of the
+    grid, not a sweet spot (the true one may lie beyond)."""
+    if summary is None or "impact_z" not in getattr(summary, "coords", {}):
+        return False
+    z = np.asarray(summary["impact_z"].values, dtype=float)
+    return z.size > 0 and (abs(v - np.nanmin(z)) < 1e-9 or abs(v - np.nanmax(z)) < 1e-9)
+
+
 def _curve_per_bat(res: Results) -> dict[int, object]:
     """Bat index -> the first curve of the main model that uses it."""
     out = {}
@@ -84,7 +107,7 @@ def sweet_spot_definitions(res: Results, path) -> None:
         raise Skip("no /bat profiles")
     bat = bat.load()
     labels = [str(v) for v in bat["bat"].values]
-    order = sorted(range(len(labels)), key=lambda i: _bat_rank(labels[i]))[:6]
+    order = _shown_bats(labels)
     curves = _curve_per_bat(res)
     ss = res.sweet_spot
     fig, axes = plt.subplots(len(order), 2, squeeze=False, width_ratios=[1.3, 1],
@@ -99,7 +122,7 @@ def sweet_spot_definitions(res: Results, path) -> None:
         found = []
         for k, (src, name, label, color, style, marker) in enumerate(DEFINITIONS):
             v = _value(sub if src == "sweet" else b, name)
-            if math.isfinite(v):
+            if math.isfinite(v) and not (src == "sweet" and _at_edge(res.summary, v)):
                 found.append((k, name, label, color, style, marker, v))
         for a in (ax, zoom):
             top = _profile(a, b)
@@ -126,7 +149,7 @@ def sweet_spot_definitions(res: Results, path) -> None:
             zoom.text(1.02, 0.5, "\n".join(lines), transform=zoom.transAxes, fontsize=7, va="center")
         bb = _value(b, "bbcor_max")
         extra = f", BBCOR max {bb:.3f}" if math.isfinite(bb) else ""
-        ax.set_title(f"{labels[i].split(',')[0]}: {float(b['mass']):.3f} kg{extra}", fontsize=9, loc="left")
+        ax.set_title(f"{labels[i]}: {float(b['mass']):.3f} kg{extra}", fontsize=9, loc="left")
         ax.set_ylabel("radius (mm)", fontsize=8)
     axes[-1, 0].set_xlabel("z (m from the knob)")
     axes[-1, 1].set_xlabel("z (m from the knob)")
