@@ -90,9 +90,19 @@ def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, t
     value = value or (lambda r, c: r.values(c, "exit_speed"))
     fig, ax = new_axes(title, IMPACT_LABEL, ylabel, res)
     others = 0
+    recontacts = 0
     for i, c in enumerate(curves):
         y = value(res, c)
         label = res.label(c, base, always)
+        # Where the ball came back into contact (the handle whipped back): the curve jumps
+        # there, and the mark says why.
+        try:
+            again = np.asarray(res.values(c, "recontact").values) == 1
+        except Skip:
+            again = np.zeros(y.shape, dtype=bool)
+        if again.any():
+            recontacts += 1
+            ax.plot(np.asarray(y[IMPACT])[again], np.asarray(y)[again], "x", color="black", ms=6, mew=1.2)
         if c == base and not twins:
             ax.plot(y[IMPACT], y, color="black", lw=2, label=label)
             continue
@@ -106,6 +116,8 @@ def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, t
             z_max, v_max = res.sweet(rigid)
             ax.plot([z_max], [v_max], "o", color=color, ms=6)
     handles, _ = ax.get_legend_handles_labels()
+    if recontacts:
+        handles.append(Line2D([], [], color="black", ls="", marker="x", label="ball hit again (re-contact)"))
     if twins:
         handles += [Line2D([], [], color="gray", ls="-", label="wave model"),
                     Line2D([], [], color="gray", ls="--", label="rigid model"),
@@ -329,7 +341,13 @@ def anim(res, path):
     ax.set_ylim(-1.1 * ymax, 1.1 * ymax)
     lines = [ax.plot([], [], ls=s, color="black" if s == "-" else COLORS[0], lw=1.8,
                      label=f"{name} (impact at {z:.2f} m)")[0] for (name, z, _), s in zip(found, ("-", "--"))]  # fmt: skip
-    ax.set_xlim(float(found[0][2]["z"].min()), float(found[0][2]["z"].max()))
+    # The z grid reaches the study's longest bat; show the bats drawn, not the empty rest.
+    ends = [float(flex["z"].values[np.isfinite(flex.values).any(axis=0)].max()) for _, _, flex in found]
+    ax.set_xlim(float(found[0][2]["z"].min()), max(ends))
+    for (name, z, _), s in zip(found, ("-", "--")):  # where the ball hits
+        ax.axvline(z, color="0.5", ls=":", lw=1)
+        ax.plot([z], [1.0 * ymax], marker="v", color="firebrick", ms=9, ls="none")
+    ax.text(found[0][1], 1.05 * ymax, " impact", color="firebrick", fontsize=8, va="center")
     stamp = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
     ax.legend(fontsize=8, loc="lower right")
     fig.canvas.draw()
