@@ -27,6 +27,15 @@ else
   echo "== Slurm test skipped (BATSTUDY_SLURM_TEST=1 runs scripts/slurm-local-test.sh)"
 fi
 
+# The explorer's browser test drives Debian's chromium (a browser is not part of the set-up
+# of the main job, only of the tests).
+if ! command -v chromium >/dev/null 2>&1; then
+  echo "== Installing Debian's chromium for the browser test"
+  as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq chromium >/dev/null
+fi
+
 echo "== Python tests"
 BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
   .venv/bin/python -m pytest -q tests/python
