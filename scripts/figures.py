@@ -38,7 +38,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
+from PIL import Image  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -348,19 +348,28 @@ def anim(res, path):
         ax.axvline(z, color="0.5", ls=":", lw=1)
         ax.plot([z], [1.0 * ymax], marker="v", color="firebrick", ms=9, ls="none")
     ax.text(found[0][1], 1.05 * ymax, " impact", color="firebrick", fontsize=8, va="center")
-    stamp = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top")
+    stamp = ax.text(0.02, 0.95, "", transform=ax.transAxes, va="top", animated=True)
+    for line in lines:
+        line.set_animated(True)  # drawn per frame, not into the background
     ax.legend(fontsize=8, loc="lower right")
+    # Blitting: the axes, labels and legend are drawn once; each frame draws only the two
+    # curves and the time stamp onto that background (a full redraw per frame took 0.2 s).
+    fig.set_dpi(70)
     fig.canvas.draw()
-    fig.set_layout_engine("none")  # lay out once, not on every frame
-
-    def draw(k):
+    fig.set_layout_engine("none")
+    background = fig.canvas.copy_from_bbox(fig.bbox)
+    images = []
+    for k in frames:
+        fig.canvas.restore_region(background)
         for line, (_, _, flex) in zip(lines, found):
             kk = min(k, flex.sizes["time"] - 1)
             line.set_data(flex["z"].values, flex.isel(time=kk).values * 1e3)
+            ax.draw_artist(line)
         stamp.set_text(f"t = {time[k] * 1e3:.2f} ms")
-        return [*lines, stamp]
-
-    FuncAnimation(fig, draw, frames=frames, blit=False).save(path, writer=PillowWriter(fps=12), dpi=70)
+        ax.draw_artist(stamp)
+        rgba = np.asarray(fig.canvas.buffer_rgba())
+        images.append(Image.fromarray(rgba[..., :3].copy()).quantize(colors=64, method=Image.Quantize.MEDIANCUT))
+    images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / 12), loop=0)
     plt.close(fig)
 
 
