@@ -2,9 +2,10 @@
 //! peak force and compression, the energy the ball's loop dissipates, and the impulse as it
 //! builds up (for the time to 99 % of it, Nathan's "collision time").
 
-use super::COAST_TIME;
+use super::{COAST_TIME, MAX_TIME};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::Recorder;
+use crate::model::error::ModelError;
 
 /// Contact bookkeeping shared by the integrators.
 #[derive(Default)]
@@ -87,7 +88,40 @@ impl Contact {
         }
     }
 
-    pub(super) fn finished(&self, t: f64, recorder: &Option<Recorder>) -> bool {
+    /// The end-of-step test every integrator makes: `Ok(true)` when the run is over (the
+    /// ball has left and been watched for a re-contact long enough, and the histories are
+    /// complete; or the time bound is reached out of contact); an error when the ball is still
+    /// in contact at the time bound or the step budget is spent.
+    pub(super) fn stop_after(
+        &self,
+        t: f64,
+        steps: usize,
+        h: f64,
+        budget: u64,
+        recorder: &Option<Recorder>,
+    ) -> Result<bool, ModelError> {
+        if self.finished(t, recorder) {
+            return Ok(true);
+        }
+        if t > MAX_TIME {
+            if self.in_contact {
+                return Err(ModelError::NoSeparation { t });
+            }
+            return Ok(true);
+        }
+        if steps as u64 >= budget {
+            return Err(ModelError::StepBudget {
+                steps: steps as f64,
+                dt: h,
+                budget,
+                cause: "numerics.max_steps",
+                provable: false,
+            });
+        }
+        Ok(false)
+    }
+
+    fn finished(&self, t: f64, recorder: &Option<Recorder>) -> bool {
         !self.in_contact
             && self.separations > 0
             && t >= self.last_separation + COAST_TIME

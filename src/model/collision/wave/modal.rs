@@ -2,7 +2,7 @@
 //! force linear over each step; the end force found implicitly (one scalar equation).
 
 use super::contact::Contact;
-use super::{displacement_points, spec_history, Collision, FinalState, MAX_TIME, MIN_MODES};
+use super::{displacement_points, spec_history, Collision, FinalState, MIN_MODES};
 use crate::model::bat::motion::grip_vibration_amplitude;
 use crate::model::bat::PreparedBat;
 use crate::model::collision::history::Recorder;
@@ -418,23 +418,8 @@ pub(super) fn run_modal(
             let smp = sample(&q, rec, force, p_bat, s.max(0.0), v, xh - y_c);
             rec.push(t, smp);
         }
-        if contact.finished(t, recorder) {
+        if contact.stop_after(t, steps, h, c.budget, recorder)? {
             break;
-        }
-        if t > MAX_TIME {
-            if contact.in_contact {
-                return Err(ModelError::NoSeparation { t });
-            }
-            break;
-        }
-        if steps as u64 >= c.budget {
-            return Err(ModelError::StepBudget {
-                steps: steps as f64,
-                dt: h,
-                budget: c.budget,
-                cause: "numerics.max_steps",
-                provable: false,
-            });
         }
     }
     let mut bat_energy = 0.0;

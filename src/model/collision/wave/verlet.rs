@@ -2,7 +2,7 @@
 //! below the highest beam mode's stability limit (the paper's approach).
 
 use super::contact::Contact;
-use super::{displacement_points, spec_history, Collision, FinalState, MAX_TIME};
+use super::{displacement_points, spec_history, Collision, FinalState};
 use crate::model::bat::motion::grip_vibration_amplitude;
 use crate::model::bat::motion::modal_coordinates;
 use crate::model::bat::PreparedBat;
@@ -126,23 +126,8 @@ pub(super) fn run_verlet(
             let smp = sample(&y, rec, force, s.max(0.0), v, xh - y_c);
             rec.push(t, smp);
         }
-        if contact.finished(t, recorder) {
+        if contact.stop_after(t, steps, h, c.budget, recorder)? {
             break;
-        }
-        if t > MAX_TIME {
-            if contact.in_contact {
-                return Err(ModelError::NoSeparation { t });
-            }
-            break;
-        }
-        if steps as u64 >= c.budget {
-            return Err(ModelError::StepBudget {
-                steps: steps as f64,
-                dt: h,
-                budget: c.budget,
-                cause: "numerics.max_steps",
-                provable: false,
-            });
         }
     }
     let _ = hoop_force;

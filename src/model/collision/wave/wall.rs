@@ -8,7 +8,7 @@
 //! with the end-of-step force found implicitly (`ContactLaw::solve_implicit`).
 
 use super::contact::Contact;
-use super::{Diagnostics, COAST_TIME, MAX_TIME, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
+use super::{Diagnostics, COAST_TIME, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::{Recorder, Sample};
 use crate::model::error::{out_of_range, ModelError};
@@ -89,23 +89,8 @@ pub fn simulate_wall(
             let smp = sample(rec, force, s, v);
             rec.push(t, smp);
         }
-        if contact.finished(t, &recorder) {
+        if contact.stop_after(t, steps, h, budget, &recorder)? {
             break;
-        }
-        if t > MAX_TIME {
-            if contact.in_contact {
-                return Err(ModelError::NoSeparation { t });
-            }
-            break;
-        }
-        if steps as u64 >= budget {
-            return Err(ModelError::StepBudget {
-                steps: steps as f64,
-                dt: h,
-                budget,
-                cause: "numerics.max_steps",
-                provable: false,
-            });
         }
     }
     let exit_speed = -v;
