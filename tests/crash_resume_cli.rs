@@ -2,9 +2,9 @@
 //! `--resume`, gives the same data as an uninterrupted run, bit for bit (issue 5, "Nothing
 //! lost"; the data compared are every stored point's outcome and histories).
 
-use batstudy::store::read_results;
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::time::Duration;
 
 const STUDY: &str = r#"
@@ -20,21 +20,7 @@ grid:
 history: {fields: [force], interval: 2.0e-5, duration: 2.0e-3, only: {swing.omega: [-30]}}
 "#;
 
-fn batstudy(args: &[&str]) -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_batstudy"));
-    c.args(args).stdout(Stdio::null()).stderr(Stdio::piped());
-    c
-}
-
-/// Every stored record, as exact text (Debug of f64 is its shortest round-trip form).
-fn data(path: &Path) -> Vec<String> {
-    read_results(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .records
-        .iter()
-        .map(|r| format!("{} {} {} {:?}", r.index, r.id, r.bat, r.result))
-        .collect()
-}
+use common::{batstudy_command as batstudy, stored_records as data};
 
 #[test]
 fn killed_runs_resume_to_the_uninterrupted_result() {

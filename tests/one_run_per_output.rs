@@ -7,6 +7,8 @@
 //! ("the lock is released ... when all file descriptors referring to it are closed", which
 //! process exit does), so these tests kill real processes rather than trust a model of it.
 
+mod common;
+
 use batstudy::store::read_results;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -29,20 +31,7 @@ grid:
   impact.z: {range: [0.40, 0.84, 0.002]}
 "#;
 
-fn batstudy(args: &[&str]) -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_batstudy"));
-    c.args(args).stdout(Stdio::null()).stderr(Stdio::piped());
-    c
-}
-
-fn data(path: &Path) -> Vec<String> {
-    read_results(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .records
-        .iter()
-        .map(|r| format!("{} {} {} {:?}", r.index, r.id, r.bat, r.result))
-        .collect()
-}
+use common::{batstudy_command as batstudy, stored_records as data};
 
 fn lock_of(out: &Path) -> PathBuf {
     PathBuf::from(format!("{}.lock", out.display()))

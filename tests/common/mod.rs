@@ -14,3 +14,23 @@ pub fn elastic() -> BallLaw {
         ..BallLaw::default()
     }
 }
+
+/// The batstudy binary with `args`, its standard output dropped and its errors kept.
+pub fn batstudy_command(args: &[&str]) -> std::process::Command {
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_batstudy"));
+    c.args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped());
+    c
+}
+
+/// Every stored record of a results file, as exact text (Debug of f64 is its shortest
+/// round-trip form): two files with equal lists hold the same data.
+pub fn stored_records(path: &std::path::Path) -> Vec<String> {
+    batstudy::store::read_results(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .records
+        .iter()
+        .map(|r| format!("{} {} {} {:?}", r.index, r.id, r.bat, r.result))
+        .collect()
+}
