@@ -13,6 +13,9 @@
 //! - `hdf5`: the share of wall time spent in the results store (journal + final file), for a
 //!   summary-only study and for one with full displacement histories (real driver + store in
 //!   a temporary directory);
+//! - `scaling`: points/s of a summary and of a full-history study at 1, 2, 4, … threads up to
+//!   every core; `writer_headroom`: the points/s the writer alone absorbs over the points/s
+//!   one worker computes (the cores the writer can keep up with);
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before each
 //!   case) for a 10-million-point summary-only plan run through the driver with the rigid
 //!   model, and for the history study above.
@@ -23,7 +26,7 @@
 //!
 //! Files: `cases` (the sizes and studies), `measure` (clocks, timing, peak memory, medians),
 //! `sinks` (a null sink and a timing one), `speed` (`integrators`, `curve`), `parallel`,
-//! `write_share` (`hdf5`), `memory`, `report` (targets, printing, JSON). Off the run path:
+//! `write_share` (`hdf5`), `memory`, `scaling` (`scaling`, `writer_headroom`), `report` (targets, printing, JSON). Off the run path:
 //! nothing in `run`, `store`, `study` or `model` uses it; the CLI's `bench` command (and
 //! `tests/bench_quick.rs`) call it.
 
@@ -32,6 +35,7 @@ mod measure;
 mod memory;
 mod parallel;
 mod report;
+mod scaling;
 mod sinks;
 mod speed;
 mod write_share;
@@ -43,6 +47,7 @@ pub use report::{
     BenchReport, Machine, ACCURACY_TARGET, CURVE_TARGET_S, EFFICIENCY_TARGET, HDF5_SHARE_TARGET,
     SPEEDUP_TARGET,
 };
+pub use scaling::{Scaling, ScalingPoint, WriterHeadroom};
 pub use speed::{CurveBench, IntegratorBench, IntegratorFigures};
 pub use write_share::{bench_write_vs_null, WriteShare};
 
@@ -80,6 +85,10 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     let (mb, small_seconds) = memory::bench_memory(&sz, threads, dir.path(), &wh)?;
     report::print_memory(out, threads, &mb, small_seconds, wh.rss_before_bytes);
 
+    let scaling = scaling::bench_scaling(&sz, dir.path())?;
+    let headroom = scaling::bench_writer_headroom(&sz, dir.path())?;
+    report::print_scaling(out, &scaling, &headroom);
+
     machine.loadavg_end = report::loadavg();
     report::print_end(out, &machine);
     Ok(BenchReport {
@@ -89,6 +98,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         parallel: pb,
         hdf5: vec![ws, wh, wl],
         memory: mb,
+        scaling,
+        writer_headroom: headroom,
     })
 }
 

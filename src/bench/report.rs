@@ -40,6 +40,10 @@ pub struct BenchReport {
     /// Summary-only, history, summary-only with ten times the points.
     pub hdf5: Vec<WriteShare>,
     pub memory: MemoryBench,
+    /// Points/s against threads for a summary and a full-history study.
+    pub scaling: super::Scaling,
+    /// How many cores the one writer thread keeps up with on the history study.
+    pub writer_headroom: super::WriterHeadroom,
 }
 
 pub(super) fn machine(quick: bool) -> Machine {
@@ -166,6 +170,42 @@ pub(super) fn print_curve(out: &mut dyn Write, cb: &CurveBench) {
             cb.prepare_cpu_seconds * 1e3,
             cb.exit_speed_min,
             cb.exit_speed_max
+        ),
+    );
+}
+
+pub(super) fn print_scaling(out: &mut dyn Write, sc: &super::Scaling, wh: &super::WriterHeadroom) {
+    line(
+        out,
+        format!(
+            "\n== scaling: points/s through the driver and the store ({} summary points, {} history points)",
+            sc.summary_points, sc.history_points
+        ),
+    );
+    for p in &sc.points {
+        line(
+            out,
+            format!(
+                "{:>3} threads: summary {:.0} points/s, history {:.0} points/s",
+                p.threads, p.summary_points_per_second, p.history_points_per_second
+            ),
+        );
+    }
+    line(
+        out,
+        format!(
+            "on {} cores: efficiency summary {:.1} %, history {:.1} %; history/summary per core {:.2}",
+            sc.cores,
+            sc.summary_efficiency * 100.0,
+            sc.history_efficiency * 100.0,
+            sc.history_vs_summary_per_core
+        ),
+    );
+    line(
+        out,
+        format!(
+            "writer headroom: the store absorbs {:.0} points/s, one worker computes {:.0}: {:.1} cores",
+            wh.writer_points_per_second, wh.worker_points_per_second, wh.headroom
         ),
     );
 }

@@ -138,7 +138,7 @@ pub fn bench_write_vs_null(
 /// One store run on `pool` (the null runs it is compared with use the same pool: a pool
 /// built for each store run alone made its threads start cold, a bias of about 1 % against
 /// the store on the small study).
-fn bench_write_to(
+pub(super) fn bench_write_to(
     case: &str,
     file: &str,
     study: &Study,

@@ -1,0 +1,163 @@
+//! Scaling with threads, and the writer's headroom.
+//!
+//! - `scaling`: points/s of a summary-only study and of a full-history study, each through the
+//!   real driver and store, at 1, 2, 4, … threads up to every core of the machine.
+//! - `writer_headroom`: how many workers the one writer thread can keep up with on the
+//!   history study: the points/s the store alone absorbs (its records computed beforehand,
+//!   then written, journal and final file, on one thread) over the points/s one worker
+//!   computes them.
+
+use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK};
+use super::measure::{err, median};
+use super::write_share::bench_write_to;
+use crate::results::PointRecord;
+use crate::run::{self, ModelSimulator, Simulator};
+use crate::store;
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// Points/s at one thread count.
+#[derive(Debug, Clone, Serialize)]
+pub struct ScalingPoint {
+    pub threads: usize,
+    pub summary_points_per_second: f64,
+    pub history_points_per_second: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Scaling {
+    /// Cores of the machine (the largest thread count measured).
+    pub cores: usize,
+    pub summary_points: usize,
+    pub history_points: usize,
+    pub points: Vec<ScalingPoint>,
+    /// Parallel efficiency of each study on every core: rate(cores) / (cores · rate(1)).
+    pub summary_efficiency: f64,
+    pub history_efficiency: f64,
+    /// History points/s per core over summary points/s per core, on every core.
+    pub history_vs_summary_per_core: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct WriterHeadroom {
+    pub points: usize,
+    /// Points/s the store absorbs on one thread (journal while running, then the file).
+    pub writer_points_per_second: f64,
+    /// Points/s one worker computes (histories recorded).
+    pub worker_points_per_second: f64,
+    /// writer / worker: the number of cores the writer can keep up with.
+    pub headroom: f64,
+}
+
+/// 1, 2, 4, … up to `cores`, and `cores` itself.
+fn thread_counts(cores: usize) -> Vec<usize> {
+    let mut t: Vec<usize> = std::iter::successors(Some(1usize), |&n| Some(n * 2))
+        .take_while(|&n| n < cores)
+        .collect();
+    t.push(cores.max(1));
+    t
+}
+
+pub(super) fn bench_scaling(sz: &Sizes, dir: &Path) -> Result<Scaling, String> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let summary = load_study(
+        &curve_study_text("bench-scaling-summary", sz.summary_omegas, ""),
+        "scaling",
+    )?;
+    let history = load_study(
+        &curve_study_text("bench-scaling-history", sz.history_omegas, HISTORY_BLOCK),
+        "scaling",
+    )?;
+    let rate = |study: &crate::study::Study, case: &str, threads: usize| -> Result<f64, String> {
+        let pool = run::build_pool(threads).map_err(err("pool"))?;
+        let walls = (0..sz.parallel_repeats.max(1))
+            .map(|k| {
+                bench_write_to(
+                    case,
+                    &format!("{case}-{threads}-{k}"),
+                    study,
+                    dir,
+                    &pool,
+                    false,
+                )
+            })
+            .map(|w| w.map(|w| w.wall_seconds))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(study.plan.n_points() as f64 / median(walls))
+    };
+    let mut points = Vec::new();
+    for threads in thread_counts(cores) {
+        points.push(ScalingPoint {
+            threads,
+            summary_points_per_second: rate(&summary, "scaling-summary", threads)?,
+            history_points_per_second: rate(&history, "scaling-history", threads)?,
+        });
+    }
+    let (first, last) = (&points[0], &points[points.len() - 1]);
+    let n = last.threads as f64;
+    Ok(Scaling {
+        cores,
+        summary_points: summary.plan.n_points(),
+        history_points: history.plan.n_points(),
+        summary_efficiency: last.summary_points_per_second / (n * first.summary_points_per_second),
+        history_efficiency: last.history_points_per_second / (n * first.history_points_per_second),
+        history_vs_summary_per_core: last.history_points_per_second
+            / last.summary_points_per_second,
+        points,
+    })
+}
+
+pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHeadroom, String> {
+    let study = load_study(
+        &curve_study_text("bench-writer", sz.history_omegas, HISTORY_BLOCK),
+        "writer",
+    )?;
+    let pool = run::build_pool(1).map_err(err("pool"))?;
+    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
+    let history = study.history_request(bats.max_length());
+    let info = study.info(bats.variants.clone(), history.clone());
+    let path = dir.join("writer-headroom.h5");
+    let mut session =
+        store::open(&path, &info, &store::StoreOptions::default()).map_err(err("open"))?;
+    // Computed and written in batches (bounded memory); each side timed on its own.
+    let (mut compute, mut write) = (0.0, 0.0);
+    let n = study.plan.n_points();
+    let mut batch: Vec<PointRecord> = Vec::with_capacity(64);
+    for start in (0..n).step_by(64) {
+        let t0 = Instant::now();
+        for i in start..(start + 64).min(n) {
+            let p = study.plan.point(i).map_err(|e| e.message)?;
+            let bat = bats.handles[p.bat as usize]
+                .as_ref()
+                .map_err(|e| e.clone())?;
+            let result = ModelSimulator.simulate(
+                bat,
+                &p.spec,
+                history.as_ref().filter(|_| p.record_history),
+            );
+            batch.push(PointRecord {
+                index: i,
+                id: p.id,
+                bat: p.bat,
+                result,
+            });
+        }
+        compute += t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        for rec in batch.drain(..) {
+            session.write(rec).map_err(err("write"))?;
+        }
+        write += t0.elapsed().as_secs_f64();
+    }
+    let t0 = Instant::now();
+    session.finish().map_err(err("finish"))?;
+    write += t0.elapsed().as_secs_f64();
+    let (writer, worker) = (n as f64 / write, n as f64 / compute);
+    Ok(WriterHeadroom {
+        points: n,
+        writer_points_per_second: writer,
+        worker_points_per_second: worker,
+        headroom: writer / worker,
+    })
+}
