@@ -1,0 +1,43 @@
+"""Points/s against threads from a `batstudy bench --json` file (its `scaling` section).
+
+    python scripts/scaling_plot.py docs/performance.json -o docs/figures/scaling.png
+"""
+import argparse
+import json
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("bench_json")
+    ap.add_argument("-o", "--output", default="scaling.png")
+    args = ap.parse_args(argv)
+    b = json.load(open(args.bench_json))
+    sc, wh = b["scaling"], b["writer_headroom"]
+    t = [p["threads"] for p in sc["points"]]
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
+    for key, label in (("summary_points_per_second", f"summary only ({sc['summary_points']} points)"),
+                       ("history_points_per_second", f"full histories ({sc['history_points']} points)")):
+        rates = [p[key] for p in sc["points"]]
+        ax.plot(t, rates, "o-", label=label)
+        ax.plot(t, [rates[0] * n for n in t], ":", color=ax.lines[-1].get_color(), lw=1)
+    ax.axhline(wh["writer_points_per_second"], color="firebrick", ls="--", lw=1,
+               label=f"the writer alone (history study): {wh['writer_points_per_second']:.0f} points/s")
+    ax.set_xlabel("threads")
+    ax.set_ylabel("points/s (driver + store)")
+    ax.set_xticks(t)
+    ax.set_yscale("log")
+    ax.grid(alpha=0.3, which="both")
+    m = b["machine"]
+    ax.set_title(f"Scaling on {m.get('nproc', '?')} cores ({m.get('cpu_model', '')}); dotted: linear", fontsize=9)
+    ax.legend(fontsize=8)
+    fig.savefig(args.output, dpi=110)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
