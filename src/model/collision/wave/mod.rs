@@ -35,7 +35,7 @@ use contact::Contact;
 pub use hoop::{default_hoop_length, resolve_hoop, Hoop, HOOP_WAVE_NUMBER};
 use modal::run_modal;
 use step::contact_omega;
-pub use step::{approach_speed, stability_limit, step_budget, time_step};
+pub use step::{approach_speed, checked_step_budget, stability_limit, step_budget, time_step};
 use verlet::run_verlet;
 pub use wall::simulate_wall;
 
@@ -152,24 +152,15 @@ pub fn simulate_wave(
     let hoop = resolve_hoop(spec, bat)?;
     let dt = time_step(spec, bat)?;
     // The run lasts at least the re-contact watch after the ball has left.
-    let budget = step_budget(spec);
-    let least = (COAST_TIME / dt).ceil();
-    if least > budget as f64 {
-        return Err(ModelError::StepBudget {
-            steps: least,
-            dt,
-            budget,
-            cause: "numerics.max_steps",
-            provable: true,
-        });
-    }
+    let budget = checked_step_budget(spec, dt, "numerics.max_steps")?;
     let (k, a) = bat.beam.interpolation(spec.impact.z);
     let frame_velocity = bat
         .beam
         .grip_z
         .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
+    let law = ContactLaw::new(&spec.ball.law, approach);
     let collision = Collision {
-        law: ContactLaw::new(&spec.ball.law, approach),
+        law,
         ball_mass: spec.ball.mass,
         ball_speed: spec.ball.speed - frame_velocity,
         omega: spec.swing.omega,
@@ -180,13 +171,7 @@ pub fn simulate_wave(
         lever: spec.impact.z - bat.z_cm,
         dt,
         budget,
-        mode_cutoff: MODE_CUTOFF_FACTOR
-            * contact_omega(
-                spec,
-                hoop,
-                &ContactLaw::new(&spec.ball.law, approach),
-                approach,
-            ),
+        mode_cutoff: MODE_CUTOFF_FACTOR * contact_omega(spec, hoop, &law, approach),
     };
     let mut recorder = history.map(Recorder::new);
     let mut contact = Contact::started();

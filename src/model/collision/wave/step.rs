@@ -4,7 +4,8 @@
 use super::hoop::resolve_hoop;
 use super::hoop::Hoop;
 use super::{
-    DEFAULT_MAX_STEPS, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION, VERLET_STEP_FRACTION,
+    COAST_TIME, DEFAULT_MAX_STEPS, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION,
+    VERLET_STEP_FRACTION,
 };
 use crate::model::ball::ContactLaw;
 use crate::model::bat::PreparedBat;
@@ -86,6 +87,28 @@ pub fn time_step(spec: &CollisionSpec, bat: &PreparedBat) -> Result<f64, ModelEr
             Integrator::Verlet => VERLET_STEP_FRACTION * limit,
         }),
     }
+}
+
+/// The step budget of this collision, refused when even the shortest run at step `dt`
+/// (the re-contact watch after separation, `COAST_TIME`) needs more steps. `cause` names the
+/// field that set the step, for the message.
+pub fn checked_step_budget(
+    spec: &CollisionSpec,
+    dt: f64,
+    cause: &'static str,
+) -> Result<u64, ModelError> {
+    let budget = step_budget(spec);
+    let least = (COAST_TIME / dt).ceil();
+    if least > budget as f64 {
+        return Err(ModelError::StepBudget {
+            steps: least,
+            dt,
+            budget,
+            cause,
+            provable: true,
+        });
+    }
+    Ok(budget)
 }
 
 /// The step budget of this collision (`numerics.max_steps`, default `DEFAULT_MAX_STEPS`).

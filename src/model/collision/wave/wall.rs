@@ -8,7 +8,7 @@
 //! with the end-of-step force found implicitly (`ContactLaw::solve_implicit`).
 
 use super::contact::Contact;
-use super::{Diagnostics, COAST_TIME, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
+use super::{Diagnostics, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::{Recorder, Sample};
 use crate::model::error::{out_of_range, ModelError};
@@ -39,17 +39,7 @@ pub fn simulate_wall(
         Some(dt) => dt,
         None => MODAL_STEP_FRACTION / omega_c,
     };
-    let budget = super::step_budget(spec);
-    let least = (COAST_TIME / h).ceil();
-    if least > budget as f64 {
-        return Err(ModelError::StepBudget {
-            steps: least,
-            dt: h,
-            budget,
-            cause: "numerics.max_steps",
-            provable: true,
-        });
-    }
+    let budget = super::checked_step_budget(spec, h, "numerics.max_steps")?;
     let h2_over_6m = h * h / (6.0 * m);
     let mut recorder = history.map(Recorder::new);
     let sample = |rec: &Recorder, force: f64, s: f64, v: f64| Sample {
