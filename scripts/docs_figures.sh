@@ -6,12 +6,7 @@
 #   bash scripts/docs_figures.sh [BATSTUDY_BINARY]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=${1:-}
-if [ -z "$bin" ]; then
-  bash scripts/setup.sh >/dev/null
-  cargo build --release --quiet
-  bin=target/release/batstudy
-fi
+source scripts/release_binary.sh "${1:-}"
 work=target/docs_figures
 mkdir -p "$work" docs/figures
 "$bin" run studies/param_space.yaml -o "$work/param_space.h5" --force --quiet

@@ -4,12 +4,7 @@
 #   bash scripts/validation.sh [BATSTUDY_BINARY]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=${1:-}
-if [ -z "$bin" ]; then
-  bash scripts/setup.sh >/dev/null
-  cargo build --release --quiet
-  bin=target/release/batstudy
-fi
+source scripts/release_binary.sh "${1:-}"
 out=target/validation
 mkdir -p "$out"
 for s in certification wall game; do
