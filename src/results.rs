@@ -34,7 +34,10 @@ pub struct Coord {
     pub path: String,
     /// Unit string (UDUNITS style: `m`, `rad/s`, `kg/m^3`, `1` for none, `` for labels).
     pub units: String,
+    /// Short, for a plot's axis label.
     pub long_name: String,
+    /// The full sentence.
+    pub description: String,
     pub values: CoordValues,
 }
 
@@ -146,7 +149,8 @@ mod tests {
                     name: "bat_material_density".into(),
                     path: "bat.material.density".into(),
                     units: "kg/m^3".into(),
-                    long_name: "bat wood density".into(),
+                    long_name: "bat density".into(),
+                    description: "bat wood density".into(),
                     values: CoordValues::Numbers(density),
                 }],
             }],

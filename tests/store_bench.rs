@@ -15,6 +15,7 @@ fn dim(name: &str, n: usize) -> Dim {
             path: name.replace('_', "."),
             units: "1".into(),
             long_name: name.into(),
+            description: name.into(),
             values: CoordValues::Numbers((0..n).map(|k| 0.5 + k as f64 * 1e-3).collect()),
         }],
     }

@@ -28,7 +28,8 @@ fn coord(name: &str, path: &str, units: &str, values: CoordValues) -> Coord {
         name: name.into(),
         path: path.into(),
         units: units.into(),
-        long_name: format!("{path} (study parameter)"),
+        long_name: path.into(),
+        description: format!("{path} (study parameter)"),
         values,
     }
 }

@@ -51,19 +51,22 @@ pub(super) fn jobs_or_all(jobs: Option<usize>, file: &Path) -> Result<usize, Stu
 }
 
 /// Take the output's lock (`OUT.h5.lock`) before anything of it is touched: a second
-/// process on the same output is refused (exit 2) and changes nothing.
-pub(super) fn lock_output(output: &Path) -> Result<store::lock::OutputLock, i32> {
+/// process on the same output is refused (exit 2) and changes nothing. On failure: the exit
+/// code and the message to show.
+pub(super) fn lock_output(output: &Path) -> Result<store::lock::OutputLock, (i32, String)> {
     if let Some(dir) = output.parent().filter(|d| !d.as_os_str().is_empty()) {
         if let Err(e) = std::fs::create_dir_all(dir) {
-            eprintln!("error: cannot create {}: {e}", dir.display());
-            return Err(EXIT_RUN_FAILED);
+            return Err((
+                EXIT_RUN_FAILED,
+                format!("error: cannot create {}: {e}", dir.display()),
+            ));
         }
     }
     store::lock::OutputLock::acquire(output).map_err(|e| {
-        eprintln!("error: {e}");
-        match e {
+        let code = match e {
             store::lock::LockError::Held { .. } => EXIT_BAD_INPUT,
             store::lock::LockError::Io { .. } => EXIT_RUN_FAILED,
-        }
+        };
+        (code, format!("error: {e}"))
     })
 }

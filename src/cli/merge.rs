@@ -92,7 +92,10 @@ pub(super) fn cmd_merge(a: &MergeArgs) -> i32 {
     }
     let _lock = match lock_output(&a.output) {
         Ok(l) => l,
-        Err(code) => return code,
+        Err((code, message)) => {
+            eprintln!("{message}");
+            return code;
+        }
     };
     if let Err((msg, allowed)) = check_output(&a.output, existing) {
         return bad(format!("--output: {msg} (allowed: {allowed})"));

@@ -22,7 +22,9 @@ pub mod validate;
 
 pub use merge::MergeArgs;
 pub use plan::PlanArgs;
-pub use run::{exit_code, run_with, shard_output, RunArgs, RunSettings};
+pub use run::{
+    exit_code, run_study, run_with, shard_output, FinishedRun, RunArgs, RunFailure, RunSettings,
+};
 pub use slurm::SlurmArgs;
 
 pub const EXIT_OK: i32 = 0;
@@ -81,7 +83,17 @@ pub enum Command {
 
 /// Parse the process's arguments and run; returns the exit code.
 pub fn main_exit_code() -> i32 {
-    let cli = match Cli::try_parse() {
+    main_exit_code_from(std::env::args_os())
+}
+
+/// Parse `args` (the program name first) and run; returns the exit code. The Python
+/// package's `batstudy` command calls this with its own argv.
+pub fn main_exit_code_from<I, T>(args: I) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
             let _ = e.print();

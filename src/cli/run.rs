@@ -123,27 +123,6 @@ pub fn shard_output(study_output: &Path, shard: Shard) -> PathBuf {
 }
 
 pub(super) fn cmd_run(a: &RunArgs) -> i32 {
-    let settings = match RunSettings::from_args(a) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("{e}");
-            return EXIT_BAD_INPUT;
-        }
-    };
-    let _lock = match lock_output(&settings.output) {
-        Ok(l) => l,
-        Err(code) => return code,
-    };
-    // Checked again under the lock: another run may have finished the file meanwhile.
-    if let Err(e) = check_output_of(
-        &settings.study,
-        &settings.output,
-        a.output.is_some(),
-        settings.existing,
-    ) {
-        eprintln!("{e}");
-        return EXIT_BAD_INPUT;
-    }
     let stop = Arc::new(AtomicBool::new(false));
     {
         let stop = Arc::clone(&stop);
@@ -155,6 +134,73 @@ pub(super) fn cmd_run(a: &RunArgs) -> i32 {
             eprintln!("\ninterrupt: finishing the points in flight…");
         });
     }
+    match run_study(a, &stop, None) {
+        Err(f) => {
+            eprintln!("{}", f.message);
+            f.code
+        }
+        Ok(done) => {
+            if !a.quiet {
+                let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());
+                eprint!("{}", done.report_text(&program));
+            }
+            exit_code(&done.report)
+        }
+    }
+}
+
+/// Why a run did not happen or broke off: the exit code and the message (what `batstudy
+/// run` prints on stderr).
+#[derive(Debug, Clone)]
+pub struct RunFailure {
+    pub code: i32,
+    pub message: String,
+}
+
+impl RunFailure {
+    fn new(code: i32, message: impl Into<String>) -> Self {
+        RunFailure {
+            code,
+            message: message.into(),
+        }
+    }
+}
+
+/// A run that went through (some points may have failed, or it was interrupted).
+#[derive(Debug)]
+pub struct FinishedRun {
+    pub settings: RunSettings,
+    pub report: RunReport,
+    pub elapsed: std::time::Duration,
+}
+
+impl FinishedRun {
+    /// The summary `batstudy run` prints; `program` starts the resume command it suggests.
+    pub fn report_text(&self, program: &str) -> String {
+        report_text(&self.settings, &self.report, self.elapsed, program)
+    }
+}
+
+/// `batstudy run` without the terminal: validate `a`, take the output's lock, run with
+/// `stop` as the interrupt flag (set it to stop early, as Ctrl-C does) and count finished
+/// points into `counter`. Prints nothing; the caller shows the failure or report.
+pub fn run_study(
+    a: &RunArgs,
+    stop: &AtomicBool,
+    counter: Option<Arc<crate::run::PointCounter>>,
+) -> Result<FinishedRun, RunFailure> {
+    let mut settings =
+        RunSettings::from_args(a).map_err(|e| RunFailure::new(EXIT_BAD_INPUT, e.to_string()))?;
+    settings.options.counter = counter;
+    let _lock = lock_output(&settings.output).map_err(|(code, m)| RunFailure::new(code, m))?;
+    // Checked again under the lock: another run may have finished the file meanwhile.
+    check_output_of(
+        &settings.study,
+        &settings.output,
+        a.output.is_some(),
+        settings.existing,
+    )
+    .map_err(|e| RunFailure::new(EXIT_BAD_INPUT, e.to_string()))?;
     let store_options = |existing: Existing| store::StoreOptions {
         resume: existing == Existing::Resume,
         force: existing == Existing::Overwrite,
@@ -170,7 +216,7 @@ pub(super) fn cmd_run(a: &RunArgs) -> i32 {
     };
     let output = &settings.output;
     let shape = &settings.study.plan.shape;
-    run_with(
+    let (report, elapsed) = run_with(
         &settings,
         &ModelSimulator,
         || store::begin(output, shape),
@@ -185,20 +231,25 @@ pub(super) fn cmd_run(a: &RunArgs) -> i32 {
                 .map(StoreSink::new)
                 .map_err(|e| e.to_string())
         },
-        &stop,
-    )
+        stop,
+    )?;
+    Ok(FinishedRun {
+        settings,
+        report,
+        elapsed,
+    })
 }
 
 /// The run itself, against any simulator and sink. `begin` runs while the bats are
 /// prepared (the store begins its file there); `open` then creates the sink for the output
-/// path with what `begin` made. Prints the summary; returns the exit code.
+/// path with what `begin` made. Returns the report and the time taken.
 pub fn run_with<S, K, E, B, F>(
     settings: &RunSettings,
     sim: &S,
     begin: B,
     open: F,
     stop: &AtomicBool,
-) -> i32
+) -> Result<(RunReport, std::time::Duration), RunFailure>
 where
     S: Simulator,
     K: Sink,
@@ -207,22 +258,19 @@ where
     F: FnOnce(&Path, &StudyInfo, Existing, E) -> Result<K, String>,
 {
     let plan = &settings.study.plan;
-    let pool = match crate::run::build_pool(settings.options.jobs) {
-        Ok(p) => p,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_RUN_FAILED;
-        }
-    };
+    let pool = crate::run::build_pool(settings.options.jobs)
+        .map_err(|e| RunFailure::new(EXIT_RUN_FAILED, format!("error: {e}")))?;
     if let Some(dir) = settings
         .output
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
     {
-        if let Err(e) = std::fs::create_dir_all(dir) {
-            eprintln!("error: cannot create {}: {e}", dir.display());
-            return EXIT_RUN_FAILED;
-        }
+        std::fs::create_dir_all(dir).map_err(|e| {
+            RunFailure::new(
+                EXIT_RUN_FAILED,
+                format!("error: cannot create {}: {e}", dir.display()),
+            )
+        })?;
     }
     let started = std::time::Instant::now();
     let preparing = crate::run::progress::spinner(
@@ -237,14 +285,13 @@ where
     preparing.finish_and_clear();
     let history = settings.study.history_request(bats.max_length());
     let info = settings.study.info(bats.variants.clone(), history.clone());
-    let sink = match open(&settings.output, &info, settings.existing, begun) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {}: {e}", settings.output.display());
-            return EXIT_BAD_INPUT;
-        }
-    };
-    let result = crate::run::run_plan(
+    let sink = open(&settings.output, &info, settings.existing, begun).map_err(|e| {
+        RunFailure::new(
+            EXIT_BAD_INPUT,
+            format!("error: {}: {e}", settings.output.display()),
+        )
+    })?;
+    let (report, _sink) = crate::run::run_plan(
         plan,
         sim,
         &bats,
@@ -253,19 +300,9 @@ where
         &pool,
         &settings.options,
         stop,
-    );
-    match result {
-        Err(e) => {
-            eprintln!("error: {e}");
-            EXIT_RUN_FAILED
-        }
-        Ok((report, _sink)) => {
-            if !settings.quiet {
-                print_report(settings, &report, started.elapsed());
-            }
-            exit_code(&report)
-        }
-    }
+    )
+    .map_err(|e| RunFailure::new(EXIT_RUN_FAILED, format!("error: {e}")))?;
+    Ok((report, started.elapsed()))
 }
 
 /// Exit code of a finished run.
@@ -279,8 +316,16 @@ pub fn exit_code(r: &RunReport) -> i32 {
     }
 }
 
-fn print_report(s: &RunSettings, r: &RunReport, elapsed: std::time::Duration) {
-    eprintln!(
+fn report_text(
+    s: &RunSettings,
+    r: &RunReport,
+    elapsed: std::time::Duration,
+    program: &str,
+) -> String {
+    use std::fmt::Write;
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
         "{}: {} points: {} ok, {} failed, {} already done{}; {} ({})",
         s.output.display(),
         r.total,
@@ -296,14 +341,13 @@ fn print_report(s: &RunSettings, r: &RunReport, elapsed: std::time::Duration) {
         crate::run::progress::rate_text((r.ok + r.failed) as u64, elapsed)
     );
     for (i, e) in &r.failures {
-        eprintln!("  point {i} ({}): {e}", s.study.plan.describe(*i));
+        let _ = writeln!(t, "  point {i} ({}): {e}", s.study.plan.describe(*i));
     }
     if r.failed > r.failures.len() {
-        eprintln!("  … and {} more failures", r.failed - r.failures.len());
+        let _ = writeln!(t, "  … and {} more failures", r.failed - r.failures.len());
     }
     if r.interrupted || r.aborted {
         // As this process was invoked, so that it can be pasted.
-        let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());
         let mut cmd = format!(
             "{program} run {} --resume -o {}",
             s.study.path.display(),
@@ -312,6 +356,7 @@ fn print_report(s: &RunSettings, r: &RunReport, elapsed: std::time::Duration) {
         if let Some(sh) = s.options.shard {
             cmd.push_str(&format!(" --shard {sh}"));
         }
-        eprintln!("stopped early; to finish the study run:\n  {cmd}");
+        let _ = writeln!(t, "stopped early; to finish the study run:\n  {cmd}");
     }
+    t
 }

@@ -20,6 +20,7 @@ pub mod measures;
 pub mod outcome;
 pub mod plausible;
 pub mod protocol;
+pub mod resolved;
 pub mod spec;
 
 pub use bat::{prepare_bat, PreparedBat};

@@ -33,6 +33,8 @@ pub struct RunOptions {
     pub shard: Option<Shard>,
     /// Capacity of the channel to the writer.
     pub channel_capacity: usize,
+    /// Progress for an observer outside the run (the Python API's progress bar).
+    pub counter: Option<Arc<PointCounter>>,
 }
 
 impl Default for RunOptions {
@@ -43,8 +45,17 @@ impl Default for RunOptions {
             progress: false,
             shard: None,
             channel_capacity: 256,
+            counter: None,
         }
     }
+}
+
+/// The points of a run's range, and how many are done (written, or skipped as already
+/// done): read from another thread while the run goes on.
+#[derive(Debug, Default)]
+pub struct PointCounter {
+    pub total: AtomicUsize,
+    pub done: AtomicUsize,
 }
 
 /// What happened.
@@ -255,6 +266,14 @@ pub fn run_plan<S: Simulator, K: Sink>(
 
     let writer_sink = &sink;
     let writer_pb = pb.clone();
+    if let Some(c) = &opts.counter {
+        c.total.store(total, Ordering::Relaxed);
+    }
+    let count_done = || {
+        if let Some(c) = &opts.counter {
+            c.done.fetch_add(1, Ordering::Relaxed);
+        }
+    };
     let fail_fast = opts.fail_fast;
     let written = std::thread::scope(|scope| {
         let writer = std::thread::Builder::new()
@@ -286,6 +305,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
                     s.write(rec)?;
                     drop(s);
                     writer_pb.inc(1);
+                    count_done();
                 }
                 // Every record is in: finish here, as soon as the last worker lets go of the
                 // channel, not after the main thread has woken and joined this one (issue 7:
@@ -308,6 +328,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
                 if skip.contains(i) {
                     skipped.fetch_add(1, Ordering::Relaxed);
                     pb.inc(1);
+                    count_done();
                     return;
                 }
                 let rec = match plan.point(i) {

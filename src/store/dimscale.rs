@@ -290,9 +290,26 @@ pub fn attr_vec<T: H5Type + Copy>(loc: &Location, name: &str, values: &[T]) -> h
         .write_raw(values)
 }
 
+/// `units` (none on text: CF has no unit for it), `long_name` (short, for plot labels) and
+/// `description` (the full sentence).
 pub fn describe(ds: &Dataset, def: &VarDef) -> hdf5::Result<()> {
-    attr_str(ds, "units", def.units)?;
-    attr_str(ds, "long_name", def.long_name)
+    describe_parts(ds, def.units, def.long_name, def.description)
+}
+
+pub fn describe_parts(
+    ds: &Dataset,
+    units: &str,
+    long_name: &str,
+    description: &str,
+) -> hdf5::Result<()> {
+    if !units.is_empty() {
+        attr_str(ds, "units", units)?;
+    }
+    attr_str(ds, "long_name", long_name)?;
+    if !description.is_empty() && description != long_name {
+        attr_str(ds, "description", description)?;
+    }
+    Ok(())
 }
 
 /// Create an empty chunked + shuffled + deflated dataset (contiguous when it cannot be chunked:

@@ -19,15 +19,25 @@ pub const IMPACT_Z: &str = "impact_z";
 #[derive(Debug, Clone, Copy)]
 pub struct VarDef {
     pub name: &'static str,
+    /// UDUNITS spelling; empty for text (then no `units` attribute is written).
     pub units: &'static str,
+    /// Short: a plot's axis label.
     pub long_name: &'static str,
+    /// The full sentence (attribute `description`).
+    pub description: &'static str,
 }
 
-const fn v(name: &'static str, units: &'static str, long_name: &'static str) -> VarDef {
+const fn v(
+    name: &'static str,
+    units: &'static str,
+    long_name: &'static str,
+    description: &'static str,
+) -> VarDef {
     VarDef {
         name,
         units,
         long_name,
+        description,
     }
 }
 
@@ -39,72 +49,148 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
     v(
         "exit_speed",
         "m/s",
+        "exit speed",
         "ball exit speed, bat-CM frame, positive toward the pitcher",
     ),
     v(
         "exit_speed_lab",
         "m/s",
+        "exit speed (lab)",
         "ball exit speed, lab frame, positive toward the pitcher",
     ),
-    v("collision_efficiency", "1", "collision efficiency e_A"),
+    v(
+        "collision_efficiency",
+        "1",
+        "e_A",
+        "collision efficiency e_A",
+    ),
     v(
         "approach_speed",
         "m/s",
+        "approach speed",
         "relative approach speed at the impact point, bat-CM frame",
     ),
-    v("contact_time", "s", "contact duration"),
-    v("peak_force", "N", "peak contact force"),
-    v("max_compression", "m", "maximum ball compression"),
-    v("impulse", "N s", "impulse delivered to the ball"),
+    v(
+        "contact_time",
+        "s",
+        "contact time",
+        "contact duration",
+    ),
+    v(
+        "peak_force",
+        "N",
+        "peak force",
+        "peak contact force",
+    ),
+    v(
+        "max_compression",
+        "m",
+        "max compression",
+        "maximum ball compression",
+    ),
+    v(
+        "impulse",
+        "N s",
+        "impulse",
+        "impulse delivered to the ball",
+    ),
     v(
         "energy_initial",
         "J",
+        "initial energy",
         "kinetic energy of ball and bat before contact, bat-CM frame",
     ),
     v(
         "energy_ball_final",
         "J",
+        "ball energy after",
         "ball kinetic energy after separation, bat-CM frame",
     ),
-    v("energy_ball_loss", "J", "energy dissipated in the ball"),
+    v(
+        "energy_ball_loss",
+        "J",
+        "ball loss",
+        "energy dissipated in the ball",
+    ),
     v(
         "energy_bat_rigid",
         "J",
+        "bat rigid energy",
         "energy left in the bat's rigid motion, bat-CM frame",
     ),
-    v("energy_bat_vibration", "J", "energy left in bat vibration"),
-    v("energy_hoop", "J", "energy left in the hoop mode"),
+    v(
+        "energy_bat_vibration",
+        "J",
+        "vibration energy",
+        "energy left in bat vibration",
+    ),
+    v(
+        "energy_hoop",
+        "J",
+        "hoop energy",
+        "energy left in the hoop mode",
+    ),
     v(
         "grip_vibration_amplitude",
         "m",
+        "grip vibration",
         "largest free-vibration displacement at the grip (0.1524 m from the knob) after the ball leaves, rigid motion excluded",
     ),
     v(
         "grip_recoil_speed",
         "m/s",
+        "grip recoil",
         "change of the grip point's rigid-body velocity caused by the collision, positive along the incoming ball",
     ),
     v(
         "energy_bat_damping",
         "J",
+        "bat damping loss",
         "energy dissipated by the bat's material damping",
     ),
     v(
         "energy_grip_damping",
         "J",
+        "grip damping loss",
         "energy dissipated by the grip's damper (the hands)",
     ),
     v(
         "impulse_time_99",
         "s",
+        "99 % impulse time",
         "time from first contact to 99 % of the impulse (collision time)",
     ),
-    v("bbcor", "1", "bat-ball COR of a bat at rest (NCAA BBCOR)"),
-    v("besr", "1", "ball exit speed ratio of a bat at rest (e_A + 1/2)"),
-    v("bpf", "1", "bat performance factor: BBCOR over the ball's wall COR"),
+    v(
+        "bbcor",
+        "1",
+        "BBCOR",
+        "bat-ball COR of a bat at rest (NCAA BBCOR)",
+    ),
+    v(
+        "besr",
+        "1",
+        "BESR",
+        "ball exit speed ratio of a bat at rest (e_A + 1/2)",
+    ),
+    v(
+        "bpf",
+        "1",
+        "BPF",
+        "bat performance factor: BBCOR over the ball's wall COR",
+    ),
     // not `hoop_frequency`/`hoop_mass`: those name the swept parameters' coordinates
-    v("hoop_mode_frequency", "Hz", "hoop-mode frequency the collision used"),
-    v("hoop_mode_mass", "kg", "hoop-mode mass the collision used"),
+    v(
+        "hoop_mode_frequency",
+        "Hz",
+        "hoop frequency",
+        "hoop-mode frequency the collision used",
+    ),
+    v(
+        "hoop_mode_mass",
+        "kg",
+        "hoop mass",
+        "hoop-mode mass the collision used",
+    ),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
@@ -177,17 +263,25 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
 pub const RECONTACT: VarDef = v(
     "recontact",
     "1",
+    "recontact",
     "ball came back into contact after separating (1 yes, 0 no, -1 not available)",
 );
 pub const STATUS: VarDef = v(
     "status",
     "1",
+    "status",
     "point status (0 ok, 1 failed, -1 not computed)",
 );
-pub const POINT_ID: VarDef = v("point_id", "1", "stable point id (0 = not computed)");
+pub const POINT_ID: VarDef = v(
+    "point_id",
+    "1",
+    "point id",
+    "stable point id (0 = not computed)",
+);
 pub const BAT_INDEX: VarDef = v(
     "bat_index",
     "1",
+    "bat index",
     "index of the point's bat in group bat (-1 = not computed)",
 );
 
@@ -199,56 +293,76 @@ pub const ERR_DIM: &str = "error";
 pub const ERR_FLAT_INDEX: VarDef = v(
     "flat_index",
     "1",
+    "flat index",
     "row-major flat index of the failed point in group summary",
 );
-pub const ERR_POINT_ID: VarDef = v("point_id", "1", "stable point id of the failed point");
-pub const ERR_MESSAGE: VarDef = v("message", "", "error message of the failed point");
+pub const ERR_POINT_ID: VarDef = v(
+    "point_id",
+    "1",
+    "point id",
+    "stable point id of the failed point",
+);
+pub const ERR_MESSAGE: VarDef = v("message", "", "error", "error message of the failed point");
 
 pub const SWEET_POSITION: VarDef = v(
     "position",
     "m",
+    "sweet spot",
     "sweet spot: impact position of maximum exit speed, from the knob (parabola-refined)",
 );
 pub const SWEET_EXIT_SPEED: VarDef = v(
     "exit_speed",
     "m/s",
+    "sweet-spot exit speed",
     "maximum exit speed over impact_z, bat-CM frame (parabola-refined)",
 );
 pub const SWEET_WIDTH: VarDef = v(
     "width",
     "m",
+    "sweet-spot width",
     "length of the impact_z range around the maximum where exit_speed >= max - 1 m/s",
 );
 
 pub const SWEET_MIN_VIBRATION_POSITION: VarDef = v(
     "min_vibration_position",
     "m",
+    "least-vibration z",
     "impact position minimising grip_vibration_amplitude, from the knob (parabola-refined)",
 );
 pub const SWEET_MIN_VIBRATION_AMPLITUDE: VarDef = v(
     "min_vibration_amplitude",
     "m",
+    "least grip vibration",
     "minimum of grip_vibration_amplitude over impact_z (parabola-refined)",
 );
 pub const SWEET_MIN_VIBRATION_ENERGY_POSITION: VarDef = v(
     "min_vibration_energy_position",
     "m",
+    "least-vibration-energy z",
     "impact position minimising energy_bat_vibration, from the knob (parabola-refined)",
 );
+/// Number of f64 `/sweet_spot` variables (before [`SWEET_AT_EDGE`]).
+pub const N_SWEET_FLOATS: usize = 6;
+pub const SWEET_AT_EDGE: VarDef = v(
+    "position_at_edge",
+    "1",
+    "sweet spot at edge",
+    "1 if the maximum exit speed is at the first or last sampled impact_z (the true sweet spot may lie outside the sampled range; position is then only the range's end), 0 if inside, -1 no curve",
+);
 
-pub const TIME: VarDef = v("time", "s", "time since first contact");
-pub const HIST_Z: VarDef = v("z", "m", "position along the bat from the knob");
+pub const TIME: VarDef = v("time", "s", "time", "time since first contact");
+pub const HIST_Z: VarDef = v("z", "m", "z", "position along the bat from the knob");
 
 /// The history variables: public name, units, long name, the field that requests it,
 /// whether it has a `z` dim.
 pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
     (
-        v("force", "N", "contact force between ball and bat"),
+        v("force", "N", "force", "contact force between ball and bat"),
         HistoryField::Force,
         false,
     ),
     (
-        v("compression", "m", "ball compression"),
+        v("compression", "m", "compression", "ball compression"),
         HistoryField::Compression,
         false,
     ),
@@ -256,13 +370,19 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
         v(
             "ball_velocity",
             "m/s",
+            "ball velocity",
             "ball velocity, positive toward the bat, bat-CM frame",
         ),
         HistoryField::BallVelocity,
         false,
     ),
     (
-        v("displacement", "m", "bat transverse displacement"),
+        v(
+            "displacement",
+            "m",
+            "bat displacement",
+            "bat transverse displacement",
+        ),
         HistoryField::Displacement,
         true,
     ),
@@ -270,6 +390,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
         v(
             "rigid_translation",
             "m",
+            "rigid translation",
             "rigid translation of the bat's centre of mass",
         ),
         HistoryField::RigidMotion,
@@ -279,6 +400,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
         v(
             "rigid_rotation",
             "rad",
+            "rigid rotation",
             "rigid rotation of the bat about its centre of mass",
         ),
         HistoryField::RigidMotion,
@@ -288,6 +410,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
         v(
             "hoop_displacement",
             "m",
+            "hoop displacement",
             "hoop mass displacement relative to the impact point",
         ),
         HistoryField::HoopDisplacement,
@@ -321,85 +444,124 @@ pub fn history_array_mut(h: &mut History, k: usize) -> &mut Vec<f64> {
     }
 }
 
-pub const BAT_DIM: VarDef = v("bat", "", "bat variant label");
-pub const MODE_DIM: VarDef = v("mode", "1", "flexible free-free mode number, lowest first");
-pub const NODE_DIM: VarDef = v("node", "1", "node number within a mode");
-pub const PROFILE_DIM: VarDef = v("profile_point", "1", "profile sample number");
-pub const BAT_MASS: VarDef = v("mass", "kg", "bat mass");
-pub const BAT_Z_CM: VarDef = v("z_cm", "m", "centre of mass, from the knob");
+pub const BAT_DIM: VarDef = v("bat", "", "bat", "bat variant label");
+pub const MODE_DIM: VarDef = v(
+    "mode",
+    "1",
+    "mode",
+    "flexible free-free mode number, lowest first",
+);
+pub const NODE_DIM: VarDef = v("node", "1", "node", "node number within a mode");
+pub const PROFILE_DIM: VarDef = v(
+    "profile_point",
+    "1",
+    "profile point",
+    "profile sample number",
+);
+pub const BAT_MASS: VarDef = v("mass", "kg", "bat mass", "bat mass");
+pub const BAT_Z_CM: VarDef = v("z_cm", "m", "CM z", "centre of mass, from the knob");
 pub const BAT_MOI: VarDef = v(
     "moment_of_inertia",
     "kg m2",
+    "MOI (CM)",
     "moment of inertia about the centre of mass",
 );
 pub const BAT_MOI6: VarDef = v(
     "moment_of_inertia_knob6",
     "kg m2",
+    "MOI (6 in)",
     "moment of inertia about the point 0.1524 m (6 in) from the knob",
 );
-pub const BAT_LENGTH: VarDef = v("length", "m", "bat length");
-pub const BAT_MODE_FREQ: VarDef = v("mode_frequency", "Hz", "free-free flexible mode frequency");
+pub const BAT_LENGTH: VarDef = v("length", "m", "bat length", "bat length");
+pub const BAT_MODE_FREQ: VarDef = v(
+    "mode_frequency",
+    "Hz",
+    "mode frequency",
+    "free-free flexible mode frequency",
+);
 pub const BAT_MODE_NODES: VarDef = v(
     "mode_nodes",
     "m",
+    "node z",
     "node positions of the mode, from the knob",
 );
 pub const BAT_PIVOT: VarDef = v(
     "pivot_position",
     "m",
+    "pivot z",
     "pivot (hands) position for centre of percussion and BBCOR, from the knob",
 );
 pub const BAT_COP: VarDef = v(
     "centre_of_percussion",
     "m",
+    "COP z",
     "centre of percussion for the pivot at pivot_position, from the knob (rigid bat)",
 );
 pub const BAT_NODE1: VarDef = v(
     "node1_barrel",
     "m",
+    "mode-1 node z",
     "barrel-side node of free-free mode 1, from the knob",
 );
 pub const BAT_NODE2: VarDef = v(
     "node2_barrel",
     "m",
+    "mode-2 node z",
     "barrel-side node of free-free mode 2, from the knob",
 );
 pub const BAT_BBCOR_SPEED: VarDef = v(
     "bbcor_ball_speed",
     "m/s",
+    "BBCOR ball speed",
     "ball speed of the BBCOR scan (136 mph, bat at rest)",
 );
 pub const BAT_BBCOR_MAX: VarDef = v(
     "bbcor_max",
     "1",
+    "max BBCOR",
     "maximum bat-ball coefficient of restitution along the barrel (wave model, parabola-refined)",
 );
 pub const BAT_BBCOR_MAX_POS: VarDef = v(
     "bbcor_max_position",
     "m",
+    "max-BBCOR z",
     "impact position of maximum BBCOR, from the knob",
 );
-pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR scan point number");
+pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR point", "BBCOR scan point number");
 pub const BAT_BBCOR_Z: VarDef = v(
     "bbcor_z",
     "m",
+    "BBCOR z",
     "impact position of the BBCOR scan, from the knob",
 );
 pub const BAT_BBCOR: VarDef = v(
     "bbcor",
     "1",
+    "BBCOR",
     "bat-ball coefficient of restitution (NCAA/ASTM F2219 definition, wave model, free bat)",
 );
-pub const BAT_PROFILE_Z: VarDef = v("profile_z", "m", "profile sample position, from the knob");
-pub const BAT_OUTER: VarDef = v("outer_radius", "m", "outer radius of the bat");
+pub const BAT_PROFILE_Z: VarDef = v(
+    "profile_z",
+    "m",
+    "profile z",
+    "profile sample position, from the knob",
+);
+pub const BAT_OUTER: VarDef = v(
+    "outer_radius",
+    "m",
+    "outer radius",
+    "outer radius of the bat",
+);
 pub const BAT_INNER: VarDef = v(
     "inner_radius",
     "m",
+    "inner radius",
     "inner radius of the bat (0 where solid)",
 );
 pub const BAT_SPEC: VarDef = v(
     "spec_json",
     "",
+    "bat spec",
     "the bat's resolved parameters as canonical JSON",
 );
 

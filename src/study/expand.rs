@@ -364,9 +364,22 @@ pub(super) fn build_plan(
         let next = plan.bats.len() as u32;
         let idx = *by_key.entry(key.clone()).or_insert_with(|| {
             let mut label = format!("{:?}", spec.bat.preset).to_lowercase();
+            // a profile of the user's own is part of what the bat is
+            if spec.bat.profile.is_some() {
+                match super::paths::get_path(&plan.value_at(&m), "bat.profile.csv") {
+                    Some(serde_yaml_ng::Value::String(f)) => {
+                        label.push_str(&format!(", profile {f}"));
+                    }
+                    _ => label.push_str(", custom profile"),
+                }
+            }
             for &d in &plan.bat_dims {
                 for (p, vals) in &plan.dims[d].params {
-                    if is_bat_path(p) && !super::plan::is_unset(&vals[m[d]]) {
+                    // (a profile is named above)
+                    if is_bat_path(p)
+                        && !p.starts_with("bat.profile")
+                        && !super::plan::is_unset(&vals[m[d]])
+                    {
                         label.push_str(&format!(", {p}={}", value_text(&vals[m[d]])));
                     }
                 }
@@ -382,6 +395,7 @@ pub(super) fn build_plan(
         bat_of_combo.push(idx);
     }
     plan.bat_of_combo = bat_of_combo;
+    super::coords::complete_coords(&mut plan);
     // Small plans: every point (and the exact number of histories they record).
     let wants_history = file.history.as_ref().is_some_and(|h| !h.fields.is_empty());
     if n <= FULL_CHECK_LIMIT {

@@ -7,6 +7,7 @@
 #![allow(clippy::result_large_err)]
 
 pub mod checks;
+pub mod coords;
 pub mod error;
 mod expand;
 mod history_only;

@@ -135,53 +135,102 @@ pub fn coord_name(path: &str) -> String {
     path.replace('.', "_")
 }
 
-/// Units (UDUNITS style; `1` dimensionless, empty for labels) and a long name per path.
-pub fn units(path: &str) -> (&'static str, String) {
-    let (u, l) = match path {
-        "impact.z" => ("m", "impact position from the knob"),
+/// What a coordinate of a parameter path says about itself.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathMeta {
+    /// UDUNITS style; `1` dimensionless, empty for text.
+    pub units: &'static str,
+    /// Short, for a plot's axis label.
+    pub long_name: String,
+    /// The full sentence.
+    pub description: String,
+}
+
+/// Units, a short long name and a description per path (unknown paths: the path itself).
+pub fn meta(path: &str) -> PathMeta {
+    let (u, short, long) = match path {
+        "impact.z" => ("m", "impact z", "impact position from the knob"),
         "swing.omega" => (
             "rad/s",
+            "swing ω",
             "initial angular velocity of the bat (negative: toward the ball)",
         ),
-        "swing.cm_speed" => ("m/s", "lab-frame speed of the bat's centre of mass"),
-        "bat.material.density" => ("kg/m^3", "bat wall density"),
-        "bat.material.youngs_modulus" => ("Pa", "bat Young's modulus"),
-        "bat.length" => ("m", "bat length"),
-        "bat.shell.thickness" => ("m", "bat shell wall thickness"),
-        "bat.shell.from" => ("m", "start of the hollow part, from the knob"),
-        "bat.fill.density" => ("kg/m^3", "density of the bat's filling"),
-        "bat.handle.radius_scale" => ("1", "handle radius multiplier"),
-        "bat.handle.end" => ("m", "end of the handle from the knob"),
-        "bat.handle.blend" => ("m", "length of the handle blend"),
-        "bat.preset" => ("", "built-in bat"),
-        "bat.ends.knob" => ("", "knob end condition"),
-        "bat.ends.barrel" => ("", "barrel end condition"),
-        "bat.profile.csv" => ("", "bat profile file"),
-        "ball.mass" => ("kg", "ball mass"),
-        "ball.speed" => ("m/s", "ball speed toward the bat (bat CM frame)"),
-        "ball.law.kind" => ("", "ball force law"),
-        "ball.law.stiffness" => ("N/m", "ball loading stiffness"),
-        "ball.law.cor" => ("1", "ball coefficient of restitution"),
-        "ball.law.k1" => ("N m^-alpha", "ball power-law loading coefficient"),
-        "ball.law.alpha" => ("1", "ball power-law loading exponent"),
-        "ball.law.reference_speed" => ("m/s", "speed at which the ball's COR is ball.law.cor"),
-        "ball.law.cor_slope" => ("s/m", "change of the ball's COR per m/s of impact speed"),
-        "ball.law.loading" => ("", "loading branch of the speed-dependent ball"),
-        "numerics.max_steps" => ("1", "step budget of one collision"),
-        "hoop.frequency" => ("Hz", "hoop-mode frequency"),
-        "hoop.mass" => ("kg", "hoop-mode effective mass"),
-        "numerics.segments" => ("1", "number of beam segments"),
-        "numerics.dt" => ("s", "time step"),
-        "numerics.integrator" => ("", "time integrator"),
-        "model" => ("", "collision model"),
-        _ => ("", ""),
+        "swing.cm_speed" => (
+            "m/s",
+            "bat CM speed",
+            "lab-frame speed of the bat's centre of mass",
+        ),
+        "bat.material.density" => ("kg/m^3", "bat density", "bat wall density"),
+        "bat.material.youngs_modulus" => ("Pa", "bat Y", "bat Young's modulus"),
+        "bat.material.poisson_ratio" => ("1", "bat ν", "bat Poisson's ratio"),
+        "bat.material.shear_modulus" => ("Pa", "bat G", "bat shear modulus"),
+        "bat.material.quality_factor" => ("1", "bat Q", "bat modal quality factor"),
+        "bat.length" => ("m", "bat length", "bat length"),
+        "bat.shell.thickness" => ("m", "shell", "bat shell wall thickness"),
+        "bat.shell.from" => ("m", "shell from", "start of the hollow part, from the knob"),
+        "bat.fill.density" => ("kg/m^3", "fill density", "density of the bat's filling"),
+        "bat.handle.radius_scale" => ("1", "handle scale", "handle radius multiplier"),
+        "bat.handle.end" => ("m", "handle end", "end of the handle from the knob"),
+        "bat.handle.blend" => ("m", "handle blend", "length of the handle blend"),
+        "bat.preset" => ("", "bat", "built-in bat"),
+        "bat.ends.knob" => ("", "knob end", "knob end condition"),
+        "bat.ends.barrel" => ("", "barrel end", "barrel end condition"),
+        "bat.profile.csv" => ("", "profile", "bat profile file"),
+        "bat.grip.kind" => ("", "grip", "kind of grip (the hands)"),
+        "bat.grip.z" => ("m", "grip z", "grip position from the knob"),
+        "bat.grip.stiffness" => ("N/m", "grip k", "grip spring stiffness"),
+        "bat.grip.damping" => ("N s/m", "grip c", "grip damping"),
+        "ball.mass" => ("kg", "ball mass", "ball mass"),
+        "ball.speed" => (
+            "m/s",
+            "ball speed",
+            "ball speed toward the bat (bat CM frame)",
+        ),
+        "ball.law.kind" => ("", "ball law", "ball force law"),
+        "ball.law.stiffness" => ("N/m", "ball k", "ball loading stiffness"),
+        "ball.law.cor" => ("1", "ball COR", "ball coefficient of restitution"),
+        "ball.law.k1" => (
+            "N m^-alpha",
+            "ball k1",
+            "ball power-law loading coefficient",
+        ),
+        "ball.law.alpha" => ("1", "ball α", "ball power-law loading exponent"),
+        "ball.law.reference_speed" => (
+            "m/s",
+            "COR speed",
+            "speed at which the ball's COR is ball.law.cor",
+        ),
+        "ball.law.cor_slope" => (
+            "s/m",
+            "COR slope",
+            "change of the ball's COR per m/s of impact speed",
+        ),
+        "ball.law.loading" => (
+            "",
+            "ball loading",
+            "loading branch of the speed-dependent ball",
+        ),
+        "numerics.max_steps" => ("1", "max steps", "step budget of one collision"),
+        "hoop.frequency" => ("Hz", "hoop f", "hoop-mode frequency"),
+        "hoop.mass" => ("kg", "hoop mass", "hoop-mode effective mass"),
+        "numerics.segments" => ("1", "segments", "number of beam segments"),
+        "numerics.dt" => ("s", "dt", "time step"),
+        "numerics.integrator" => ("", "integrator", "time integrator"),
+        "model" => ("", "model", "collision model"),
+        _ => ("", "", ""),
     };
-    let long = if l.is_empty() {
-        path.to_string()
-    } else {
-        l.to_string()
+    let or_path = |t: &str| {
+        if t.is_empty() {
+            path.to_string()
+        } else {
+            t.to_string()
+        }
     };
-    (u, long)
+    PathMeta {
+        units: u,
+        long_name: or_path(short),
+        description: or_path(long),
+    }
 }
 
 /// The base tree with every defaulted field filled in (as far as the base deserializes

@@ -368,11 +368,11 @@ pub(crate) fn dim_to_shape(d: &PlanDim, base: &Value) -> Dim {
                         .collect(),
                 ),
             };
-            let (units, long_name) = super::paths::units(path);
+            let meta = super::paths::meta(path);
             let units = if matches!(values, CoordValues::Labels(_)) {
                 ""
             } else {
-                units
+                meta.units
             };
             Coord {
                 name: if matches!(d.origin, DimOrigin::Grid { .. }) {
@@ -382,7 +382,8 @@ pub(crate) fn dim_to_shape(d: &PlanDim, base: &Value) -> Dim {
                 },
                 path: path.clone(),
                 units: units.to_string(),
-                long_name,
+                long_name: meta.long_name,
+                description: meta.description,
                 values,
             }
         })

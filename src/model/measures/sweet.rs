@@ -15,6 +15,9 @@ pub struct SweetSpot {
     /// Length of the contiguous z-range around the maximum where the exit speed is within
     /// `SWEET_ZONE_DROP` of it, m. Clipped to the sampled range.
     pub width: f64,
+    /// The best sample is the first or the last one: the true maximum may lie outside the
+    /// sampled range, and `position` is then only where the range ends.
+    pub at_edge: bool,
 }
 
 /// Find the sweet spot of samples `exit_speed[i]` at increasing positions `z[i]`.
@@ -35,6 +38,7 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
     // The zone grows from the best sample (the refined peak lies next to it).
     let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
     let threshold = peak - SWEET_ZONE_DROP;
+    let at_edge = best == 0 || best + 1 == v.len();
     if v[best] < threshold {
         // On a grid coarser than the zone, every sample lies more than the drop below the
         // refined peak: interpolating between samples would put the edges outside-in (a
@@ -47,6 +51,7 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
             position,
             exit_speed: peak,
             width: (right - left).max(0.0),
+            at_edge,
         });
     }
     let crossing = |i: usize, j: usize| {
@@ -71,6 +76,7 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
         position,
         exit_speed: peak,
         width: right - left,
+        at_edge,
     })
 }
 

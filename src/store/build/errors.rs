@@ -30,7 +30,8 @@ pub(super) fn create_errors(
     let edef = VarDef {
         name: l::ERR_DIM,
         units: "1",
-        long_name: "failed point number",
+        long_name: "error",
+        description: "failed point number",
     };
     let index = e(h5u::create_growable::<i64>(&g, l::ERR_DIM))?;
     h5u::set_scale(&index, l::ERR_DIM).ctx(out, "create the errors")?;

@@ -35,7 +35,7 @@ fn write_block<T: hdf5::H5Type>(
 /// made), with the dataset's fill value (which pads an edge chunk).
 pub(super) enum Values<'a> {
     F64(Cow<'a, [f64]>, f64),
-    I8(&'a [i8], i8),
+    I8(Cow<'a, [i8]>, i8),
     I32(&'a [i32], i32),
     U64(&'a [u64], u64),
 }
@@ -212,8 +212,8 @@ pub(super) fn block_pieces<'a>(
         pieces.push(Piece::block(k, at, Values::F64(Cow::Borrowed(v), f64::NAN)));
     }
     let k = N_SUMMARY_FLOATS;
-    let recontact = Values::I8(&w.recontact[r.clone()], -1);
-    let status = Values::I8(&w.status[r.clone()], l::STATUS_NOT_COMPUTED);
+    let recontact = Values::I8(Cow::Borrowed(&w.recontact[r.clone()]), -1);
+    let status = Values::I8(Cow::Borrowed(&w.status[r.clone()]), l::STATUS_NOT_COMPUTED);
     let point_id = Values::U64(&w.point_id[r.clone()], 0);
     let bat_index = Values::I32(&w.bat_index[r], -1);
     for (j, v) in [recontact, status, point_id, bat_index]
@@ -224,7 +224,7 @@ pub(super) fn block_pieces<'a>(
     }
     if let Some((iz, _, z)) = sweet {
         let zc = &z[start[*iz]..start[*iz] + count[*iz]];
-        let res = block_sweet_spots(&fv, &count, *iz, zc);
+        let (res, at_edge) = block_sweet_spots(&fv, &count, *iz, zc);
         let (rs, rcnt, rchunk) = (
             without(&start, *iz),
             without(&count, *iz),
@@ -238,6 +238,12 @@ pub(super) fn block_pieces<'a>(
                 Values::F64(Cow::Owned(data), f64::NAN),
             ));
         }
+        let at = (&rs[..], &rcnt[..], &rchunk[..]);
+        pieces.push(Piece::block(
+            k + 4 + l::N_SWEET_FLOATS,
+            at,
+            Values::I8(Cow::Owned(at_edge), -1),
+        ));
     }
     pieces
 }

@@ -115,6 +115,12 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
                 let links = (&ssref[..], &saux[..], &att);
                 vars.push(new_var(&sg, def, (&rshape, &rchunk), f64::NAN, links, out)?);
             }
+            let links = (&ssref[..], &saux[..], &att);
+            let edge = new_var(&sg, &l::SWEET_AT_EDGE, (&rshape, &rchunk), -1i8, links, out)?;
+            attr_vec(&edge, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe at_edge")?;
+            attr_str(&edge, "flag_meanings", "no_curve inside at_edge")
+                .ctx(out, "describe at_edge")?;
+            vars.push(edge);
             let z = match dims[iz]
                 .coords
                 .iter()

@@ -12,12 +12,12 @@ pub(super) fn block_sweet_spots(
     count: &[usize],
     iz: usize,
     z: &[f64],
-) -> [Vec<f64>; 6] {
+) -> ([Vec<f64>; l::N_SWEET_FLOATS], Vec<i8>) {
     let m: usize = count.iter().product();
     let nz = count[iz];
     let stride: usize = count[iz + 1..].iter().product();
     let outer = m / nz;
-    let curve = |slot: usize| -> [f64; 6] {
+    let curve = |slot: usize| -> ([f64; 6], i8) {
         let (hi, lo) = (slot / stride, slot % stride);
         let base = hi * nz * stride + lo;
         let along = |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
@@ -34,15 +34,22 @@ pub(super) fn block_sweet_spots(
             &along(l::GRIP_VIBRATION_INDEX),
             &along(l::VIBRATION_ENERGY_INDEX),
         );
-        [
-            s.map_or(f64::NAN, |s| s.position),
-            s.map_or(f64::NAN, |s| s.exit_speed),
-            s.map_or(f64::NAN, |s| s.width),
-            v.min_vibration_position,
-            v.min_vibration_amplitude,
-            v.min_vibration_energy_position,
-        ]
+        let at_edge = s.map_or(-1, |s| s.at_edge as i8);
+        (
+            [
+                s.map_or(f64::NAN, |s| s.position),
+                s.map_or(f64::NAN, |s| s.exit_speed),
+                s.map_or(f64::NAN, |s| s.width),
+                v.min_vibration_position,
+                v.min_vibration_amplitude,
+                v.min_vibration_energy_position,
+            ],
+            at_edge,
+        )
     };
-    let rows: Vec<[f64; 6]> = (0..outer).map(curve).collect();
-    std::array::from_fn(|k| rows.iter().map(|r| r[k]).collect())
+    let rows: Vec<([f64; 6], i8)> = (0..outer).map(curve).collect();
+    (
+        std::array::from_fn(|k| rows.iter().map(|r| r.0[k]).collect()),
+        rows.iter().map(|r| r.1).collect(),
+    )
 }

@@ -2,7 +2,7 @@
 //! in a group, and empty, chunked, described variables attached to them.
 
 use crate::results::{CoordValues, Dim};
-use crate::store::dimscale::{self as h5u, attr_str, describe, Attacher};
+use crate::store::dimscale::{self as h5u, attr_str, describe, describe_parts, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::layout::{self as l, VarDef};
 use hdf5::types::VarLenUnicode;
@@ -23,14 +23,10 @@ pub(super) fn study_dims(
         let own = d.coords.iter().find(|c| c.name == d.name);
         let scale = match own {
             Some(c) => {
-                let def = VarDef {
-                    name: "",
-                    units: leak(&c.units),
-                    long_name: leak(&c.long_name),
-                };
                 let ds = coord_values(g, &d.name, &c.values, path)?;
                 h5u::set_scale(&ds, &d.name).ctx(path, "make a dimension scale")?;
-                describe(&ds, &def).ctx(path, "describe a coordinate")?;
+                describe_parts(&ds, &c.units, &c.long_name, &c.description)
+                    .ctx(path, "describe a coordinate")?;
                 attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
                 ds
             }
@@ -39,15 +35,16 @@ pub(super) fn study_dims(
                 let def = VarDef {
                     name: "",
                     units: "1",
-                    long_name: leak(&format!("index along {}", d.name)),
+                    long_name: leak(&format!("{} index", d.name)),
+                    description: leak(&format!("index along {}", d.name)),
                 };
                 h5u::scale_coord(g, &d.name, &idx, &def).ctx(path, "write an index coordinate")?
             }
         };
         for c in d.coords.iter().filter(|c| c.name != d.name) {
             let ds = coord_values(g, &c.name, &c.values, path)?;
-            attr_str(&ds, "units", &c.units).ctx(path, "describe a coordinate")?;
-            attr_str(&ds, "long_name", &c.long_name).ctx(path, "describe a coordinate")?;
+            describe_parts(&ds, &c.units, &c.long_name, &c.description)
+                .ctx(path, "describe a coordinate")?;
             attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
             att.add(&ds, &[&scale]);
             aux.push(c.name.clone());

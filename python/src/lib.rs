@@ -1,0 +1,239 @@
+//! `batstudy._native`: the Rust library behind the Python package. The Python side
+//! (`python/batstudy/`) turns these plain results into NumPy arrays, exceptions, a progress
+//! bar and xarray trees; nothing here draws or prints.
+
+use batstudy::cli::{self, RunArgs};
+use batstudy::model::outcome::Outcome;
+use batstudy::run::{self, ModelSimulator, PointCounter, Simulator};
+use batstudy::store::layout as l;
+use batstudy::study::{self, LoadOptions, DEFAULT_MAX_POINTS};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyTuple};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Run the command line with `argv` (program name first); returns its exit code. Used by
+/// the `batstudy` command the wheel installs, so it behaves as the binary does: its own
+/// Ctrl-C handling, and a closed pipe ends it quietly.
+#[pyfunction]
+fn cli_main(py: Python<'_>, argv: Vec<String>) -> i32 {
+    // SAFETY: this process is the command now; Python set SIGPIPE to "ignore" at start-up.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+    py.detach(|| cli::main_exit_code_from(argv))
+}
+
+/// Lines the wrapper study puts before the user's spec (the spec's own line numbers are
+/// restored in error messages).
+const SPEC_LINE_OFFSET: usize = 2;
+
+/// A one-point study around a spec's text (YAML or JSON), with an optional history block.
+fn spec_study(spec: &str, history: Option<&str>) -> String {
+    let mut s = String::from("name: simulate\nbase:\n");
+    for line in spec.lines() {
+        s.push_str("  ");
+        s.push_str(line);
+        s.push('\n');
+    }
+    if let Some(h) = history {
+        s.push_str("history:\n");
+        for line in h.lines() {
+            s.push_str("  ");
+            s.push_str(line);
+            s.push('\n');
+        }
+    }
+    s
+}
+
+/// Simulate one collision. `spec` is YAML (or JSON) text of a study's `base` block;
+/// `history` the text of a `history` block or None. Returns (summary dict, history dict or
+/// None); histories as (little-endian f64 bytes, shape).
+#[pyfunction]
+#[pyo3(signature = (spec, history=None))]
+fn simulate<'py>(
+    py: Python<'py>,
+    spec: &str,
+    history: Option<&str>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let text = spec_study(spec, history);
+    let computed = py.detach(|| -> Result<_, String> {
+        let loaded = study::load_str(
+            &text,
+            Path::new("spec"),
+            &LoadOptions {
+                max_points: DEFAULT_MAX_POINTS,
+            },
+        )
+        .map_err(|mut e| {
+            // positions in the user's text, not the wrapper's
+            if let Some(line) = e.line.as_mut() {
+                *line = line.saturating_sub(SPEC_LINE_OFFSET).max(1);
+            }
+            e.to_string()
+        })?;
+        let plan = &loaded.plan;
+        let pool = run::build_pool(1).map_err(|e| e.to_string())?;
+        let bats = run::prepare_bats(&ModelSimulator, plan, &pool);
+        let request = loaded.history_request(bats.max_length());
+        let point = plan.point(0).map_err(|e| e.message)?;
+        let bat = bats.handles[point.bat as usize]
+            .as_ref()
+            .map_err(|e| e.clone())?;
+        let outcome = ModelSimulator
+            .simulate(bat, &point.spec, request.as_ref())
+            .and_then(|o| run::check_finite_for(&o, point.spec.model).map(|_| o))?;
+        Ok((outcome, request, point.id, bats.variants[0].clone()))
+    });
+    let (outcome, request, id, bat) = computed.map_err(PyValueError::new_err)?;
+    let summary = summary_dict(py, &outcome)?;
+    summary.set_item("point_id", id)?;
+    let props = PyDict::new(py);
+    props.set_item("label", &bat.label)?;
+    props.set_item("mass", bat.properties.mass)?;
+    props.set_item("z_cm", bat.properties.z_cm)?;
+    props.set_item("moment_of_inertia", bat.properties.moment_of_inertia)?;
+    props.set_item("length", bat.properties.length)?;
+    props.set_item("mode_frequency", bat.properties.mode_frequency.clone())?;
+    summary.set_item("bat", props)?;
+    let hist = match (&outcome.history, &request) {
+        (Some(h), Some(req)) => {
+            let d = PyDict::new(py);
+            let n = req.n_samples;
+            let time: Vec<f64> = (0..n).map(|k| k as f64 * req.interval).collect();
+            d.set_item("time", (f64_bytes(py, &time), (n,)))?;
+            d.set_item("z", (f64_bytes(py, &req.z), (req.z.len(),)))?;
+            for (k, (def, _, with_z)) in l::HISTORY_VARS.iter().enumerate() {
+                let a = l::history_array(h, k);
+                if a.is_empty() {
+                    continue;
+                }
+                let shape: Vec<usize> = if *with_z {
+                    vec![n, req.z.len()]
+                } else {
+                    vec![n]
+                };
+                d.set_item(def.name, (f64_bytes(py, a), PyTuple::new(py, shape)?))?;
+            }
+            Some(d)
+        }
+        _ => None,
+    };
+    PyTuple::new(py, [summary.into_any(), hist.into_pyobject(py)?.into_any()])
+}
+
+fn f64_bytes<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyBytes> {
+    let mut b = Vec::with_capacity(8 * v.len());
+    for x in v {
+        b.extend_from_slice(&x.to_le_bytes());
+    }
+    PyBytes::new(py, &b)
+}
+
+/// Every summary variable of the results file's `/summary`, by its public name.
+fn summary_dict<'py>(py: Python<'py>, o: &Outcome) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (def, x) in l::SUMMARY_FLOATS.iter().zip(l::summary_floats(o)) {
+        d.set_item(def.name, x)?;
+    }
+    d.set_item(l::RECONTACT.name, o.recontact)?;
+    Ok(d)
+}
+
+/// Run a study as `batstudy run` does, with the GIL released. Calls `progress(done,
+/// total)` about ten times a second; a KeyboardInterrupt (Ctrl-C) stops the run as the
+/// CLI's first Ctrl-C does: the points in flight finish and are written, the file can be
+/// resumed. Returns (exit code, message, output path or None, report text, interrupted).
+#[pyfunction]
+#[pyo3(signature = (study, output=None, jobs=None, resume=false, force=false, progress=None))]
+fn run_study(
+    py: Python<'_>,
+    study: PathBuf,
+    output: Option<PathBuf>,
+    jobs: Option<usize>,
+    resume: bool,
+    force: bool,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<(i32, String, Option<PathBuf>, String, bool)> {
+    let args = RunArgs {
+        study,
+        output,
+        jobs,
+        resume,
+        force,
+        fail_fast: false,
+        quiet: true,
+        max_points: DEFAULT_MAX_POINTS,
+        shard: None,
+    };
+    let stop = Arc::new(AtomicBool::new(false));
+    let counter = Arc::new(PointCounter::default());
+    let handle = {
+        let (stop, counter) = (Arc::clone(&stop), Arc::clone(&counter));
+        std::thread::Builder::new()
+            .name("batstudy-run".into())
+            .spawn(move || cli::run_study(&args, &stop, Some(counter)))
+            .map_err(|e| PyValueError::new_err(format!("cannot start the run: {e}")))?
+    };
+    let mut callback_error: Option<PyErr> = None;
+    let mut interrupted = false;
+    loop {
+        let finished = py.detach(|| {
+            for _ in 0..10 {
+                if handle.is_finished() {
+                    return true;
+                }
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            handle.is_finished()
+        });
+        if let Some(cb) = &progress {
+            let (done, total) = (
+                counter.done.load(Ordering::Relaxed),
+                counter.total.load(Ordering::Relaxed),
+            );
+            if let Err(e) = cb.call1((done, total)) {
+                // a progress bar that breaks must not leave the run going on unseen
+                stop.store(true, Ordering::SeqCst);
+                callback_error.get_or_insert(e);
+            }
+        }
+        if finished {
+            break;
+        }
+        if py.check_signals().is_err() {
+            // Ctrl-C: finish the points in flight; the wrapper raises KeyboardInterrupt
+            stop.store(true, Ordering::SeqCst);
+            interrupted = true;
+        }
+    }
+    let result = handle
+        .join()
+        .map_err(|_| PyValueError::new_err("the run's thread panicked"))?;
+    if let Some(e) = callback_error {
+        return Err(e);
+    }
+    Ok(match result {
+        Err(f) => (f.code, f.message, None, String::new(), false),
+        Ok(done) => (
+            cli::exit_code(&done.report),
+            String::new(),
+            Some(done.settings.output.clone()),
+            done.report_text("batstudy"),
+            done.report.interrupted || interrupted,
+        ),
+    })
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(cli_main, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(run_study, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,87 @@
+//! The parameters a collision really uses: its spec with every field that a preset or a
+//! default fills in set to that value (`bat.material.density` of the `r161` preset is 649,
+//! not "unset"). The store labels its coordinates with these, so that a point that leaves
+//! a field to its preset still shows the number it ran with.
+
+use crate::model::ball::{DEFAULT_COR_SLOPE, DEFAULT_REFERENCE_SPEED};
+use crate::model::bat::section::BatGeometry;
+use crate::model::spec::{BallLawKind, BatPreset, CollisionSpec};
+use serde_json::{json, Value};
+
+/// The spec as a JSON tree, preset and default values filled in where the model defines
+/// them. Fields that do not apply stay as they are (`null`: a solid bat's shell).
+pub fn resolved_tree(spec: &CollisionSpec) -> Value {
+    let mut tree = serde_json::to_value(spec).unwrap_or(Value::Null);
+    if spec.bat.preset != BatPreset::Wall {
+        if let (Ok(g), Some(bat)) = (BatGeometry::resolve(&spec.bat), tree.get_mut("bat")) {
+            bat["length"] = json!(g.length);
+            let m = &mut bat["material"];
+            m["density"] = json!(g.density);
+            m["youngs_modulus"] = json!(g.youngs_modulus);
+            m["poisson_ratio"] = json!(g.poisson_ratio);
+            m["shear_modulus"] = json!(g.shear_modulus);
+            if let Some((thickness, from)) = g.shell {
+                bat["shell"] = json!({"thickness": thickness, "from": from});
+            }
+            if g.fill_density > 0.0 {
+                bat["fill"] = json!({"density": g.fill_density});
+            }
+        }
+    }
+    if spec.ball.law.kind == BallLawKind::SpeedDependent {
+        if let Some(law) = tree.pointer_mut("/ball/law") {
+            law["reference_speed"] = json!(spec
+                .ball
+                .law
+                .reference_speed
+                .unwrap_or(DEFAULT_REFERENCE_SPEED));
+            law["cor_slope"] = json!(spec.ball.law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE));
+        }
+    }
+    tree
+}
+
+/// The value at a dotted path (`bat.material.density`) of [`resolved_tree`]; `None` where
+/// the path does not exist or is `null`.
+pub fn resolved_value(tree: &Value, path: &str) -> Option<Value> {
+    let mut v = tree;
+    for key in path.split('.') {
+        v = v.get(key)?;
+    }
+    (!v.is_null()).then(|| v.clone())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::bat::section::{ALUMINUM_DENSITY, WOOD_DENSITY};
+
+    // The preset tables of model::bat::section (sources there: Nathan 2000; the paper).
+    #[test]
+    fn presets_fill_in_their_material() {
+        let mut spec = CollisionSpec::base_case(0.7);
+        let t = resolved_tree(&spec);
+        assert_eq!(
+            resolved_value(&t, "bat.material.density"),
+            Some(json!(WOOD_DENSITY))
+        );
+        assert_eq!(resolved_value(&t, "bat.shell.thickness"), None);
+        spec.bat.preset = BatPreset::Aluminum;
+        let t = resolved_tree(&spec);
+        assert_eq!(
+            resolved_value(&t, "bat.material.density"),
+            Some(json!(ALUMINUM_DENSITY))
+        );
+        assert_eq!(
+            resolved_value(&t, "bat.shell.thickness"),
+            Some(json!(0.003))
+        );
+        spec.bat.material.density = Some(2800.0);
+        let t = resolved_tree(&spec);
+        assert_eq!(
+            resolved_value(&t, "bat.material.density"),
+            Some(json!(2800.0))
+        );
+        assert_eq!(resolved_value(&t, "impact.z"), Some(json!(0.7)));
+    }
+}
