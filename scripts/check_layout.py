@@ -7,7 +7,7 @@ Prints one line per problem and exits 1 if there is any, 0 (after "layout ok") i
 none, and 2 if the file cannot be checked at all (missing, not HDF5, or h5py / xarray /
 h5netcdf not installed).
 
-What is checked (layout_version 2, as docs/layout.md describes it):
+What is checked (layout_version 3, as docs/layout.md describes it):
 
 - root attributes: every documented one is present with its type; `Conventions` is CF-1.8;
   `title` names the study; `study_sha256` is the SHA-256 of `study_yaml`; `created` is ISO 8601
@@ -18,8 +18,9 @@ What is checked (layout_version 2, as docs/layout.md describes it):
 - groups: `/summary`, `/errors` and `/bat` always; `/sweet_spot` exactly when the summary has a
   dim `impact_z`; `/history` exactly when the study stores histories (the store header says
   which) — a summary-only file has no `/history` and that is correct;
-- in every group: each variable has `units` (a UDUNITS-style spelling, `1` for dimensionless,
-  the empty string exactly for text) and a non-empty `long_name`; each dimension is a real HDF5
+- in every group: each numeric variable has `units` (a UDUNITS-style spelling, `1` for
+  dimensionless) and text has none; each has a non-empty `long_name` of at most 40
+  characters (a plot label; the sentence is in `description`); each dimension is a real HDF5
   dimension scale (CLASS, NAME = its variable's name, 1-D, the length of the axis it is
   attached to) kept in the same group (each group is self-contained); one length per dim name;
   each name in a `coordinates` attribute is a 1-D variable of the group along one of the
@@ -27,7 +28,8 @@ What is checked (layout_version 2, as docs/layout.md describes it):
 - xarray (h5netcdf engine) opens every group with named dims (no `phony_dim_*`) and a
   coordinate for every dim;
 - `/summary`: every public variable with its type and units over the same dims; grid axes
-  have coordinates with `parameter_path`, zip/points dims an integer index coordinate 0..n-1;
+  have coordinates with `parameter_path`, zip/points dims an integer index coordinate 0..n-1
+  and a text label coordinate `<dim>_label`;
   the dims multiply to `n_points`; `status` has its `flag_values`/`flag_meanings` and
   (unless --no-data) `n_done`, `n_failed`, `complete` agree with it, floats are NaN where a
   point did not succeed and `exit_speed` finite where it did, `point_id` is 0 exactly where
@@ -35,7 +37,7 @@ What is checked (layout_version 2, as docs/layout.md describes it):
 - `/errors`: dim `error` with `flat_index`, `point_id` and `message`, one row per failed
   point, each naming a failed point of `/summary`;
 - `/sweet_spot`: the summary dims without `impact_z`, with the same coordinate values, every
-  public variable; positions inside the sampled `impact_z` range, widths from 0 to its length;
+  public variable (`position_at_edge` int8); positions inside the sampled `impact_z` range, widths from 0 to its length;
 - `/history`: the summary dims plus `time` (s, from 0, increasing) and, for `displacement`,
   `z` (m); only known variables, f32 or f64, with their units;
 - `/bat`: dims `bat` (text labels), `mode` (1, 2, …), `node`, `profile_point`, `bbcor_point`,
@@ -52,7 +54,9 @@ import json
 import re
 import sys
 
-LAYOUT_VERSION = 2
+LAYOUT_VERSION = 3
+# longest `long_name` (short, for plot labels; layout 3)
+LONG_NAME_MAX = 40
 
 # ---- the public names of docs/layout.md ------------------------------------------------
 
@@ -235,19 +239,22 @@ class Checker:
             if not isinstance(ds, h5py.Dataset):
                 continue
             units = self.text(ds.attrs.get("units")) if "units" in ds.attrs else None
-            if "units" not in ds.attrs:
+            if self.is_text(ds):
+                if "units" in ds.attrs:
+                    self.bad(where, "text variable with a `units` attribute (text has none)")
+            elif "units" not in ds.attrs:
                 self.bad(where, "no `units` attribute")
             elif units is None:
                 self.bad(where, "`units` is not text")
-            elif self.is_text(ds):
-                if units != "":
-                    self.bad(where, f"text variable with units {units!r} (should be '')")
             elif not UNITS_RE.match(units):
                 self.bad(where, f"units {units!r} is not a UDUNITS spelling"
                          + (" (numbers need a unit; '1' if dimensionless)" if units == "" else ""))
             ln = self.text(ds.attrs.get("long_name")) if "long_name" in ds.attrs else None
             if not ln:
                 self.bad(where, "no (or an empty) `long_name` attribute")
+            elif len(ln) > LONG_NAME_MAX:
+                self.bad(where, f"long_name of {len(ln)} characters (at most {LONG_NAME_MAX}: "
+                                "a plot label; the sentence goes in `description`)")
             if ds.dtype.kind in "iu" and "_FillValue" in ds.attrs:
                 self.bad(where, "integer variable with a `_FillValue` attribute")
             if ds.is_scale:
@@ -365,12 +372,17 @@ class Checker:
                 if c.dtype.kind not in "iu" or not np.array_equal(c[()], np.arange(c.shape[0])):
                     self.bad(f"/summary/{d}", "coordinate without `parameter_path` that is "
                                               "not an index 0..n-1")
+                # … with a text label per entry (layout 3)
+                lab = g.get(f"{d}_label")
+                if lab is None or not self.is_text(lab) or lab.shape != c.shape:
+                    self.bad(f"/summary/{d}_label", "missing: a zip/points dim has a text "
+                                                    "label coordinate")
         aux = set()
         for name in g:
             a = g[name].attrs.get("coordinates")
             aux.update((self.text(a) or "").split() if a is not None else [])
         for c in sorted(aux):
-            if c in g and "parameter_path" not in g[c].attrs:
+            if c in g and "parameter_path" not in g[c].attrs and not c.endswith("_label"):
                 self.bad(f"/summary/{c}", "coordinate without `parameter_path`")
         n_points = int(np.prod(shape)) if shape else 1
         if "n_points" in n and n["n_points"] != n_points:
@@ -460,6 +472,7 @@ class Checker:
         rest = tuple(d for d in dims if d != "impact_z")
         for name, units in SWEET.items():
             self.want(g, dims_of, name, "float64", units, rest)
+        self.want(g, dims_of, "position_at_edge", "int8", "1", rest)
         s = f["summary"]
         for d in rest:
             if d in g and d in s and not np.array_equal(g[d][()], s[d][()]):

@@ -65,8 +65,11 @@ fn zip_and_points_dimensions() {
     assert_eq!(p.n_points(), 2 * 2 * 3);
     let zip = &p.shape().dims[1];
     let cn: Vec<_> = zip.coords.iter().map(|c| c.name.as_str()).collect();
-    assert_eq!(cn, ["hoop_frequency", "hoop_mass"]);
+    assert_eq!(cn, ["hoop_frequency", "hoop_mass", "point_label"]);
     assert_eq!(zip.coords[0].units, "Hz");
+    assert!(matches!(&zip.coords[2].values,
+        CoordValues::Labels(l) if l == &["hoop.frequency=700, hoop.mass=0.01", "hoop.frequency=1500, hoop.mass=0.02"]));
+    assert_eq!(zip.coords[2].units, "", "text has no unit");
     let pt = p.point(p.n_points() - 1).unwrap();
     let hoop = pt.spec.hoop.unwrap();
     assert_eq!((hoop.frequency, hoop.mass), (Some(1500.0), Some(0.02)));
@@ -155,4 +158,46 @@ fn ten_million_points_are_lazy() {
     let last = s.plan.point(9_999_999).unwrap();
     assert_eq!(last.spec.impact.z, 0.84);
     assert_eq!(last.spec.swing.omega, -60.0);
+}
+
+// Issue 21: a points dim shows what each entry ran with. The base case leaves the density to
+// the r161 preset (649 kg/m³, Nathan 2000) and the aluminum case to its preset (2700 kg/m³,
+// the paper); a record (`bat.grip`) becomes one coordinate per field; every entry has a label.
+#[test]
+fn points_coordinates_are_resolved_flattened_and_labelled() {
+    let s = load(
+        "name: t\nbase: {impact: {z: 0.7}}\npoints:\n  name: case\n  sets:\n    - {}\n    - {bat.material.density: 700}\n    - {bat.preset: aluminum}\n    - {bat.grip: {kind: spring, z: 0.15, stiffness: 2.0e5}}\n",
+    );
+    let d = &s.plan.shape().dims[0];
+    let coord = |n: &str| {
+        d.coords
+            .iter()
+            .find(|c| c.name == n)
+            .unwrap_or_else(|| panic!("no coordinate {n}: {:?}", d.coords))
+    };
+    assert_eq!(
+        coord("bat_material_density").values,
+        CoordValues::Numbers(vec![649.0, 700.0, 2700.0, 649.0])
+    );
+    assert_eq!(
+        coord("bat_preset").values,
+        CoordValues::Labels(vec!["r161".into(), "r161".into(), "aluminum".into(), "r161".into()])
+    );
+    match &coord("bat_grip_stiffness").values {
+        CoordValues::Numbers(k) => {
+            assert!(k[..3].iter().all(|x| x.is_nan()), "no grip: {k:?}");
+            assert_eq!(k[3], 2.0e5);
+        }
+        v => panic!("{v:?}"),
+    }
+    assert_eq!(coord("bat_grip_stiffness").units, "N/m");
+    assert_eq!(
+        coord("case_label").values,
+        CoordValues::Labels(vec![
+            "base".into(),
+            "bat.material.density=700".into(),
+            "bat.preset=aluminum".into(),
+            r#"bat.grip={"kind":"spring","z":0.15,"stiffness":200000.0}"#.into(),
+        ])
+    );
 }

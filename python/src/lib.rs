@@ -7,7 +7,7 @@ use batstudy::model::outcome::Outcome;
 use batstudy::run::{self, ModelSimulator, PointCounter, Simulator};
 use batstudy::store::layout as l;
 use batstudy::study::{self, LoadOptions, DEFAULT_MAX_POINTS};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use std::path::{Path, PathBuf};
@@ -197,9 +197,14 @@ fn run_study(
                 counter.total.load(Ordering::Relaxed),
             );
             if let Err(e) = cb.call1((done, total)) {
-                // a progress bar that breaks must not leave the run going on unseen
                 stop.store(true, Ordering::SeqCst);
-                callback_error.get_or_insert(e);
+                if e.is_instance_of::<PyKeyboardInterrupt>(py) {
+                    // Ctrl-C arrived while Python ran the progress bar
+                    interrupted = true;
+                } else {
+                    // a progress bar that breaks must not leave the run going on unseen
+                    callback_error.get_or_insert(e);
+                }
             }
         }
         if finished {

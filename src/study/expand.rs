@@ -378,6 +378,7 @@ pub(super) fn build_plan(
                     // (a profile is named above)
                     if is_bat_path(p)
                         && !p.starts_with("bat.profile")
+                        && p != "bat.preset"
                         && !super::plan::is_unset(&vals[m[d]])
                     {
                         label.push_str(&format!(", {p}={}", value_text(&vals[m[d]])));

@@ -45,7 +45,9 @@ pub(super) fn study_dims(
             let ds = coord_values(g, &c.name, &c.values, path)?;
             describe_parts(&ds, &c.units, &c.long_name, &c.description)
                 .ctx(path, "describe a coordinate")?;
-            attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
+            if !c.path.is_empty() {
+                attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
+            }
             att.add(&ds, &[&scale]);
             aux.push(c.name.clone());
         }
