@@ -181,7 +181,12 @@ fn points_coordinates_are_resolved_flattened_and_labelled() {
     );
     assert_eq!(
         coord("bat_preset").values,
-        CoordValues::Labels(vec!["r161".into(), "r161".into(), "aluminum".into(), "r161".into()])
+        CoordValues::Labels(vec![
+            "r161".into(),
+            "r161".into(),
+            "aluminum".into(),
+            "r161".into()
+        ])
     );
     match &coord("bat_grip_stiffness").values {
         CoordValues::Numbers(k) => {

@@ -409,14 +409,42 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
         };
         let (p, e, w) = (rd("position")?, rd("exit_speed")?, rd("width")?);
         let fin: Vec<usize> = (0..p.len()).filter(|&i| p[i].is_finite()).collect();
+        let edge = sg
+            .dataset(l::SWEET_AT_EDGE.name)
+            .and_then(|d| d.read_raw::<i8>())
+            .unwrap_or_default();
+        let n_edge = edge.iter().filter(|&&e| e == 1).count();
         if fin.is_empty() {
             let _ = writeln!(s, "sweet spot: none computed");
         } else if fin.len() <= 10 {
+            let rest: Vec<&(String, usize)> = header
+                .dims
+                .iter()
+                .filter(|(n, _)| n != l::IMPACT_Z)
+                .collect();
+            let labels: Vec<Vec<String>> =
+                rest.iter().map(|(n, k)| dim_labels(&g, n, *k)).collect();
             for i in fin {
+                // the curve's coordinates, last dim fastest
+                let mut r = i;
+                let mut at: Vec<String> = vec![String::new(); rest.len()];
+                for (k, (n, size)) in rest.iter().enumerate().rev() {
+                    at[k] = format!("{n}={}", labels[k][r % size]);
+                    r /= size;
+                }
                 let _ = writeln!(
                     s,
-                    "sweet spot [{i}]: z = {:.4} m, exit speed {:.3} m/s, width {:.4} m",
-                    p[i], e[i], w[i]
+                    "sweet spot{}{}: z = {:.4} m, exit speed {:.3} m/s, width {:.4} m{}",
+                    if at.is_empty() { "" } else { " at " },
+                    at.join(", "),
+                    p[i],
+                    e[i],
+                    w[i],
+                    if edge.get(i) == Some(&1) {
+                        " (at the edge of the sampled impact_z)"
+                    } else {
+                        ""
+                    }
                 );
             }
         } else {
@@ -434,8 +462,86 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
                 fin.len()
             );
         }
+        if n_edge > 0 {
+            let _ = writeln!(
+                s,
+                "  {n_edge} of them at the edge of the sampled impact_z (the maximum may lie outside; see sweet_spot/position_at_edge)"
+            );
+        }
+    }
+    if let Ok(bg) = f.group(l::GROUP_BAT) {
+        inspect_bats(&bg, &mut s);
     }
     Ok(s)
+}
+
+/// Text labels of a dim's entries: its `<dim>_label` coordinate, else its coordinate values,
+/// else the index.
+fn dim_labels(g: &hdf5::Group, dim: &str, size: usize) -> Vec<String> {
+    let text = |name: &str| -> Option<Vec<String>> {
+        let ds = g.dataset(name).ok()?;
+        if let Ok(v) = ds.read_raw::<VarLenUnicode>() {
+            return Some(v.iter().map(|x| x.as_str().to_string()).collect());
+        }
+        let v = ds.read_raw::<f64>().ok()?;
+        Some(v.iter().map(|x| format!("{x}")).collect())
+    };
+    let label = format!("{dim}{}", crate::study::coords::LABEL_SUFFIX);
+    let mut out = text(&label)
+        .map(|l| {
+            let idx = text(dim).unwrap_or_default();
+            l.iter()
+                .enumerate()
+                .map(|(i, t)| format!("{} ({t})", idx.get(i).cloned().unwrap_or_default()))
+                .collect()
+        })
+        .or_else(|| text(dim))
+        .unwrap_or_default();
+    out.resize_with(size, String::new);
+    out
+}
+
+/// One line per bat (at most 10): mass, centre of mass, swing weight, first mode, BBCOR.
+fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
+    let f64s = |n: &str| {
+        bg.dataset(n)
+            .and_then(|d| d.read_raw::<f64>())
+            .unwrap_or_default()
+    };
+    let labels: Vec<String> = bg
+        .dataset(l::BAT_DIM.name)
+        .and_then(|d| d.read_raw::<VarLenUnicode>())
+        .map(|v| v.iter().map(|x| x.as_str().to_string()).collect())
+        .unwrap_or_default();
+    let (mass, zcm, moi6, bbcor) = (
+        f64s("mass"),
+        f64s("z_cm"),
+        f64s("moment_of_inertia_knob6"),
+        f64s("bbcor_max"),
+    );
+    let modes = f64s("mode_frequency");
+    let per = if labels.is_empty() {
+        0
+    } else {
+        modes.len() / labels.len()
+    };
+    let _ = writeln!(s, "bats: {}", labels.len());
+    for (i, label) in labels.iter().enumerate().take(10) {
+        let get = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
+        let f1 = if per > 0 { modes[i * per] } else { f64::NAN };
+        let _ = writeln!(
+            s,
+            "  {label}: mass {:.3} kg, CM {:.3} m, MOI(6 in) {:.4} kg m2, mode 1 {:.0} Hz, max BBCOR {:.3}",
+            get(&mass),
+            get(&zcm),
+            get(&moi6),
+            f1,
+            get(&bbcor)
+        );
+    }
+    if labels.len() > 10 {
+        let _ = writeln!(s, "  … and {} more (group /bat)", labels.len() - 10);
+    }
 }
 
 #[cfg(test)]

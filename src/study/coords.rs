@@ -175,7 +175,7 @@ fn json_text(v: &Json) -> String {
 }
 
 /// A value as a label shows it: large and small numbers in exponent form (`1.4512e10`).
-fn short_text(v: &Value) -> String {
+pub(crate) fn short_text(v: &Value) -> String {
     match v.as_f64() {
         Some(x) if x != 0.0 && !(1e-3..1e5).contains(&x.abs()) => format!("{x:e}"),
         Some(x) if v.is_f64() => format!("{x}"),

@@ -381,7 +381,8 @@ pub(super) fn build_plan(
                         && p != "bat.preset"
                         && !super::plan::is_unset(&vals[m[d]])
                     {
-                        label.push_str(&format!(", {p}={}", value_text(&vals[m[d]])));
+                        let v = super::coords::short_text(&vals[m[d]]);
+                        label.push_str(&format!(", {p}={v}"));
                     }
                 }
             }
