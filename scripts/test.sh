@@ -39,3 +39,11 @@ fi
 echo "== Python tests"
 BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
   .venv/bin/python -m pytest -q tests/python
+
+# Issue 21: the wheel, built and installed in a fresh venv, and the API tests + notebook
+# against it (BATSTUDY_WHEEL_TEST=0 skips it: ~3 min the first time, for the HDF5 build).
+if [ "${BATSTUDY_WHEEL_TEST:-1}" != 0 ]; then
+  bash scripts/test_wheel.sh
+else
+  echo "== Wheel test skipped (BATSTUDY_WHEEL_TEST=0)"
+fi
