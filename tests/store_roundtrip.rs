@@ -28,7 +28,11 @@ fn coord(name: &str, path: &str, units: &str, values: CoordValues) -> Coord {
         name: name.into(),
         path: path.into(),
         units: units.into(),
-        long_name: path.into(),
+        long_name: if path.is_empty() {
+            name.into()
+        } else {
+            path.into()
+        },
         description: format!("{path} (study parameter)"),
         values,
     }
@@ -133,6 +137,16 @@ fn zip_study() -> StudyInfo {
                 "bat.preset",
                 "",
                 CoordValues::Labels(vec!["r161".into(), "c243".into()]),
+            ),
+            // the study layer's label of a zip dim (study::coords)
+            coord(
+                "point_label",
+                "",
+                "",
+                CoordValues::Labels(vec![
+                    "ball.speed=30, bat.preset=r161".into(),
+                    "ball.speed=40, bat.preset=c243".into(),
+                ]),
             ),
         ],
     };
@@ -551,7 +565,13 @@ fn zip_dim_with_aux_coords() {
         .attr("coordinates")
         .unwrap();
     let c: hdf5::types::VarLenUnicode = c.read_scalar().unwrap();
-    assert_eq!(c.as_str(), "ball_speed bat_preset");
+    assert_eq!(c.as_str(), "ball_speed bat_preset point_label");
+    // a label has no parameter path (layout 3)
+    assert!(f
+        .dataset("summary/point_label")
+        .unwrap()
+        .attr("parameter_path")
+        .is_err());
     assert_eq!(
         f.dataset("summary/point")
             .unwrap()

@@ -199,7 +199,7 @@ def write(path, impact_z=None) -> str:
         f.attrs.update(
             Conventions="CF-1.8", title="batstudy results: synthetic", study_name="synthetic",
             study_description="synthetic stand-in for tests", study_yaml="name: synthetic\nmodel: wave\n",
-            layout_version=2, n_points=int(np.prod(shape)), n_done=int(np.prod(shape)), n_failed=0,
+            layout_version=3, n_points=int(np.prod(shape)), n_done=int(np.prod(shape)), n_failed=0,
             complete=1, shard="",
         )  # fmt: skip
         for gname in ("summary", "sweet_spot", "history"):

@@ -48,7 +48,7 @@ def test_root_attributes(files):
                   "host", "threads", "command_line", "study_yaml", "study_sha256", "layout_version"]:
             assert k in a, k
         assert a["Conventions"] == "CF-1.8"
-        assert int(a["layout_version"]) == 2
+        assert int(a["layout_version"]) == 3
         assert a["complete"] == 1
 
 
@@ -57,7 +57,9 @@ def test_every_group_opens_with_named_dims_units_long_names(files, group):
     ds = xr.open_dataset(files / "synth.h5", engine="h5netcdf", group=group)
     for name, v in ds.variables.items():
         assert not any(d.startswith("phony_dim") for d in v.dims), (group, name, v.dims)
-        assert "units" in v.attrs and "long_name" in v.attrs, (group, name)
+        # layout 3: numbers have units, text has none; every variable a short long_name
+        assert ("units" in v.attrs) == (v.dtype.kind not in "OUS"), (group, name, v.attrs)
+        assert 0 < len(v.attrs["long_name"]) <= 40, (group, name)
     for d in ds.dims:
         assert d in ds.coords, (group, d)
 
@@ -72,7 +74,8 @@ def test_summary_values_and_selection(files):
     assert curve.dims == ("impact_z",)
     assert ds.point_id.dtype == np.uint64
     assert ds.exit_speed.attrs["units"] == "m/s"
-    assert "CM frame" in ds.exit_speed.attrs["long_name"]
+    assert ds.exit_speed.attrs["long_name"] == "exit speed"
+    assert "CM frame" in ds.exit_speed.attrs["description"]
 
 
 def test_sweet_spot_and_history(files):

@@ -231,9 +231,26 @@ def test_the_batstudy_command_has_the_cli_exit_codes(tmp_path, small_study):
     assert r.returncode == 0 and json.loads(r.stdout)
 
 
-def test_the_native_module_needs_no_system_hdf5():
-    # HDF5 is linked into the module (Cargo feature `static`): no libhdf5 among its needs.
+def test_the_native_module_needs_no_system_hdf5(tmp_path, small_study):
+    # HDF5 is linked into the module (Cargo feature `static`): no libhdf5 among its needs…
     so = next(pathlib.Path(batstudy.__file__).parent.glob("_native*.so"))
     needed = subprocess.run(["readelf", "-d", str(so)], capture_output=True, text=True).stdout
     libs = [l for l in needed.splitlines() if "NEEDED" in l]
     assert libs and not [l for l in libs if "hdf5" in l.lower()], libs
+    # … and a process that runs a study and reads it back maps no HDF5 library from outside
+    # the venv (h5py and netCDF4 bring their own copies in site-packages): so a machine
+    # without libhdf5-dev runs it the same.
+    code = (
+        "import batstudy, sys\n"
+        f"t = batstudy.open(batstudy.run({str(small_study)!r}, output={str(tmp_path / 'm.h5')!r}, progress=False))\n"
+        "float(t['summary']['exit_speed'].max())\n"
+        "print(open('/proc/self/maps').read())\n"
+    )
+    maps = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    venv = pathlib.Path(sys.prefix).resolve()
+    outside = {
+        line.split()[-1]
+        for line in maps.splitlines()
+        if "hdf5" in line.split()[-1].lower() and not pathlib.Path(line.split()[-1]).resolve().is_relative_to(venv)
+    }
+    assert not outside, f"HDF5 loaded from outside the venv: {outside}"
