@@ -146,6 +146,8 @@ fn profile_csv_is_loaded_relative_to_the_study() {
         Some(batstudy::model::spec::ProfileSpec::Knots(k)) => assert_eq!(k.len(), 3),
         other => panic!("{other:?}"),
     }
+    // issue 21: the bat is not labelled as if it were the preset's own
+    assert_eq!(s.plan.bats()[0].label, "r161, profile p.csv");
 }
 
 // issue 4: memory bounded — a 10-million-point plan is lazy.
