@@ -10,7 +10,7 @@ echo "== Rust tests"
 cargo test --all-targets
 
 echo "== Study files against schemas/study.schema.json"
-.venv/bin/check-jsonschema --schemafile schemas/study.schema.json studies/*.yaml
+.venv/bin/check-jsonschema --schemafile schemas/study.schema.json studies/*.yaml examples/*.yaml
 
 echo "== Smoke study (--jobs 2)"
 mkdir -p target/smoke
