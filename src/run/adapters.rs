@@ -1,13 +1,13 @@
 //! The real implementations of the driver's two seams: the physics (`model`) as a
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
-use super::traits::{Simulator, Sink};
+use super::traits::{Encode, Simulator, Sink};
 use crate::model::measures::metrics::bat_metrics;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
 use crate::results::PointRecord;
-use crate::store::Session;
+use crate::store::{EncodedRecord, RecordEncoder, Session};
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;
@@ -54,12 +54,33 @@ impl StoreSink {
     }
 }
 
+/// The store's encoder on the workers: a point that does not fit the study is an error the
+/// writer reports.
+pub struct StoreEncoder(Option<RecordEncoder>);
+
+impl Encode for StoreEncoder {
+    type Record = Result<EncodedRecord, String>;
+    fn encode(&self, rec: PointRecord) -> Self::Record {
+        match &self.0 {
+            Some(e) => e.encode(rec).map_err(|e| e.to_string()),
+            None => Err("the results file was already finished".to_string()),
+        }
+    }
+}
+
 impl Sink for StoreSink {
+    type Encoder = StoreEncoder;
+    fn encoder(&self) -> StoreEncoder {
+        StoreEncoder(self.0.as_ref().map(Session::encoder))
+    }
     fn is_done(&self, index: usize) -> bool {
         self.0.as_ref().is_some_and(|s| s.is_done(index))
     }
-    fn write(&mut self, rec: PointRecord) -> Result<(), String> {
-        self.session()?.write(rec).map_err(|e| e.to_string())
+    fn write(&mut self, rec: Result<EncodedRecord, String>) -> Result<(), String> {
+        let rec = rec?;
+        self.session()?
+            .write_encoded(rec)
+            .map_err(|e| e.to_string())
     }
     fn idle(&mut self) -> Result<(), String> {
         self.session()?.idle().map_err(|e| e.to_string())
