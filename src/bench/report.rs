@@ -204,8 +204,12 @@ pub(super) fn print_scaling(out: &mut dyn Write, sc: &super::Scaling, wh: &super
     line(
         out,
         format!(
-            "writer headroom: the store absorbs {:.0} points/s, one worker computes {:.0}: {:.1} cores",
-            wh.writer_points_per_second, wh.worker_points_per_second, wh.headroom
+            "writer headroom: the store's writer absorbs {:.0} points/s, one worker computes and \
+             encodes {:.0} ({:.0} % of it encoding): {:.1} cores",
+            wh.writer_points_per_second,
+            wh.worker_points_per_second,
+            wh.worker_encode_share * 100.0,
+            wh.headroom
         ),
     );
 }

@@ -3,9 +3,9 @@
 //! - `scaling`: points/s of a summary-only study and of a full-history study, each through the
 //!   real driver and store, at 1, 2, 4, … threads up to every core of the machine.
 //! - `writer_headroom`: how many workers the one writer thread can keep up with on the
-//!   history study: the points/s the store alone absorbs (its records computed beforehand,
-//!   then written, journal and final file, on one thread) over the points/s one worker
-//!   computes them.
+//!   history study: the points/s the store's writer alone absorbs (records computed and
+//!   encoded beforehand, then appended to the journal and the final file built, on one
+//!   thread) over the points/s one worker computes and encodes them, as in a run.
 
 use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK};
 use super::measure::{err, median};
@@ -42,10 +42,13 @@ pub struct Scaling {
 #[derive(Debug, Clone, Serialize)]
 pub struct WriterHeadroom {
     pub points: usize,
-    /// Points/s the store absorbs on one thread (journal while running, then the file).
+    /// Points/s the store's writer absorbs on one thread (appending encoded records while
+    /// running, then the final file).
     pub writer_points_per_second: f64,
-    /// Points/s one worker computes (histories recorded).
+    /// Points/s one worker computes and encodes (histories recorded, compressed).
     pub worker_points_per_second: f64,
+    /// Of the worker's time, the share spent encoding (histories compressed).
+    pub worker_encode_share: f64,
     /// writer / worker: the number of cores the writer can keep up with.
     pub headroom: f64,
 }
@@ -120,10 +123,13 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
     let path = dir.join("writer-headroom.h5");
     let mut session =
         store::open(&path, &info, &store::StoreOptions::default()).map_err(err("open"))?;
-    // Computed and written in batches (bounded memory); each side timed on its own.
-    let (mut compute, mut write) = (0.0, 0.0);
+    let encoder = session.encoder();
+    // Computed, encoded and written in batches (bounded memory); the worker's side
+    // (simulate + encode) and the writer's (append + finish) timed on their own.
+    let (mut compute, mut encode, mut write) = (0.0, 0.0, 0.0);
     let n = study.plan.n_points();
     let mut batch: Vec<PointRecord> = Vec::with_capacity(64);
+    let mut encoded: Vec<store::EncodedRecord> = Vec::with_capacity(64);
     for start in (0..n).step_by(64) {
         let t0 = Instant::now();
         for i in start..(start + 64).min(n) {
@@ -146,18 +152,24 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
         compute += t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
         for rec in batch.drain(..) {
-            session.write(rec).map_err(err("write"))?;
+            encoded.push(encoder.encode(rec).map_err(err("encode"))?);
+        }
+        encode += t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        for rec in encoded.drain(..) {
+            session.write_encoded(rec).map_err(err("write"))?;
         }
         write += t0.elapsed().as_secs_f64();
     }
     let t0 = Instant::now();
     session.finish().map_err(err("finish"))?;
     write += t0.elapsed().as_secs_f64();
-    let (writer, worker) = (n as f64 / write, n as f64 / compute);
+    let (writer, worker) = (n as f64 / write, n as f64 / (compute + encode));
     Ok(WriterHeadroom {
         points: n,
         writer_points_per_second: writer,
         worker_points_per_second: worker,
+        worker_encode_share: encode / (compute + encode),
         headroom: writer / worker,
     })
 }
