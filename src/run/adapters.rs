@@ -2,12 +2,13 @@
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
 use super::traits::{Encode, Simulator, Sink};
-use crate::model::measures::metrics::bat_metrics;
+use crate::model::measures::metrics::bat_metrics_mapped;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
 use crate::results::PointRecord;
 use crate::store::{EncodedRecord, RecordEncoder, Session};
+use rayon::prelude::*;
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;
@@ -23,7 +24,14 @@ impl Simulator for ModelSimulator {
         let target = Target::prepare(bat, numerics).map_err(|e| e.to_string())?;
         let mut properties = target.properties();
         if let Some(prepared) = target.bat() {
-            properties.metrics = bat_metrics(prepared, bat, numerics).map_err(|e| e.to_string())?;
+            // The BBCOR scan's collisions on every core of the pool (bats are prepared in
+            // it): they were most of preparing a bat, and a one-bat study left cores idle
+            // (issue 22). Each value is computed alone: the same whatever the threads.
+            let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
+                z.par_iter().map(|&z| f(z)).collect()
+            };
+            properties.metrics = bat_metrics_mapped(prepared, bat, numerics, &parallel)
+                .map_err(|e| e.to_string())?;
         }
         Ok((properties, target))
     }
