@@ -47,7 +47,7 @@ pub use report::{
     BenchReport, Machine, ACCURACY_TARGET, CURVE_TARGET_S, EFFICIENCY_TARGET, HDF5_SHARE_TARGET,
     SPEEDUP_TARGET,
 };
-pub use scaling::{Scaling, ScalingPoint, WriterHeadroom};
+pub use scaling::{CurveProcess, Scaling, ScalingPoint, WriterHeadroom};
 pub use speed::{CurveBench, IntegratorBench, IntegratorFigures};
 pub use write_share::{bench_write_vs_null, WriteShare};
 
@@ -87,7 +87,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
 
     let scaling = scaling::bench_scaling(&sz, dir.path())?;
     let headroom = scaling::bench_writer_headroom(&sz, dir.path())?;
-    report::print_scaling(out, &scaling, &headroom);
+    let curve_process = scaling::bench_curve_process(&sz, dir.path())?;
+    report::print_scaling(out, &scaling, &headroom, curve_process.as_ref());
 
     machine.loadavg_end = report::loadavg();
     report::print_end(out, &machine);
@@ -100,6 +101,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         memory: mb,
         scaling,
         writer_headroom: headroom,
+        curve_process,
     })
 }
 

@@ -44,6 +44,9 @@ pub struct BenchReport {
     pub scaling: super::Scaling,
     /// How many cores the one writer thread keeps up with on the history study.
     pub writer_headroom: super::WriterHeadroom,
+    /// The 45-point curve as a whole `batstudy run` process (absent when the bench does not
+    /// run as the `batstudy` binary, e.g. in tests).
+    pub curve_process: Option<super::CurveProcess>,
 }
 
 pub(super) fn machine(quick: bool) -> Machine {
@@ -174,7 +177,12 @@ pub(super) fn print_curve(out: &mut dyn Write, cb: &CurveBench) {
     );
 }
 
-pub(super) fn print_scaling(out: &mut dyn Write, sc: &super::Scaling, wh: &super::WriterHeadroom) {
+pub(super) fn print_scaling(
+    out: &mut dyn Write,
+    sc: &super::Scaling,
+    wh: &super::WriterHeadroom,
+    cp: Option<&super::CurveProcess>,
+) {
     line(
         out,
         format!(
@@ -212,6 +220,22 @@ pub(super) fn print_scaling(out: &mut dyn Write, sc: &super::Scaling, wh: &super
             wh.headroom
         ),
     );
+    if let Some(cp) = cp {
+        line(
+            out,
+            format!(
+                "the {}-point curve as a `batstudy run` process: median {:.1} ms, min {:.1} ms over {} \
+                 runs (`--version` alone {:.1} ms); {:.0}× the NumPy reference's {} s",
+                cp.points,
+                cp.median_ms,
+                cp.min_ms,
+                cp.runs,
+                cp.version_median_ms,
+                cp.speedup_vs_numpy,
+                cp.numpy_reference_seconds
+            ),
+        );
+    }
 }
 
 pub(super) fn print_parallel(out: &mut dyn Write, pb: &ParallelBench) {

@@ -173,3 +173,72 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
         headroom: writer / worker,
     })
 }
+
+/// The smallest useful study, one 45-point exit-speed curve, as a whole `batstudy run`
+/// process (start, study, bat, collisions, the file, exit), against the NumPy reference.
+#[derive(Debug, Clone, Serialize)]
+pub struct CurveProcess {
+    pub points: usize,
+    pub runs: usize,
+    pub median_ms: f64,
+    pub min_ms: f64,
+    /// `batstudy --version` as a process: what starting and ending one costs.
+    pub version_median_ms: f64,
+    /// The NumPy reference's time for the same curve on one thread.
+    pub numpy_reference_seconds: f64,
+    /// numpy_reference_seconds / median.
+    pub speedup_vs_numpy: f64,
+}
+
+/// The NumPy reference's 45-point curve on one thread (issue 22).
+const NUMPY_CURVE_SECONDS: f64 = 4.1;
+
+/// [`CurveProcess`], when this process is the `batstudy` binary (not when a test runs the
+/// bench): runs it as a child on every core, alternating with `--version`.
+pub(super) fn bench_curve_process(sz: &Sizes, dir: &Path) -> Result<Option<CurveProcess>, String> {
+    let exe = std::env::current_exe().map_err(err("current_exe"))?;
+    if exe.file_stem().is_none_or(|s| s != "batstudy") {
+        return Ok(None);
+    }
+    let study = dir.join("curve-process.yaml");
+    std::fs::write(&study, curve_study_text("curve-process", 1, "")).map_err(err("write"))?;
+    let out = dir.join("curve-process.h5");
+    let time = |args: &[&std::ffi::OsStr]| -> Result<f64, String> {
+        let t0 = Instant::now();
+        let st = std::process::Command::new(&exe)
+            .args(args)
+            .stdout(std::process::Stdio::null())
+            .status()
+            .map_err(err("spawn"))?;
+        let ms = t0.elapsed().as_secs_f64() * 1e3;
+        if !st.success() {
+            return Err(format!("curve process exited with {st}"));
+        }
+        Ok(ms)
+    };
+    let run_args = [
+        "run".as_ref(),
+        study.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--force".as_ref(),
+        "--quiet".as_ref(),
+    ];
+    let runs = if sz.write_repeats > 1 { 25 } else { 3 };
+    let (mut curve, mut version) = (Vec::new(), Vec::new());
+    for _ in 0..runs {
+        curve.push(time(&run_args)?);
+        version.push(time(&["--version".as_ref()])?);
+    }
+    let min_ms = curve.iter().copied().fold(f64::INFINITY, f64::min);
+    let median_ms = median(curve);
+    Ok(Some(CurveProcess {
+        points: 45,
+        runs,
+        median_ms,
+        min_ms,
+        version_median_ms: median(version),
+        numpy_reference_seconds: NUMPY_CURVE_SECONDS,
+        speedup_vs_numpy: NUMPY_CURVE_SECONDS * 1e3 / median_ms,
+    }))
+}
