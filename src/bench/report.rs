@@ -212,12 +212,17 @@ pub(super) fn print_scaling(
     line(
         out,
         format!(
-            "writer headroom: the store's writer absorbs {:.0} points/s, one worker computes and \
-             encodes {:.0} ({:.0} % of it encoding): {:.1} cores",
+            "writer headroom: the store's writer absorbs {:.0} points/s ({:.0} while the run \
+             computes, then {:.3} s to finish {} points), one worker computes and encodes {:.0} \
+             ({:.0} % of it encoding): {:.1} cores ({:.1} while the run computes)",
             wh.writer_points_per_second,
+            wh.append_points_per_second,
+            wh.finish_seconds,
+            wh.points,
             wh.worker_points_per_second,
             wh.worker_encode_share * 100.0,
-            wh.headroom
+            wh.headroom,
+            wh.run_headroom
         ),
     );
     if let Some(cp) = cp {

@@ -45,6 +45,13 @@ pub struct WriterHeadroom {
     /// Points/s the store's writer absorbs on one thread (appending encoded records while
     /// running, then the final file).
     pub writer_points_per_second: f64,
+    /// Points/s the writer appends while the run computes (journal only, its periodic
+    /// fsyncs included): what it absorbs before the final file.
+    pub append_points_per_second: f64,
+    /// Seconds to build the final file from the journal and make it durable (fsync).
+    pub finish_seconds: f64,
+    /// append / worker: the cores the writer keeps up with while the run computes.
+    pub run_headroom: f64,
     /// Points/s one worker computes and encodes (histories recorded, compressed).
     pub worker_points_per_second: f64,
     /// Of the worker's time, the share spent encoding (histories compressed).
@@ -161,13 +168,18 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
         }
         write += t0.elapsed().as_secs_f64();
     }
+    let append = write;
     let t0 = Instant::now();
     session.finish().map_err(err("finish"))?;
-    write += t0.elapsed().as_secs_f64();
+    let finish = t0.elapsed().as_secs_f64();
+    write += finish;
     let (writer, worker) = (n as f64 / write, n as f64 / (compute + encode));
     Ok(WriterHeadroom {
         points: n,
         writer_points_per_second: writer,
+        append_points_per_second: n as f64 / append,
+        finish_seconds: finish,
+        run_headroom: n as f64 / append / worker,
         worker_points_per_second: worker,
         worker_encode_share: encode / (compute + encode),
         headroom: writer / worker,

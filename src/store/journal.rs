@@ -305,11 +305,18 @@ pub struct RecordReader {
 impl RecordReader {
     /// Open `path`, already scanned as `scan`, at its first record.
     pub fn open(path: &Path, scan: &Scan) -> Result<Self, StoreError> {
+        Self::open_with_buffer(path, scan, 1 << 20)
+    }
+
+    /// [`Self::open`] with a read buffer of `capacity` bytes: a small one reads little more
+    /// than the summaries of records with histories, which are skipped over by seeking
+    /// (a large buffer would read them anyway).
+    pub fn open_with_buffer(path: &Path, scan: &Scan, capacity: usize) -> Result<Self, StoreError> {
         let mut file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
         file.seek(SeekFrom::Start(scan.header_len))
             .map_err(|e| StoreError::io(path, "read the journal", e))?;
         Ok(RecordReader {
-            r: BufReader::with_capacity(1 << 20, file),
+            r: BufReader::with_capacity(capacity, file),
             path: path.to_path_buf(),
             pos: scan.header_len,
             end: scan.valid_len,

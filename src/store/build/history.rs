@@ -84,10 +84,11 @@ pub(super) fn write_histories(
 ) -> Result<(), StoreError> {
     let rank = info.shape.dims.len();
     // Where each point's first record is (the first record of a point wins, as in the
-    // summary): one pass over the summaries, histories skipped over.
+    // summary): one pass over the summaries, histories skipped over (a small buffer, so
+    // that they are not read either).
     let mut written = PointSet::new(info.shape.n_points());
     let mut places: Vec<(usize, RecordPlace)> = Vec::new();
-    let mut rr = RecordReader::open(journal, scan)?;
+    let mut rr = RecordReader::open_with_buffer(journal, scan, 1 << 12)?;
     while let Some(rec) = rr.next_summary()? {
         if rec.index < written.len() && written.insert(rec.index) {
             if let Some(place) = rr.history_place() {
