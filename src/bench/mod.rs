@@ -14,8 +14,10 @@
 //!   summary-only study and for one with full displacement histories (real driver + store in
 //!   a temporary directory);
 //! - `scaling`: points/s of a summary and of a full-history study at 1, 2, 4, … threads up to
-//!   every core; `writer_headroom`: the points/s the writer alone absorbs over the points/s
-//!   one worker computes (the cores the writer can keep up with);
+//!   every core; `writer_headroom`: the points/s the writer alone absorbs (appending
+//!   encoded records, then finishing the file) over the points/s one worker computes and
+//!   encodes (the cores the writer can keep up with), overall and while the run computes;
+//!   `curve_process`: the 45-point curve as a whole `batstudy run` process (issue 22);
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before each
 //!   case) for a 10-million-point summary-only plan run through the driver with the rigid
 //!   model, and for the history study above.
@@ -26,7 +28,8 @@
 //!
 //! Files: `cases` (the sizes and studies), `measure` (clocks, timing, peak memory, medians),
 //! `sinks` (a null sink and a timing one), `speed` (`integrators`, `curve`), `parallel`,
-//! `write_share` (`hdf5`), `memory`, `scaling` (`scaling`, `writer_headroom`), `report` (targets, printing, JSON). Off the run path:
+//! `write_share` (`hdf5`), `memory`, `scaling` (`scaling`, `writer_headroom`,
+//! `curve_process`), `report` (targets, printing, JSON). Off the run path:
 //! nothing in `run`, `store`, `study` or `model` uses it; the CLI's `bench` command (and
 //! `tests/bench_quick.rs`) call it.
 
