@@ -26,7 +26,12 @@ def main(argv=None) -> int:
         ax.plot(t, rates, "o-", label=label)
         ax.plot(t, [rates[0] * n for n in t], ":", color=ax.lines[-1].get_color(), lw=1)
     ax.axhline(wh["writer_points_per_second"], color="firebrick", ls="--", lw=1,
-               label=f"the writer alone (history study): {wh['writer_points_per_second']:.0f} points/s")
+               label=f"the writer alone, finish included (history study): "
+                     f"{wh['writer_points_per_second']:.0f} points/s")
+    if "append_points_per_second" in wh:
+        ax.axhline(wh["append_points_per_second"], color="firebrick", ls=":", lw=1,
+                   label=f"the writer while the run computes: "
+                         f"{wh['append_points_per_second']:.0f} points/s")
     ax.set_xlabel("threads")
     ax.set_ylabel("points/s (driver + store)")
     ax.set_xticks(t)

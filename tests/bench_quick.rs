@@ -74,6 +74,10 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
 /// A sink that only counts.
 struct Count(usize);
 impl Sink for Count {
+    type Encoder = batstudy::run::AsIs;
+    fn encoder(&self) -> batstudy::run::AsIs {
+        batstudy::run::AsIs
+    }
     fn is_done(&self, _: usize) -> bool {
         false
     }

@@ -73,6 +73,10 @@ struct MemSink {
 }
 
 impl Sink for MemSink {
+    type Encoder = batstudy::run::AsIs;
+    fn encoder(&self) -> batstudy::run::AsIs {
+        batstudy::run::AsIs
+    }
     fn is_done(&self, index: usize) -> bool {
         self.done.contains(&index)
     }

@@ -764,12 +764,14 @@ fn journal_writer_extent_equals_a_scan() {
         assert_eq!(mine.valid_len, found.valid_len);
         assert_eq!(found.dropped_bytes, 0);
     };
+    let encoder = store::RecordEncoder::new(&dir.path().join("o.h5"), &info);
+    let framed = |k| encoder.encode(record(&info, k)).unwrap().framed;
     let mut w = JournalWriter::create(&path, &header).unwrap();
     w.flush().unwrap();
     check(&w);
     // ok points with histories, a failed point with its message (index 3 fails in `outcome`)
     for k in 0..9 {
-        w.append(&record(&info, k));
+        w.append(&framed(k));
     }
     w.flush().unwrap();
     check(&w);
@@ -785,7 +787,7 @@ fn journal_writer_extent_equals_a_scan() {
     assert!(torn.dropped_bytes > 0);
     let mut w = JournalWriter::append_to(&path, &torn).unwrap();
     for k in 9..14 {
-        w.append(&record(&info, k));
+        w.append(&framed(k));
     }
     w.flush().unwrap();
     check(&w);

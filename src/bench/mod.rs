@@ -14,8 +14,10 @@
 //!   summary-only study and for one with full displacement histories (real driver + store in
 //!   a temporary directory);
 //! - `scaling`: points/s of a summary and of a full-history study at 1, 2, 4, … threads up to
-//!   every core; `writer_headroom`: the points/s the writer alone absorbs over the points/s
-//!   one worker computes (the cores the writer can keep up with);
+//!   every core; `writer_headroom`: the points/s the writer alone absorbs (appending
+//!   encoded records, then finishing the file) over the points/s one worker computes and
+//!   encodes (the cores the writer can keep up with), overall and while the run computes;
+//!   `curve_process`: the 45-point curve as a whole `batstudy run` process (issue 22);
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before each
 //!   case) for a 10-million-point summary-only plan run through the driver with the rigid
 //!   model, and for the history study above.
@@ -26,7 +28,8 @@
 //!
 //! Files: `cases` (the sizes and studies), `measure` (clocks, timing, peak memory, medians),
 //! `sinks` (a null sink and a timing one), `speed` (`integrators`, `curve`), `parallel`,
-//! `write_share` (`hdf5`), `memory`, `scaling` (`scaling`, `writer_headroom`), `report` (targets, printing, JSON). Off the run path:
+//! `write_share` (`hdf5`), `memory`, `scaling` (`scaling`, `writer_headroom`,
+//! `curve_process`), `report` (targets, printing, JSON). Off the run path:
 //! nothing in `run`, `store`, `study` or `model` uses it; the CLI's `bench` command (and
 //! `tests/bench_quick.rs`) call it.
 
@@ -47,7 +50,7 @@ pub use report::{
     BenchReport, Machine, ACCURACY_TARGET, CURVE_TARGET_S, EFFICIENCY_TARGET, HDF5_SHARE_TARGET,
     SPEEDUP_TARGET,
 };
-pub use scaling::{Scaling, ScalingPoint, WriterHeadroom};
+pub use scaling::{CurveProcess, Scaling, ScalingPoint, WriterHeadroom};
 pub use speed::{CurveBench, IntegratorBench, IntegratorFigures};
 pub use write_share::{bench_write_vs_null, WriteShare};
 
@@ -87,7 +90,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
 
     let scaling = scaling::bench_scaling(&sz, dir.path())?;
     let headroom = scaling::bench_writer_headroom(&sz, dir.path())?;
-    report::print_scaling(out, &scaling, &headroom);
+    let curve_process = scaling::bench_curve_process(&sz, dir.path())?;
+    report::print_scaling(out, &scaling, &headroom, curve_process.as_ref());
 
     machine.loadavg_end = report::loadavg();
     report::print_end(out, &machine);
@@ -100,6 +104,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         memory: mb,
         scaling,
         writer_headroom: headroom,
+        curve_process,
     })
 }
 

@@ -44,6 +44,9 @@ pub struct BenchReport {
     pub scaling: super::Scaling,
     /// How many cores the one writer thread keeps up with on the history study.
     pub writer_headroom: super::WriterHeadroom,
+    /// The 45-point curve as a whole `batstudy run` process (absent when the bench does not
+    /// run as the `batstudy` binary, e.g. in tests).
+    pub curve_process: Option<super::CurveProcess>,
 }
 
 pub(super) fn machine(quick: bool) -> Machine {
@@ -174,7 +177,12 @@ pub(super) fn print_curve(out: &mut dyn Write, cb: &CurveBench) {
     );
 }
 
-pub(super) fn print_scaling(out: &mut dyn Write, sc: &super::Scaling, wh: &super::WriterHeadroom) {
+pub(super) fn print_scaling(
+    out: &mut dyn Write,
+    sc: &super::Scaling,
+    wh: &super::WriterHeadroom,
+    cp: Option<&super::CurveProcess>,
+) {
     line(
         out,
         format!(
@@ -204,10 +212,35 @@ pub(super) fn print_scaling(out: &mut dyn Write, sc: &super::Scaling, wh: &super
     line(
         out,
         format!(
-            "writer headroom: the store absorbs {:.0} points/s, one worker computes {:.0}: {:.1} cores",
-            wh.writer_points_per_second, wh.worker_points_per_second, wh.headroom
+            "writer headroom: the store's writer absorbs {:.0} points/s ({:.0} while the run \
+             computes, then {:.3} s to finish {} points), one worker computes and encodes {:.0} \
+             ({:.0} % of it encoding): {:.1} cores ({:.1} while the run computes)",
+            wh.writer_points_per_second,
+            wh.append_points_per_second,
+            wh.finish_seconds,
+            wh.points,
+            wh.worker_points_per_second,
+            wh.worker_encode_share * 100.0,
+            wh.headroom,
+            wh.run_headroom
         ),
     );
+    if let Some(cp) = cp {
+        line(
+            out,
+            format!(
+                "the {}-point curve as a `batstudy run` process: median {:.1} ms, min {:.1} ms over {} \
+                 runs (`--version` alone {:.1} ms); {:.0}× the NumPy reference's {} s",
+                cp.points,
+                cp.median_ms,
+                cp.min_ms,
+                cp.runs,
+                cp.version_median_ms,
+                cp.speedup_vs_numpy,
+                cp.numpy_reference_seconds
+            ),
+        );
+    }
 }
 
 pub(super) fn print_parallel(out: &mut dyn Write, pb: &ParallelBench) {

@@ -3,9 +3,9 @@
 //! - `scaling`: points/s of a summary-only study and of a full-history study, each through the
 //!   real driver and store, at 1, 2, 4, … threads up to every core of the machine.
 //! - `writer_headroom`: how many workers the one writer thread can keep up with on the
-//!   history study: the points/s the store alone absorbs (its records computed beforehand,
-//!   then written, journal and final file, on one thread) over the points/s one worker
-//!   computes them.
+//!   history study: the points/s the store's writer alone absorbs (records computed and
+//!   encoded beforehand, then appended to the journal and the final file built, on one
+//!   thread) over the points/s one worker computes and encodes them, as in a run.
 
 use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK};
 use super::measure::{err, median};
@@ -42,10 +42,20 @@ pub struct Scaling {
 #[derive(Debug, Clone, Serialize)]
 pub struct WriterHeadroom {
     pub points: usize,
-    /// Points/s the store absorbs on one thread (journal while running, then the file).
+    /// Points/s the store's writer absorbs on one thread (appending encoded records while
+    /// running, then the final file).
     pub writer_points_per_second: f64,
-    /// Points/s one worker computes (histories recorded).
+    /// Points/s the writer appends while the run computes (journal only, its periodic
+    /// fsyncs included): what it absorbs before the final file.
+    pub append_points_per_second: f64,
+    /// Seconds to build the final file from the journal and make it durable (fsync).
+    pub finish_seconds: f64,
+    /// append / worker: the cores the writer keeps up with while the run computes.
+    pub run_headroom: f64,
+    /// Points/s one worker computes and encodes (histories recorded, compressed).
     pub worker_points_per_second: f64,
+    /// Of the worker's time, the share spent encoding (histories compressed).
+    pub worker_encode_share: f64,
     /// writer / worker: the number of cores the writer can keep up with.
     pub headroom: f64,
 }
@@ -120,10 +130,13 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
     let path = dir.join("writer-headroom.h5");
     let mut session =
         store::open(&path, &info, &store::StoreOptions::default()).map_err(err("open"))?;
-    // Computed and written in batches (bounded memory); each side timed on its own.
-    let (mut compute, mut write) = (0.0, 0.0);
+    let encoder = session.encoder();
+    // Computed, encoded and written in batches (bounded memory); the worker's side
+    // (simulate + encode) and the writer's (append + finish) timed on their own.
+    let (mut compute, mut encode, mut write) = (0.0, 0.0, 0.0);
     let n = study.plan.n_points();
     let mut batch: Vec<PointRecord> = Vec::with_capacity(64);
+    let mut encoded: Vec<store::EncodedRecord> = Vec::with_capacity(64);
     for start in (0..n).step_by(64) {
         let t0 = Instant::now();
         for i in start..(start + 64).min(n) {
@@ -146,18 +159,98 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
         compute += t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
         for rec in batch.drain(..) {
-            session.write(rec).map_err(err("write"))?;
+            encoded.push(encoder.encode(rec).map_err(err("encode"))?);
+        }
+        encode += t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        for rec in encoded.drain(..) {
+            session.write_encoded(rec).map_err(err("write"))?;
         }
         write += t0.elapsed().as_secs_f64();
     }
+    let append = write;
     let t0 = Instant::now();
     session.finish().map_err(err("finish"))?;
-    write += t0.elapsed().as_secs_f64();
-    let (writer, worker) = (n as f64 / write, n as f64 / compute);
+    let finish = t0.elapsed().as_secs_f64();
+    write += finish;
+    let (writer, worker) = (n as f64 / write, n as f64 / (compute + encode));
     Ok(WriterHeadroom {
         points: n,
         writer_points_per_second: writer,
+        append_points_per_second: n as f64 / append,
+        finish_seconds: finish,
+        run_headroom: n as f64 / append / worker,
         worker_points_per_second: worker,
+        worker_encode_share: encode / (compute + encode),
         headroom: writer / worker,
     })
+}
+
+/// The smallest useful study, one 45-point exit-speed curve, as a whole `batstudy run`
+/// process (start, study, bat, collisions, the file, exit), against the NumPy reference.
+#[derive(Debug, Clone, Serialize)]
+pub struct CurveProcess {
+    pub points: usize,
+    pub runs: usize,
+    pub median_ms: f64,
+    pub min_ms: f64,
+    /// `batstudy --version` as a process: what starting and ending one costs.
+    pub version_median_ms: f64,
+    /// The NumPy reference's time for the same curve on one thread.
+    pub numpy_reference_seconds: f64,
+    /// numpy_reference_seconds / median.
+    pub speedup_vs_numpy: f64,
+}
+
+/// The NumPy reference's 45-point curve on one thread (issue 22).
+const NUMPY_CURVE_SECONDS: f64 = 4.1;
+
+/// [`CurveProcess`], when this process is the `batstudy` binary (not when a test runs the
+/// bench): runs it as a child on every core, alternating with `--version`.
+pub(super) fn bench_curve_process(sz: &Sizes, dir: &Path) -> Result<Option<CurveProcess>, String> {
+    let exe = std::env::current_exe().map_err(err("current_exe"))?;
+    if exe.file_stem().is_none_or(|s| s != "batstudy") {
+        return Ok(None);
+    }
+    let study = dir.join("curve-process.yaml");
+    std::fs::write(&study, curve_study_text("curve-process", 1, "")).map_err(err("write"))?;
+    let out = dir.join("curve-process.h5");
+    let time = |args: &[&std::ffi::OsStr]| -> Result<f64, String> {
+        let t0 = Instant::now();
+        let st = std::process::Command::new(&exe)
+            .args(args)
+            .stdout(std::process::Stdio::null())
+            .status()
+            .map_err(err("spawn"))?;
+        let ms = t0.elapsed().as_secs_f64() * 1e3;
+        if !st.success() {
+            return Err(format!("curve process exited with {st}"));
+        }
+        Ok(ms)
+    };
+    let run_args = [
+        "run".as_ref(),
+        study.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--force".as_ref(),
+        "--quiet".as_ref(),
+    ];
+    let runs = if sz.write_repeats > 1 { 25 } else { 3 };
+    let (mut curve, mut version) = (Vec::new(), Vec::new());
+    for _ in 0..runs {
+        curve.push(time(&run_args)?);
+        version.push(time(&["--version".as_ref()])?);
+    }
+    let min_ms = curve.iter().copied().fold(f64::INFINITY, f64::min);
+    let median_ms = median(curve);
+    Ok(Some(CurveProcess {
+        points: 45,
+        runs,
+        median_ms,
+        min_ms,
+        version_median_ms: median(version),
+        numpy_reference_seconds: NUMPY_CURVE_SECONDS,
+        speedup_vs_numpy: NUMPY_CURVE_SECONDS * 1e3 / median_ms,
+    }))
 }

@@ -3,7 +3,7 @@
 
 use super::measure::{err, process_cpu_seconds, thread_cpu_seconds};
 use crate::results::PointRecord;
-use crate::run::{self, ModelSimulator, RunOptions, Sink};
+use crate::run::{self, AsIs, Encode, ModelSimulator, RunOptions, Sink};
 use crate::study::Study;
 use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
@@ -12,6 +12,10 @@ use std::time::{Duration, Instant};
 pub(super) struct NullSink;
 
 impl Sink for NullSink {
+    type Encoder = AsIs;
+    fn encoder(&self) -> AsIs {
+        AsIs
+    }
     fn is_done(&self, _index: usize) -> bool {
         false
     }
@@ -64,10 +68,14 @@ fn timed<R>(on: bool, wall: &mut Duration, cpu: &mut f64, f: impl FnOnce() -> R)
 }
 
 impl<K: Sink> Sink for TimedSink<K> {
+    type Encoder = K::Encoder;
+    fn encoder(&self) -> K::Encoder {
+        self.inner.encoder()
+    }
     fn is_done(&self, index: usize) -> bool {
         self.inner.is_done(index)
     }
-    fn write(&mut self, rec: PointRecord) -> Result<(), String> {
+    fn write(&mut self, rec: <K::Encoder as Encode>::Record) -> Result<(), String> {
         let inner = &mut self.inner;
         timed(self.on, &mut self.journal, &mut self.journal_cpu, || {
             inner.write(rec)

@@ -1,13 +1,14 @@
 //! The real implementations of the driver's two seams: the physics (`model`) as a
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
-use super::traits::{Simulator, Sink};
-use crate::model::measures::metrics::bat_metrics;
+use super::traits::{Encode, Simulator, Sink};
+use crate::model::measures::metrics::bat_metrics_mapped;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
 use crate::results::PointRecord;
-use crate::store::Session;
+use crate::store::{EncodedRecord, RecordEncoder, Session};
+use rayon::prelude::*;
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;
@@ -23,7 +24,14 @@ impl Simulator for ModelSimulator {
         let target = Target::prepare(bat, numerics).map_err(|e| e.to_string())?;
         let mut properties = target.properties();
         if let Some(prepared) = target.bat() {
-            properties.metrics = bat_metrics(prepared, bat, numerics).map_err(|e| e.to_string())?;
+            // The BBCOR scan's collisions on every core of the pool (bats are prepared in
+            // it): they were most of preparing a bat, and a one-bat study left cores idle
+            // (issue 22). Each value is computed alone: the same whatever the threads.
+            let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
+                z.par_iter().map(|&z| f(z)).collect()
+            };
+            properties.metrics = bat_metrics_mapped(prepared, bat, numerics, &parallel)
+                .map_err(|e| e.to_string())?;
         }
         Ok((properties, target))
     }
@@ -54,12 +62,33 @@ impl StoreSink {
     }
 }
 
+/// The store's encoder on the workers: a point that does not fit the study is an error the
+/// writer reports.
+pub struct StoreEncoder(Option<RecordEncoder>);
+
+impl Encode for StoreEncoder {
+    type Record = Result<EncodedRecord, String>;
+    fn encode(&self, rec: PointRecord) -> Self::Record {
+        match &self.0 {
+            Some(e) => e.encode(rec).map_err(|e| e.to_string()),
+            None => Err("the results file was already finished".to_string()),
+        }
+    }
+}
+
 impl Sink for StoreSink {
+    type Encoder = StoreEncoder;
+    fn encoder(&self) -> StoreEncoder {
+        StoreEncoder(self.0.as_ref().map(Session::encoder))
+    }
     fn is_done(&self, index: usize) -> bool {
         self.0.as_ref().is_some_and(|s| s.is_done(index))
     }
-    fn write(&mut self, rec: PointRecord) -> Result<(), String> {
-        self.session()?.write(rec).map_err(|e| e.to_string())
+    fn write(&mut self, rec: Result<EncodedRecord, String>) -> Result<(), String> {
+        let rec = rec?;
+        self.session()?
+            .write_encoded(rec)
+            .map_err(|e| e.to_string())
     }
     fn idle(&mut self) -> Result<(), String> {
         self.session()?.idle().map_err(|e| e.to_string())

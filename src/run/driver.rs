@@ -1,12 +1,13 @@
-//! The parallel driver: rayon workers simulate points, a bounded channel carries the
-//! finished `PointRecord`s to one writer thread that owns the sink.
+//! The parallel driver: rayon workers simulate points and encode them for the sink
+//! (`Sink::encoder`), a bounded channel carries the encoded records to one writer thread
+//! that owns the sink.
 //!
 //! Memory is bounded by the points in flight (rayon splits the index range lazily; the
 //! channel is bounded). Each point is independent and the sink stores by flat index, so
 //! results do not depend on the number of threads.
 
 use super::shard::Shard;
-use super::traits::{Simulator, Sink};
+use super::traits::{Encode, Simulator, Sink};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::ModelKind;
 use crate::pointset::PointSet;
@@ -227,6 +228,15 @@ pub fn check_finite_for(o: &Outcome, model: ModelKind) -> Result<(), String> {
 /// Points ok, points failed, the first failures.
 type Tally = (usize, usize, Vec<(usize, String)>);
 
+/// A finished point on its way to the writer: what the report needs, and the record as the
+/// sink's encoder made it on the worker.
+struct Finished<R> {
+    index: usize,
+    /// The point's error, if it failed.
+    error: Option<String>,
+    record: R,
+}
+
 /// Run the plan's points (those of `opts.shard`, not yet done in the sink), writing each
 /// finished point to the sink. Returns the report and the sink (finished).
 ///
@@ -259,8 +269,13 @@ pub fn run_plan<S: Simulator, K: Sink>(
         }
     }
     let skip = &skip;
+    // Asked before the workers start, like the skip set: encoding is the costly part of
+    // storing a point, and runs on the worker that computed it (issue 22).
+    let encoder = sink.encoder();
+    let encoder = &encoder;
     let sink = Mutex::new(sink);
-    let (tx, rx) = crossbeam_channel::bounded::<PointRecord>(opts.channel_capacity.max(1));
+    type Record<K> = <<K as Sink>::Encoder as Encode>::Record;
+    let (tx, rx) = crossbeam_channel::bounded::<Finished<Record<K>>>(opts.channel_capacity.max(1));
     let abort = AtomicBool::new(false);
     let skipped = AtomicUsize::new(0);
 
@@ -292,17 +307,17 @@ pub fn run_plan<S: Simulator, K: Sink>(
                         }
                         Err(crossbeam_channel::RecvTimeoutError::Disconnected) => break,
                     };
-                    match &rec.result {
-                        Ok(_) => ok += 1,
-                        Err(e) => {
+                    match rec.error {
+                        None => ok += 1,
+                        Some(e) => {
                             failed += 1;
                             if failures.len() < 20 {
-                                failures.push((rec.index, e.clone()));
+                                failures.push((rec.index, e));
                             }
                         }
                     }
                     let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
-                    s.write(rec)?;
+                    s.write(rec.record)?;
                     drop(s);
                     writer_pb.inc(1);
                     count_done();
@@ -360,7 +375,12 @@ pub fn run_plan<S: Simulator, K: Sink>(
                 if rec.result.is_err() && fail_fast {
                     abort.store(true, Ordering::Relaxed);
                 }
-                if tx.send(rec).is_err() {
+                let finished = Finished {
+                    index: rec.index,
+                    error: rec.result.as_ref().err().cloned(),
+                    record: encoder.encode(rec),
+                };
+                if tx.send(finished).is_err() {
                     // The writer has stopped (a sink error): stop dispatching.
                     abort.store(true, Ordering::Relaxed);
                 }

@@ -7,10 +7,10 @@ pub mod progress;
 pub mod shard;
 pub mod traits;
 
-pub use adapters::{ModelSimulator, StoreSink};
+pub use adapters::{ModelSimulator, StoreEncoder, StoreSink};
 pub use driver::{
     build_pool, check_finite, check_finite_for, prepare_bats, prepare_bats_alongside, run_plan,
     PointCounter, PreparedBats, RunError, RunOptions, RunReport,
 };
 pub use shard::{estimate_cost, shard_range, CostModel, Shard};
-pub use traits::{Simulator, Sink};
+pub use traits::{AsIs, Encode, Simulator, Sink};

@@ -25,15 +25,38 @@ pub trait Simulator: Sync {
     ) -> Result<Outcome, String>;
 }
 
+/// Prepares finished points for a sink on the worker that computed them: the part of
+/// storing a point that can run in parallel (issue 22: the store serialises and compresses
+/// histories here, so its one writer thread only appends bytes).
+pub trait Encode: Sync {
+    /// What the sink's writer takes.
+    type Record: Send;
+    fn encode(&self, rec: PointRecord) -> Self::Record;
+}
+
+/// For sinks that take points as they come.
+pub struct AsIs;
+
+impl Encode for AsIs {
+    type Record = PointRecord;
+    fn encode(&self, rec: PointRecord) -> PointRecord {
+        rec
+    }
+}
+
 /// Receives finished points; owned by the single writer thread (the driver asks it which
-/// points are done before the run starts).
+/// points are done, and for its encoder, before the run starts).
 pub trait Sink: Send {
+    /// Run on the workers on each finished point before it is sent to [`Self::write`].
+    type Encoder: Encode;
+    /// The encoder the workers share.
+    fn encoder(&self) -> Self::Encoder;
     /// Is the point at this flat index already in the output (resume)? The driver asks for
     /// every point of its range once, before the workers start, and skips those points
     /// without resolving them.
     fn is_done(&self, index: usize) -> bool;
-    /// Store one finished point (at `rec.index`; arrival order is arbitrary).
-    fn write(&mut self, rec: PointRecord) -> Result<(), String>;
+    /// Store one finished point, as the encoder made it (arrival order is arbitrary).
+    fn write(&mut self, rec: <Self::Encoder as Encode>::Record) -> Result<(), String>;
     /// Called when no point has arrived for a while: a chance to flush what is buffered,
     /// so that a run killed during a long point loses nothing already finished.
     fn idle(&mut self) -> Result<(), String> {

@@ -1,45 +1,52 @@
 //! The append-only journal `OUT.h5.journal`: the source of truth while a study runs.
 //!
-//! Format (little endian):
-//! - header: magic `BATSJRN1`, u32 `n` = length of the header JSON, the JSON ([`JournalHeader`]),
-//!   u64 FNV-1a checksum of the JSON;
-//! - then records, each: u32 magic `REC1`, u32 payload length, u64 FNV-1a checksum of the
-//!   payload, the payload ([`encode_record`]).
+//! Format 2 (little endian):
+//! - header: magic `BATSJRN2`, u32 `n` = length of the header JSON, the JSON ([`JournalHeader`]),
+//!   u32 CRC-32 of the JSON;
+//! - then records, each: u32 magic `REC2`, u32 payload length, u32 CRC-32 of the payload, the
+//!   payload: the point's summary ([`encode_summary`]) followed, when it has histories, by
+//!   each stored history variable's chunk exactly as the results file stores it (u32 length,
+//!   then the shuffled and deflated bytes; `store::encode` makes them on the workers).
 //!
 //! Records are only appended. A run killed mid-write leaves at worst a torn last record; a
 //! record whose magic, length or checksum is wrong ends the journal (it and everything after it
 //! are dropped and truncated away on resume; those points are simply computed again).
+//!
+//! Format 1 (`BATSJRN1`: histories as raw f64, FNV-1a checksums) is recognised and refused
+//! with a message saying to start over with `--force` (issue 22: its histories would have to
+//! be compressed again at the end, the very cost format 2 moved to the workers).
 
 use super::error::StoreError;
 pub use super::header::JournalHeader;
 use super::layout::{self, N_SUMMARY_FLOATS};
-use crate::model::outcome::History;
 use crate::results::PointRecord;
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom, Write};
+use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 
-const MAGIC: &[u8; 8] = b"BATSJRN1";
-const REC_MAGIC: u32 = u32::from_le_bytes(*b"REC1");
-const REC_PREFIX: usize = 16;
+const MAGIC: &[u8; 8] = b"BATSJRN2";
+const MAGIC_V1: &[u8; 8] = b"BATSJRN1";
+const REC_MAGIC: u32 = u32::from_le_bytes(*b"REC2");
+/// Bytes before each record's payload: magic, length, checksum.
+pub const REC_PREFIX: usize = 12;
 /// Largest accepted record payload (a corrupt length beyond this ends the journal).
-const MAX_PAYLOAD: u64 = 1 << 34;
+const MAX_PAYLOAD: u64 = u32::MAX as u64;
 
-/// Size of the fixed part of an ok record's payload (everything before the history).
+/// Size of the fixed part of an ok record's payload (everything before the histories).
 pub(crate) const OK_SUMMARY_LEN: usize = 8 + 8 + 4 + 1 + 8 * N_SUMMARY_FLOATS + 1 + 1;
+/// Offset of the ok flag in a payload.
+const OK_FLAG_AT: usize = 20;
 
-/// FNV-1a 64-bit checksum.
-pub fn fnv1a(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for &b in bytes {
-        h ^= b as u64;
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
+/// CRC-32 (libdeflate's, several GB/s): the journal's checksum. Format 1's byte-at-a-time
+/// FNV-1a ran at about 1 GB/s and was a fifth of a history study's writer time (issue 22).
+pub fn checksum(bytes: &[u8]) -> u32 {
+    libdeflater::crc32(bytes)
 }
 
-/// Encode one record's payload.
-pub fn encode_record(rec: &PointRecord, out: &mut Vec<u8>) {
+/// Encode a record's summary part: everything but its histories, with the flag saying
+/// whether histories follow (`has_history`; the caller appends them).
+pub fn encode_summary(rec: &PointRecord, has_history: bool, out: &mut Vec<u8>) {
     out.extend_from_slice(&(rec.index as u64).to_le_bytes());
     out.extend_from_slice(&rec.id.to_le_bytes());
     out.extend_from_slice(&rec.bat.to_le_bytes());
@@ -50,19 +57,7 @@ pub fn encode_record(rec: &PointRecord, out: &mut Vec<u8>) {
                 out.extend_from_slice(&x.to_le_bytes());
             }
             out.push(o.recontact as u8);
-            match &o.history {
-                None => out.push(0),
-                Some(h) => {
-                    out.push(1);
-                    for k in 0..layout::HISTORY_VARS.len() {
-                        let a = layout::history_array(h, k);
-                        out.extend_from_slice(&(a.len() as u64).to_le_bytes());
-                        for x in a {
-                            out.extend_from_slice(&x.to_le_bytes());
-                        }
-                    }
-                }
-            }
+            out.push(has_history as u8);
         }
         Err(msg) => {
             out.push(0);
@@ -72,13 +67,58 @@ pub fn encode_record(rec: &PointRecord, out: &mut Vec<u8>) {
     }
 }
 
+/// Start a framed record in `out` (empty): room for the prefix, which [`end_frame`] fills.
+pub fn begin_frame(out: &mut Vec<u8>) {
+    out.clear();
+    out.extend_from_slice(&[0u8; REC_PREFIX]);
+}
+
+/// Fill the prefix of a record framed by [`begin_frame`] (magic, length, checksum).
+pub fn end_frame(out: &mut [u8]) {
+    let len = (out.len() - REC_PREFIX) as u32;
+    let sum = checksum(&out[REC_PREFIX..]);
+    out[0..4].copy_from_slice(&REC_MAGIC.to_le_bytes());
+    out[4..8].copy_from_slice(&len.to_le_bytes());
+    out[8..12].copy_from_slice(&sum.to_le_bytes());
+}
+
+/// Whether `framed` is one whole framed record (magic and length; the checksum is the
+/// encoder's and is not recomputed here).
+pub fn is_framed(framed: &[u8]) -> bool {
+    framed.len() >= REC_PREFIX
+        && framed[0..4] == REC_MAGIC.to_le_bytes()
+        && u32::from_le_bytes(framed[4..8].try_into().unwrap()) as usize
+            == framed.len() - REC_PREFIX
+}
+
+/// Append one history variable's stored bytes to a payload.
+pub fn put_history_chunk(bytes: &[u8], out: &mut Vec<u8>) {
+    out.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(bytes);
+}
+
+/// The history chunks of a payload (after its summary part), `n` of them, or `None` if they
+/// do not add up to the payload.
+pub fn history_chunks(payload: &[u8], n: usize) -> Option<Vec<&[u8]>> {
+    let mut c = Cursor {
+        b: payload,
+        p: OK_SUMMARY_LEN,
+    };
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n {
+        let len = c.u32()? as usize;
+        out.push(c.take(len)?);
+    }
+    (c.p == payload.len()).then_some(out)
+}
+
 struct Cursor<'a> {
     b: &'a [u8],
     p: usize,
 }
 
-impl Cursor<'_> {
-    fn take(&mut self, n: usize) -> Option<&[u8]> {
+impl<'a> Cursor<'a> {
+    fn take(&mut self, n: usize) -> Option<&'a [u8]> {
         let s = self.b.get(self.p..self.p.checked_add(n)?)?;
         self.p += n;
         Some(s)
@@ -97,49 +137,36 @@ impl Cursor<'_> {
     }
 }
 
-/// Decode a payload. With `summary_only`, histories are skipped (and may be absent from
-/// `payload`, which may then be just the first [`OK_SUMMARY_LEN`] bytes).
-pub fn decode_record(payload: &[u8], summary_only: bool) -> Option<PointRecord> {
+/// Decode a payload's summary part (an ok record's first [`OK_SUMMARY_LEN`] bytes, a failed
+/// record whole): the point without histories, and whether histories follow.
+pub fn decode_summary(payload: &[u8]) -> Option<(PointRecord, bool)> {
     let mut c = Cursor { b: payload, p: 0 };
     let index = c.u64()? as usize;
     let id = c.u64()?;
     let bat = c.u32()?;
     let ok = c.u8()?;
-    let result = if ok == 1 {
+    let (result, has_history) = if ok == 1 {
         let mut f = [0.0; N_SUMMARY_FLOATS];
         for x in f.iter_mut() {
             *x = c.f64()?;
         }
         let mut o = layout::outcome_from_floats(&f);
         o.recontact = c.u8()? != 0;
-        let has_history = c.u8()? != 0;
-        if has_history && !summary_only {
-            let mut h = History::default();
-            for k in 0..layout::HISTORY_VARS.len() {
-                let n = c.u64()? as usize;
-                if n > payload.len() / 8 {
-                    return None;
-                }
-                let a = layout::history_array_mut(&mut h, k);
-                a.reserve_exact(n);
-                for _ in 0..n {
-                    a.push(c.f64()?);
-                }
-            }
-            o.history = Some(h);
-        }
-        Ok(o)
+        (Ok(o), c.u8()? != 0)
     } else {
         let n = c.u64()? as usize;
         let s = c.take(n)?;
-        Err(String::from_utf8_lossy(s).into_owned())
+        (Err(String::from_utf8_lossy(s).into_owned()), false)
     };
-    Some(PointRecord {
-        index,
-        id,
-        bat,
-        result,
-    })
+    Some((
+        PointRecord {
+            index,
+            id,
+            bat,
+            result,
+        },
+        has_history,
+    ))
 }
 
 /// What a scan reports of one valid record.
@@ -170,6 +197,12 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
     let mut magic = [0u8; 8];
     r.read_exact(&mut magic)
         .map_err(|_| bad("too short to hold a journal header"))?;
+    if &magic == MAGIC_V1 {
+        return Err(bad(
+            "it was written by an older batstudy (journal format 1), which this version cannot \
+             continue; run again with --force to start over",
+        ));
+    }
     if &magic != MAGIC {
         return Err(bad("not a batstudy journal (wrong magic bytes)"));
     }
@@ -182,15 +215,15 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
     let mut json = vec![0u8; n];
     r.read_exact(&mut json)
         .map_err(|_| bad("truncated header"))?;
-    let mut sum = [0u8; 8];
+    let mut sum = [0u8; 4];
     r.read_exact(&mut sum)
         .map_err(|_| bad("truncated header"))?;
-    if u64::from_le_bytes(sum) != fnv1a(&json) {
+    if u32::from_le_bytes(sum) != checksum(&json) {
         return Err(bad("header checksum mismatch"));
     }
     let header: JournalHeader =
         serde_json::from_slice(&json).map_err(|e| bad(&format!("unreadable header: {e}")))?;
-    Ok((header, (8 + 4 + n + 8) as u64))
+    Ok((header, (8 + 4 + n + 4) as u64))
 }
 
 /// Read a journal's header and check every record, handing each valid one to `visit` in file
@@ -215,13 +248,12 @@ pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, Stor
             break;
         }
         payload.resize(len as usize, 0);
-        if r.read_exact(&mut payload).is_err() || fnv1a(&payload) != sum {
+        if r.read_exact(&mut payload).is_err() || checksum(&payload) != sum {
             break;
         }
         // The whole payload: a failed point's message follows the fixed part and may be
-        // longer than OK_SUMMARY_LEN (cutting it made the record undecodable and silently
-        // ended the journal there); `summary_only` skips histories, so this stays cheap.
-        let Some(rec) = decode_record(&payload, true) else {
+        // longer than OK_SUMMARY_LEN.
+        let Some((rec, _)) = decode_summary(&payload) else {
             break;
         };
         visit(RecordMeta {
@@ -239,17 +271,25 @@ pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, Stor
     })
 }
 
-fn split_prefix(pre: &[u8; REC_PREFIX]) -> (u32, u64, u64) {
+fn split_prefix(pre: &[u8; REC_PREFIX]) -> (u32, u64, u32) {
     (
         u32::from_le_bytes(pre[0..4].try_into().unwrap()),
         u32::from_le_bytes(pre[4..8].try_into().unwrap()) as u64,
-        u64::from_le_bytes(pre[8..16].try_into().unwrap()),
+        u32::from_le_bytes(pre[8..12].try_into().unwrap()),
     )
 }
 
+/// Where a record's payload is in the journal, and its checksum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RecordPlace {
+    pub at: u64,
+    pub len: u64,
+    pub sum: u32,
+}
+
 /// Sequential reading of a scanned journal's valid records, in file order: summaries
-/// cheaply (a history is skipped over, not read), and whole records on request. Memory: one
-/// record.
+/// cheaply (histories are skipped over, not read; [`Self::place`] says where they are).
+/// Memory: one record's summary.
 pub struct RecordReader {
     r: BufReader<File>,
     path: PathBuf,
@@ -258,18 +298,25 @@ pub struct RecordReader {
     /// End of the valid part.
     end: u64,
     payload: Vec<u8>,
-    /// Current record: payload offset, length and checksum.
-    current: Option<(u64, u64, u64)>,
+    /// Current record: where its payload is, and whether histories follow its summary.
+    current: Option<(RecordPlace, bool)>,
 }
 
 impl RecordReader {
     /// Open `path`, already scanned as `scan`, at its first record.
     pub fn open(path: &Path, scan: &Scan) -> Result<Self, StoreError> {
+        Self::open_with_buffer(path, scan, 1 << 20)
+    }
+
+    /// [`Self::open`] with a read buffer of `capacity` bytes: a small one reads little more
+    /// than the summaries of records with histories, which are skipped over by seeking
+    /// (a large buffer would read them anyway).
+    pub fn open_with_buffer(path: &Path, scan: &Scan, capacity: usize) -> Result<Self, StoreError> {
         let mut file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
         file.seek(SeekFrom::Start(scan.header_len))
             .map_err(|e| StoreError::io(path, "read the journal", e))?;
         Ok(RecordReader {
-            r: BufReader::with_capacity(1 << 20, file),
+            r: BufReader::with_capacity(capacity, file),
             path: path.to_path_buf(),
             pos: scan.header_len,
             end: scan.valid_len,
@@ -290,10 +337,10 @@ impl RecordReader {
     }
 
     /// Move to the next record and decode its summary (a failed record whole, an ok record
-    /// without its history). `None` at the end of the valid part.
+    /// without its histories). `None` at the end of the valid part.
     pub fn next_summary(&mut self) -> Result<Option<PointRecord>, StoreError> {
-        if let Some((at, len, _)) = self.current.take() {
-            let next = at + len;
+        if let Some((place, _)) = self.current.take() {
+            let next = place.at + place.len;
             self.r
                 .seek_relative((next - self.pos) as i64)
                 .map_err(|e| self.io(e))?;
@@ -313,23 +360,23 @@ impl RecordReader {
             )));
         }
         self.pos = at;
-        self.current = Some((at, len, sum));
         self.payload.clear();
         self.extend((len as usize).min(OK_SUMMARY_LEN))?;
         // failed records keep their message after the fixed part: read them whole
-        if self.payload.get(20) == Some(&0) {
+        if self.payload.get(OK_FLAG_AT) == Some(&0) {
             self.extend(len as usize - self.payload.len())?;
         }
-        // a record read whole (every record of a summary-only study) is checked here; one
-        // with a history is checked when [`Self::whole`] reads the rest
-        if self.payload.len() as u64 == len && fnv1a(&self.payload) != sum {
+        // a record read whole (every record without histories) is checked here; one with
+        // histories is checked when they are read ([`read_payload`])
+        if self.payload.len() as u64 == len && checksum(&self.payload) != sum {
             return Err(self.bad(format!(
                 "record at byte {at} fails its checksum: the journal changed after it was written"
             )));
         }
-        decode_record(&self.payload, true)
-            .map(Some)
-            .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))
+        let (rec, has_history) = decode_summary(&self.payload)
+            .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))?;
+        self.current = Some((RecordPlace { at, len, sum }, has_history));
+        Ok(Some(rec))
     }
 
     fn extend(&mut self, n: usize) -> Result<(), StoreError> {
@@ -342,28 +389,37 @@ impl RecordReader {
         Ok(())
     }
 
-    /// The whole record last returned by [`Self::next_summary`], history included (its
-    /// checksum checked again: the journal must not have changed since the scan).
-    pub fn whole(&mut self) -> Result<PointRecord, StoreError> {
-        let (at, len, sum) = self
-            .current
-            .ok_or_else(|| self.bad("no current record".into()))?;
-        let rest = (at + len - self.pos) as usize;
-        self.extend(rest)?;
-        if fnv1a(&self.payload) != sum {
-            return Err(self.bad(format!("record at byte {at} changed after it was scanned")));
-        }
-        decode_record(&self.payload, false)
-            .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))
+    /// Where the record last returned by [`Self::next_summary`] is, when it has histories.
+    pub fn history_place(&self) -> Option<RecordPlace> {
+        self.current.filter(|(_, h)| *h).map(|(p, _)| p)
     }
 }
 
-/// Appends records; the caller decides when to flush and sync.
+/// Read the payload at `place` of the journal `file` (at `path`) into `out`, checked against
+/// its checksum: the journal must not have changed since it was written or scanned.
+pub fn read_payload(
+    file: &File,
+    path: &Path,
+    place: RecordPlace,
+    out: &mut Vec<u8>,
+) -> Result<(), StoreError> {
+    out.resize(place.len as usize, 0);
+    file.read_exact_at(out, place.at)
+        .map_err(|e| StoreError::io(path, "read the journal", e))?;
+    if checksum(out) != place.sum {
+        return Err(StoreError::BadJournal {
+            path: path.to_path_buf(),
+            what: format!("record at byte {} changed after it was scanned", place.at),
+        });
+    }
+    Ok(())
+}
+
+/// Appends framed records; the caller decides when to flush and sync.
 pub struct JournalWriter {
     file: File,
     path: PathBuf,
     buf: Vec<u8>,
-    payload: Vec<u8>,
     /// Byte length of the header (records start here).
     header_len: u64,
     /// Bytes written and buffered: header and whole records only.
@@ -378,7 +434,6 @@ impl JournalWriter {
             file,
             path: path.to_path_buf(),
             buf: Vec::with_capacity(1 << 20),
-            payload: Vec::new(),
             header_len,
             len,
             entry_durable,
@@ -396,11 +451,11 @@ impl JournalWriter {
             .open(path)
             .map_err(|e| StoreError::io(path, "create the journal", e))?;
         let json = serde_json::to_vec(header).expect("header serialises");
-        let mut b = Vec::with_capacity(json.len() + 20);
+        let mut b = Vec::with_capacity(json.len() + 16);
         b.extend_from_slice(MAGIC);
         b.extend_from_slice(&(json.len() as u32).to_le_bytes());
         b.extend_from_slice(&json);
-        b.extend_from_slice(&fnv1a(&json).to_le_bytes());
+        b.extend_from_slice(&checksum(&json).to_le_bytes());
         file.write_all(&b)
             .map_err(|e| StoreError::io(path, "write the journal header", e))?;
         let n = b.len() as u64;
@@ -440,17 +495,12 @@ impl JournalWriter {
         }
     }
 
-    /// Buffer one record.
-    pub fn append(&mut self, rec: &PointRecord) {
-        self.payload.clear();
-        encode_record(rec, &mut self.payload);
-        self.buf.extend_from_slice(&REC_MAGIC.to_le_bytes());
-        self.buf
-            .extend_from_slice(&(self.payload.len() as u32).to_le_bytes());
-        self.buf
-            .extend_from_slice(&fnv1a(&self.payload).to_le_bytes());
-        self.buf.extend_from_slice(&self.payload);
-        self.len += (REC_PREFIX + self.payload.len()) as u64;
+    /// Buffer one framed record ([`begin_frame`] … [`end_frame`]; `store::encode` makes
+    /// them on the workers, so appending is a copy).
+    pub fn append(&mut self, framed: &[u8]) {
+        debug_assert!(is_framed(framed));
+        self.buf.extend_from_slice(framed);
+        self.len += framed.len() as u64;
     }
 
     pub fn buffered_bytes(&self) -> usize {

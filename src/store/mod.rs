@@ -12,7 +12,7 @@
 //! Modules, from the bottom up: [`layout`] (names, units), [`error`], [`header`] (what
 //! identifies a study's journal and file), [`journal`] (the append-only record file),
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
-//! parallel), [`options`] (what the caller passes and gets back), [`paths`] (the files next
+//! parallel), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
 //! to an output), [`read`] (reading back, inspect), [`build`] (journal → HDF5),
 //! [`session`] (an open output), [`merge`](mod@merge) (shards → one file), [`lock`] (one
 //! process per output).
@@ -20,6 +20,7 @@
 pub mod build;
 pub mod chunks;
 pub mod dimscale;
+pub mod encode;
 pub mod error;
 pub mod header;
 pub mod journal;
@@ -31,6 +32,7 @@ pub mod paths;
 pub mod read;
 pub mod session;
 
+pub use encode::{EncodedRecord, RecordEncoder};
 pub use error::StoreError;
 pub use merge::{merge, merge_check};
 pub use options::{iso8601_now, RunMeta, StoreOptions, Summary};

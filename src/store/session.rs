@@ -4,10 +4,10 @@
 //! [`begin`] makes the file's skeleton ahead of the session.
 
 use super::build;
+use super::encode::{EncodedRecord, RecordEncoder};
 use super::error::StoreError;
-use super::header::{history_vars, JournalHeader};
+use super::header::JournalHeader;
 use super::journal::{self, JournalWriter};
-use super::layout;
 use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
 use super::paths::{journal_path, partial_path, remove_if_exists};
 use super::read;
@@ -33,7 +33,8 @@ pub struct Session {
     /// The summary gathered as records arrive, when the study fits one build window and
     /// the journal is this session's own (not resumed).
     gathered: Option<build::Gathered>,
-    history_keep: Option<Vec<usize>>,
+    /// Encodes the points handed to [`Session::write`]; the runner's workers use clones.
+    encoder: RecordEncoder,
     flush_interval: Duration,
     sync_interval: Duration,
     last_flush: Instant,
@@ -139,7 +140,7 @@ pub fn open_begun(
         build_memory: opts.build_memory,
         skeleton,
         gathered: None,
-        history_keep: info.history.as_ref().map(history_vars),
+        encoder: RecordEncoder::new(path, info),
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
         last_flush: Instant::now(),
@@ -173,9 +174,12 @@ pub fn open_begun(
         }
         let mut w = JournalWriter::create(&jpath, &want)?;
         let done = &mut s.done;
+        let encoder = &s.encoder;
         read::for_each_record(path, |rec| {
-            if rec.index < n_points && done.insert(rec.index) {
-                w.append(&rec);
+            let index = rec.index;
+            if index < n_points && !done.contains(index) {
+                w.append(&encoder.encode(rec)?.framed);
+                done.insert(index);
                 if w.buffered_bytes() > 1 << 22 {
                     w.flush()?;
                 }
@@ -242,57 +246,42 @@ impl Session {
         }
     }
 
+    /// The encoder of this output's records, for the workers: [`Self::write_encoded`] then
+    /// only appends (issue 22).
+    pub fn encoder(&self) -> RecordEncoder {
+        self.encoder.clone()
+    }
+
     /// Store one finished point (buffered; see the module docs for when it becomes durable).
-    /// A point already stored is ignored.
-    pub fn write(&mut self, mut rec: PointRecord) -> Result<(), StoreError> {
-        let n = self.done.len();
-        if rec.index >= n {
-            return Err(self.reject(format!(
-                "point index {} is outside the study's {} points",
-                rec.index, n
-            )));
-        }
-        if rec.bat as usize >= self.info.bats.len() {
-            return Err(self.reject(format!(
-                "point {} refers to bat {} but the study has {} bats",
-                rec.index,
-                rec.bat,
-                self.info.bats.len()
-            )));
-        }
-        if self.done.contains(rec.index) {
+    /// A point already stored is ignored. Encodes it here; the runner's writer thread takes
+    /// points its workers encoded ([`Self::write_encoded`]).
+    pub fn write(&mut self, rec: PointRecord) -> Result<(), StoreError> {
+        if rec.index < self.done.len() && self.done.contains(rec.index) {
             return Ok(());
         }
-        if let Ok(o) = &mut rec.result {
-            match (&self.history_keep, &self.info.history, o.history.as_mut()) {
-                (Some(keep), Some(req), Some(h)) => {
-                    for (k, (def, _, with_z)) in layout::HISTORY_VARS.iter().enumerate() {
-                        let a = layout::history_array_mut(h, k);
-                        if keep.contains(&k) {
-                            let want = req.n_samples * if *with_z { req.z.len() } else { 1 };
-                            if a.len() != want {
-                                return Err(self.reject(format!(
-                                    "point {}: history {} has {} samples, expected {}",
-                                    rec.index,
-                                    def.name,
-                                    a.len(),
-                                    want
-                                )));
-                            }
-                        } else {
-                            a.clear();
-                            a.shrink_to_fit();
-                        }
-                    }
-                }
-                _ => o.history = None,
-            }
+        let e = self.encoder.encode(rec)?;
+        self.write_encoded(e)
+    }
+
+    /// Store one point encoded by this session's [`RecordEncoder`] (a clone of
+    /// [`Self::encoder`]): the record's bytes are appended as they are. A point already
+    /// stored is ignored.
+    pub fn write_encoded(&mut self, rec: EncodedRecord) -> Result<(), StoreError> {
+        let index = rec.summary.index;
+        let n = self.done.len();
+        if index >= n || !journal::is_framed(&rec.framed) {
+            return Err(self.reject(format!(
+                "point {index}: not a record encoded for this study's {n} points"
+            )));
+        }
+        if self.done.contains(index) {
+            return Ok(());
         }
         let j = self.journal.as_mut().expect("open session has a journal");
-        j.append(&rec);
-        self.done.insert(rec.index);
+        j.append(&rec.framed);
+        self.done.insert(index);
         if let Some(g) = self.gathered.as_mut() {
-            g.put(&rec);
+            g.put(&rec.summary);
         }
         if j.buffered_bytes() >= 1 << 22 || self.last_flush.elapsed() >= self.flush_interval {
             j.flush()?;

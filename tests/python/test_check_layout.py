@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 h5py = pytest.importorskip("h5py")
-pytest.importorskip("xarray")
+xr = pytest.importorskip("xarray")
 pytest.importorskip("h5netcdf")
 
 from conftest import run_check_layout  # noqa: E402
@@ -103,6 +103,31 @@ def test_a_file_without_impact_z_passes(tmp_path):
         assert "sweet_spot" not in f
     r = run_check_layout(out)
     assert r.returncode == 0 and "layout ok" in r.stdout, r.stdout + r.stderr
+
+
+@needs_bin
+def test_histories_compressed_by_the_workers_read_with_standard_filters(tmp_path):
+    # issue 22: the workers shuffle and deflate the history chunks and the finish writes them
+    # raw; h5py's standard filters and xarray read them, the same on 1 and 2 threads
+    study = tmp_path / "threads.yaml"
+    study.write_text(WITH_HISTORY)
+    files = []
+    for jobs in ["1", "2"]:
+        out = tmp_path / f"threads{jobs}.h5"
+        r = subprocess.run([BIN, "run", str(study), "-o", str(out), "--jobs", jobs, "--quiet"],
+                           capture_output=True, text=True)
+        assert r.returncode == 1, r.stderr  # the hoop case fails, as in `good`
+        files.append(out)
+    assert files[0].stat().st_size == files[1].stat().st_size
+    with h5py.File(files[0], "r") as a, h5py.File(files[1], "r") as b:
+        for name in ["force", "displacement"]:
+            d = a["history"][name]
+            assert d.compression == "gzip" and d.shuffle, name
+            va, vb = d[...], b["history"][name][...]
+            assert np.isfinite(va).any(), name
+            np.testing.assert_array_equal(va, vb)
+    h = xr.open_dataset(files[0], engine="h5netcdf", group="history")
+    assert np.isfinite(h.force.values).any()
 
 
 def test_a_file_that_is_not_hdf5_cannot_be_checked(tmp_path):

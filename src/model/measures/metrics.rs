@@ -105,9 +105,29 @@ pub fn bat_metrics(
     bat_spec: &BatSpec,
     numerics: &NumericsSpec,
 ) -> Result<BatMetrics, ModelError> {
+    bat_metrics_mapped(bat, bat_spec, numerics, &in_order)
+}
+
+/// Runs a scan's collisions: `f` at each position, the values in the positions' order. Each
+/// value depends on its position alone, so a caller may run them in any order or in
+/// parallel (the runner does: the BBCOR scan was most of preparing a bat, issue 22).
+pub type ScanMap<'a> = dyn Fn(&[f64], &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> + Sync + 'a;
+
+/// The scan's collisions one after the other.
+fn in_order(z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> {
+    z.iter().map(|&z| f(z)).collect()
+}
+
+/// [`bat_metrics`] with the BBCOR scan's collisions run by `map`.
+pub fn bat_metrics_mapped(
+    bat: &PreparedBat,
+    bat_spec: &BatSpec,
+    numerics: &NumericsSpec,
+    map: &ScanMap,
+) -> Result<BatMetrics, ModelError> {
     let p = bat.properties();
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
-    let (bbcor_z, bbcor) = bbcor_scan(bat, bat_spec, numerics, &BallSpec::default())?;
+    let (bbcor_z, bbcor) = bbcor_scan_mapped(bat, bat_spec, numerics, &BallSpec::default(), map)?;
     let (bbcor_max_position, bbcor_max) =
         crate::model::measures::sweet::find_maximum(&bbcor_z, &bbcor)
             .unwrap_or((f64::NAN, f64::NAN));
@@ -141,6 +161,17 @@ pub fn bbcor_scan(
     numerics: &NumericsSpec,
     ball: &BallSpec,
 ) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
+    bbcor_scan_mapped(bat, bat_spec, numerics, ball, &in_order)
+}
+
+/// [`bbcor_scan`] with its collisions run by `map`.
+pub fn bbcor_scan_mapped(
+    bat: &PreparedBat,
+    bat_spec: &BatSpec,
+    numerics: &NumericsSpec,
+    ball: &BallSpec,
+    map: &ScanMap,
+) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
     if bat_spec.ends != EndsSpec::default() {
         return Ok((Vec::new(), Vec::new()));
     }
@@ -151,7 +182,7 @@ pub fn bbcor_scan(
         .map(|k| z0 + k as f64 * BBCOR_SCAN_STEP)
         .filter(|&z| z <= z1 + 1e-12)
         .collect();
-    let mut spec = CollisionSpec {
+    let spec = CollisionSpec {
         model: ModelKind::Wave,
         bat: bat_spec.clone(),
         ball: BallSpec {
@@ -163,18 +194,18 @@ pub fn bbcor_scan(
         impact: ImpactSpec { z: z0 },
         numerics: numerics.clone(),
     };
-    let mut out = Vec::with_capacity(z.len());
-    for &zi in &z {
+    let at = |zi: f64| {
+        let mut spec = spec.clone();
         spec.impact.z = zi;
-        let value = match simulate(&spec, bat, None) {
+        match simulate(&spec, bat, None) {
             Ok(o) => {
                 let m_e = free_effective_mass(p.mass, p.z_cm, p.moment_of_inertia, zi);
                 bbcor_from_efficiency(o.collision_efficiency, spec.ball.mass, m_e)
             }
             Err(_) => f64::NAN,
-        };
-        out.push(value);
-    }
+        }
+    };
+    let out = map(&z, &at);
     Ok((z, out))
 }
 

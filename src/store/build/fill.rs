@@ -87,8 +87,8 @@ pub fn fill(
     write_errors(&sk.errors, errors, out)?;
 
     // ---- /history
-    if let Some(h) = &info.history {
-        write_histories(&sk.history, h, info, journal, scan, out)?;
+    if info.history.is_some() {
+        write_histories(&sk.history, info, journal, scan, out)?;
     }
 
     let f = &sk.f;

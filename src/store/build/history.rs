@@ -1,18 +1,18 @@
 //! `/history`: its (empty) variables, made with the skeleton, and every stored history
-//! written into them in one pass over the journal.
+//! copied into them from the journal, in flat-index order.
 
 use super::vars::{new_var_level, study_dims};
-use crate::model::outcome::{History, HistoryPrecision, HistoryRequest, Outcome};
+use crate::model::outcome::{HistoryPrecision, HistoryRequest};
 use crate::pointset::PointSet;
 use crate::results::StudyInfo;
 use crate::store::chunks;
 use crate::store::dimscale::{self as h5u, attr_str, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::header::history_vars;
-use crate::store::journal::{RecordReader, Scan};
+use crate::store::journal::{history_chunks, read_payload, RecordPlace, RecordReader, Scan};
 use crate::store::layout as l;
 use hdf5::Dataset;
-use rayon::prelude::*;
+use std::fs::File;
 use std::path::Path;
 
 /// The `/history` group and its (empty) variables.
@@ -70,80 +70,58 @@ pub(super) fn create_history(
     Ok(created)
 }
 
-/// Write every stored history into the variables of [`create_history`].
+/// Write every stored history into the variables of [`create_history`]: the chunks the
+/// workers made (`store::encode`), copied from the journal as they are, in flat-index order.
+/// Nothing is compressed here, and the file's layout does not depend on the order in which
+/// points finished, so a study's file is the same whatever the thread count (issue 22).
+/// Memory: one record, and 32 bytes per point with histories (where its record is).
 pub(super) fn write_histories(
     created: &[(usize, Dataset, Vec<usize>)],
-    h: &HistoryRequest,
     info: &StudyInfo,
     journal: &Path,
     scan: &Scan,
     out: &Path,
 ) -> Result<(), StoreError> {
     let rank = info.shape.dims.len();
-    // One sequential pass. Every history is one whole chunk: batches of histories are
-    // shuffled and deflated on all cores and written whole, in journal order (issue 7: this
-    // was most of a history study's time). The first record of a point wins, as in the
-    // summary.
-    const BATCH: usize = 64;
+    // Where each point's first record is (the first record of a point wins, as in the
+    // summary): one pass over the summaries, histories skipped over (a small buffer, so
+    // that they are not read either).
     let mut written = PointSet::new(info.shape.n_points());
-    let mut rr = RecordReader::open(journal, scan)?;
-    let mut batch: Vec<(usize, History)> = Vec::with_capacity(BATCH);
-    loop {
-        let rec = rr.next_summary()?;
-        let end = rec.is_none();
-        if let Some(rec) = rec {
-            if rec.index < written.len() && written.insert(rec.index) && rec.result.is_ok() {
-                if let Ok(Outcome {
-                    history: Some(hist),
-                    ..
-                }) = rr.whole()?.result
-                {
-                    batch.push((rec.index, hist));
-                }
+    let mut places: Vec<(usize, RecordPlace)> = Vec::new();
+    let mut rr = RecordReader::open_with_buffer(journal, scan, 1 << 12)?;
+    while let Some(rec) = rr.next_summary()? {
+        if rec.index < written.len() && written.insert(rec.index) {
+            if let Some(place) = rr.history_place() {
+                places.push((rec.index, place));
             }
-        }
-        if batch.len() == BATCH || (end && !batch.is_empty()) {
-            let pieces: Vec<(usize, Vec<usize>, Vec<u8>)> = batch
-                .par_iter()
-                .flat_map_iter(|(index, hist)| {
-                    let idx = info.shape.unravel(*index);
-                    created
-                        .iter()
-                        .enumerate()
-                        .filter_map(move |(c, (k, _, shape))| {
-                            let a = l::history_array(hist, *k);
-                            let tail = &shape[rank..];
-                            if a.is_empty() || a.len() != tail.iter().product::<usize>() {
-                                return None;
-                            }
-                            let mut start = idx.clone();
-                            start.extend(std::iter::repeat_n(0, tail.len()));
-                            let mut chunk = vec![1; rank];
-                            chunk.extend_from_slice(tail);
-                            let level = l::HISTORY_DEFLATE_LEVEL;
-                            let bytes = match h.precision {
-                                HistoryPrecision::F64 => {
-                                    chunks::filtered(a, &chunk, &chunk, f64::NAN, level)
-                                }
-                                HistoryPrecision::F32 => {
-                                    let a: Vec<f32> = a.iter().map(|&x| x as f32).collect();
-                                    chunks::filtered(&a, &chunk, &chunk, f32::NAN, level)
-                                }
-                            };
-                            Some((c, start, bytes))
-                        })
-                        .collect::<Vec<_>>()
-                })
-                .collect();
-            for (c, start, bytes) in pieces {
-                let ds = &created[c].1;
-                chunks::write_chunk(ds, &start, &bytes)
-                    .ctx(out, &format!("write a history of {}", ds.name()))?;
-            }
-            batch.clear();
-        }
-        if end {
-            return Ok(());
         }
     }
+    drop(rr);
+    places.sort_unstable_by_key(|&(index, _)| index);
+    let file = File::open(journal).map_err(|e| StoreError::io(journal, "open the journal", e))?;
+    let mut payload = Vec::new();
+    for (index, place) in places {
+        read_payload(&file, journal, place, &mut payload)?;
+        let pieces =
+            history_chunks(&payload, created.len()).ok_or_else(|| StoreError::BadJournal {
+                path: journal.to_path_buf(),
+                what: format!(
+                    "record of point {index} at byte {} does not hold the study's {} histories",
+                    place.at,
+                    created.len()
+                ),
+            })?;
+        let mut start = info.shape.unravel(index);
+        for ((_, ds, shape), bytes) in created.iter().zip(pieces) {
+            let tail = &shape[rank..];
+            if tail.iter().product::<usize>() == 0 {
+                continue;
+            }
+            start.truncate(rank);
+            start.extend(std::iter::repeat_n(0, tail.len()));
+            chunks::write_chunk(ds, &start, bytes)
+                .ctx(out, &format!("write a history of {}", ds.name()))?;
+        }
+    }
+    Ok(())
 }

@@ -5,7 +5,7 @@
 use super::grid::BlockGrid;
 use crate::results::PointRecord;
 use crate::store::error::StoreError;
-use crate::store::journal::{decode_record, encode_record, RecordReader, Scan};
+use crate::store::journal::{decode_summary, encode_summary, RecordReader, Scan};
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
@@ -84,7 +84,7 @@ impl Spill {
             let (b, _) = blocks.locate(rec.index);
             let k = windows.partition_point(|&(b0, _)| b0 <= b) - 1;
             buf.clear();
-            encode_record(&rec, &mut buf);
+            encode_summary(&rec, false, &mut buf);
             files[k]
                 .write_all(&(buf.len() as u32).to_le_bytes())
                 .and_then(|_| files[k].write_all(&buf))
@@ -135,8 +135,8 @@ impl SpillReader {
         self.r
             .read_exact(&mut self.buf)
             .map_err(|e| StoreError::io(&self.path, "read a spill file", e))?;
-        decode_record(&self.buf, true)
-            .map(Some)
+        decode_summary(&self.buf)
+            .map(|(rec, _)| Some(rec))
             .ok_or_else(|| StoreError::BadRecord {
                 path: self.path.clone(),
                 what: "undecodable spill record".into(),

@@ -1,0 +1,171 @@
+//! Issue 22: a history study's file is the same whatever the thread count. The workers
+//! compress the history chunks and the finish writes them raw in flat-index order, so the
+//! runs with `--jobs 1` and `--jobs 2` give files of the same size whose history chunks sit
+//! at the same addresses with the same bytes; HDF5's own shuffle and deflate filters read
+//! them back. A journal of the old format is refused on `--resume` with a clear message.
+
+mod common;
+
+use common::{batstudy_command as batstudy, stored_records};
+use hdf5_sys::h5::{haddr_t, herr_t, hsize_t};
+use hdf5_sys::h5i::hid_t;
+use std::path::Path;
+
+extern "C" {
+    // libhdf5 ≥ 1.10.5
+    fn H5Dget_num_chunks(dset_id: hid_t, fspace_id: hid_t, nchunks: *mut hsize_t) -> herr_t;
+    fn H5Dget_chunk_info(
+        dset_id: hid_t,
+        fspace_id: hid_t,
+        chk_idx: hsize_t,
+        offset: *mut hsize_t,
+        filter_mask: *mut u32,
+        addr: *mut haddr_t,
+        size: *mut hsize_t,
+    ) -> herr_t;
+}
+
+// Some points record histories (`only`), one field per kind (with and without z), f32.
+const STUDY: &str = r#"
+name: history_threads
+model: wave
+base:
+  bat: {preset: r161}
+  ball: {speed: 40.0}
+grid:
+  swing.omega: [0, -30, -60]
+  impact.z: {range: [0.50, 0.80, 0.02]}
+history:
+  fields: [force, displacement]
+  interval: 2.0e-5
+  duration: 2.0e-3
+  z_step: 0.05
+  only: {swing.omega: [0, -60]}
+"#;
+
+/// (chunk offset, file address, stored bytes) of every chunk of a dataset, in HDF5's order.
+fn chunks(path: &Path, ds: &hdf5::Dataset) -> Vec<(Vec<u64>, u64, Vec<u8>)> {
+    let file = std::fs::read(path).unwrap();
+    let rank = ds.ndim();
+    let space = ds.space().unwrap();
+    let mut n: hsize_t = 0;
+    assert!(unsafe { H5Dget_num_chunks(ds.id(), space.id(), &mut n) } >= 0);
+    (0..n)
+        .map(|i| {
+            let mut offset = vec![0 as hsize_t; rank];
+            let (mut mask, mut addr, mut size) = (0u32, 0 as haddr_t, 0 as hsize_t);
+            let r = unsafe {
+                H5Dget_chunk_info(
+                    ds.id(),
+                    space.id(),
+                    i,
+                    offset.as_mut_ptr(),
+                    &mut mask,
+                    &mut addr,
+                    &mut size,
+                )
+            };
+            assert!(r >= 0 && mask == 0, "chunk {i} of {}", ds.name());
+            let bytes = file[addr as usize..(addr + size) as usize].to_vec();
+            (offset, addr, bytes)
+        })
+        .collect()
+}
+
+#[test]
+fn a_history_study_gives_the_same_file_on_one_and_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.yaml");
+    std::fs::write(&study, STUDY).unwrap();
+    let run = |jobs: &str| {
+        let path = dir.path().join(format!("j{jobs}.h5"));
+        let out = batstudy(&[
+            "run",
+            study.to_str().unwrap(),
+            "-o",
+            path.to_str().unwrap(),
+            "-j",
+            jobs,
+            "-q",
+        ])
+        .output()
+        .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        path
+    };
+    let (one, two) = (run("1"), run("2"));
+    assert_eq!(
+        std::fs::metadata(&one).unwrap().len(),
+        std::fs::metadata(&two).unwrap().len(),
+        "file sizes differ"
+    );
+    assert_eq!(stored_records(&one), stored_records(&two));
+
+    let (f1, f2) = (
+        hdf5::File::open(&one).unwrap(),
+        hdf5::File::open(&two).unwrap(),
+    );
+    let (g1, g2) = (f1.group("history").unwrap(), f2.group("history").unwrap());
+    for name in ["force", "displacement"] {
+        let (d1, d2) = (g1.dataset(name).unwrap(), g2.dataset(name).unwrap());
+        let (c1, c2) = (chunks(&one, &d1), chunks(&two, &d2));
+        // two thirds of the points record histories: one chunk each
+        assert_eq!(c1.len(), 2 * 16, "{name}");
+        assert!(c1 == c2, "{name}: chunks differ in place or bytes");
+        // HDF5's standard filters (shuffle, deflate) read what the workers compressed
+        let filters = d1.filters();
+        assert!(filters
+            .iter()
+            .any(|f| matches!(f, hdf5::filters::Filter::Shuffle)));
+        assert!(filters
+            .iter()
+            .any(|f| matches!(f, hdf5::filters::Filter::Deflate(_))));
+        let v: Vec<f32> = d1.read_raw().unwrap();
+        let finite = v.iter().filter(|x| x.is_finite()).count();
+        assert!(
+            finite > 0 && finite < v.len(),
+            "{name}: {finite} of {}",
+            v.len()
+        );
+        let w: Vec<f32> = d2.read_raw().unwrap();
+        assert!(v.iter().zip(&w).all(|(a, b)| a.to_bits() == b.to_bits()));
+    }
+}
+
+#[test]
+fn a_journal_of_the_old_format_is_refused_on_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.yaml");
+    std::fs::write(&study, STUDY).unwrap();
+    let out = dir.path().join("o.h5");
+    let journal = dir.path().join("o.h5.journal");
+    // the first bytes of a format-1 journal (its header would follow)
+    std::fs::write(&journal, b"BATSJRN1\x02\x00\x00\x00{}").unwrap();
+    let args = [
+        "run",
+        study.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "-q",
+    ];
+    let r = batstudy(&[&args[..], &["--resume"]].concat())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("older batstudy") && err.contains("--force"),
+        "{err}"
+    );
+    assert!(journal.exists(), "the old journal must be left alone");
+    // --force starts over
+    let r = batstudy(&[&args[..], &["--force"]].concat())
+        .output()
+        .unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(!journal.exists());
+}
