@@ -20,7 +20,7 @@ grid:
 history: {fields: [force], interval: 2.0e-5, duration: 2.0e-3, only: {swing.omega: [-30]}}
 "#;
 
-use common::{batstudy_command as batstudy, stored_records as data};
+use common::{batstudy_command as batstudy, batstudy_ok, stored_records as data};
 
 #[test]
 fn killed_runs_resume_to_the_uninterrupted_result() {
@@ -31,14 +31,7 @@ fn killed_runs_resume_to_the_uninterrupted_result() {
 
     let reference = dir.path().join("reference.h5");
     let r = reference.to_str().unwrap();
-    let out = batstudy(&["run", study, "-o", r, "-j", "2", "-q"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    batstudy_ok(&["run", study, "-o", r, "-j", "2", "-q"]);
     let want = data(&reference);
     assert_eq!(want.len(), 5 * 3 * 111);
 

@@ -1,6 +1,9 @@
 //! `batstudy inspect` (issue 21): sweet spots named by their coordinates and labels, not by
 //! an index; the bats' properties; a maximum at the edge of the sampled range flagged.
 
+mod common;
+
+use common::batstudy_ok;
 use std::process::Command;
 
 #[test]
@@ -19,17 +22,13 @@ fn inspect_names_sweet_spots_by_coordinates_and_lists_the_bats() {
     .unwrap();
     let out = dir.path().join("s.h5");
     let bin = env!("CARGO_BIN_EXE_batstudy");
-    let st = Command::new(bin)
-        .args([
-            "run",
-            study.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--quiet",
-        ])
-        .status()
-        .unwrap();
-    assert!(st.success());
+    batstudy_ok(&[
+        "run",
+        study.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
     let o = Command::new(bin)
         .args(["inspect", out.to_str().unwrap()])
         .output()

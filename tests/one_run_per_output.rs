@@ -31,7 +31,7 @@ grid:
   impact.z: {range: [0.40, 0.84, 0.002]}
 "#;
 
-use common::{batstudy_command as batstudy, stored_records as data};
+use common::{batstudy_command as batstudy, batstudy_ok, stored_records as data};
 
 fn lock_of(out: &Path) -> PathBuf {
     PathBuf::from(format!("{}.lock", out.display()))
@@ -54,14 +54,7 @@ fn study_file(dir: &Path, text: &str) -> String {
 
 fn lone_run(dir: &Path, study: &str) -> Vec<String> {
     let reference = dir.join("reference.h5");
-    let out = batstudy(&["run", study, "-o", reference.to_str().unwrap(), "-q"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    batstudy_ok(&["run", study, "-o", reference.to_str().unwrap(), "-q"]);
     data(&reference)
 }
 
@@ -149,7 +142,7 @@ fn merge_refuses_an_output_in_use() {
     for k in 1..=2 {
         let p = dir.path().join(format!("s{k}.h5"));
         let shard = format!("{k}/2");
-        let out = batstudy(&[
+        batstudy_ok(&[
             "run",
             &study,
             "--shard",
@@ -157,14 +150,7 @@ fn merge_refuses_an_output_in_use() {
             "-o",
             p.to_str().unwrap(),
             "-q",
-        ])
-        .output()
-        .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        ]);
         shards.push(p.to_str().unwrap().to_string());
     }
     let merged = dir.path().join("merged.h5");
@@ -178,12 +164,7 @@ fn merge_refuses_an_output_in_use() {
     assert!(err.contains("in use by another batstudy process"), "{err}");
     assert!(!merged.exists(), "nothing written");
     drop(held);
-    let out = batstudy(&args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    batstudy_ok(&args);
 }
 
 #[test]
@@ -241,14 +222,7 @@ fn a_what_if_study_runs_and_says_so_in_the_file() {
     let text = "name: whatif\nallow_implausible: true\nbase: {bat: {material: {density: 2.0e4}}}\ngrid:\n  impact.z: [0.6]\n";
     let study = study_file(dir.path(), text);
     let out_path = dir.path().join("whatif.h5");
-    let out = batstudy(&["run", &study, "-o", out_path.to_str().unwrap(), "-q"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    batstudy_ok(&["run", &study, "-o", out_path.to_str().unwrap(), "-q"]);
     let f = hdf5::File::open(&out_path).unwrap();
     let flag: i64 = f.attr("allow_implausible").unwrap().read_scalar().unwrap();
     assert_eq!(flag, 1);

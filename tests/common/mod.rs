@@ -24,6 +24,18 @@ pub fn batstudy_command(args: &[&str]) -> std::process::Command {
     c
 }
 
+/// Run the batstudy binary with `args` to completion and require success (its stderr in
+/// the failure message).
+pub fn batstudy_ok(args: &[&str]) {
+    let out = batstudy_command(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "batstudy {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// Every stored record of a results file, as exact text (Debug of f64 is its shortest
 /// round-trip form): two files with equal lists hold the same data.
 pub fn stored_records(path: &std::path::Path) -> Vec<String> {
