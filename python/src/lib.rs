@@ -33,15 +33,12 @@ const SPEC_LINE_OFFSET: usize = 2;
 
 /// A one-point study around a spec's text (YAML or JSON), with an optional history block.
 fn spec_study(spec: &str, history: Option<&str>) -> String {
-    let mut s = String::from("name: simulate\nbase:\n");
-    for line in spec.lines() {
-        s.push_str("  ");
-        s.push_str(line);
-        s.push('\n');
-    }
-    if let Some(h) = history {
-        s.push_str("history:\n");
-        for line in h.lines() {
+    let mut s = String::from("name: simulate\n");
+    for (key, text) in [("base", Some(spec)), ("history", history)] {
+        let Some(text) = text else { continue };
+        s.push_str(key);
+        s.push_str(":\n");
+        for line in text.lines() {
             s.push_str("  ");
             s.push_str(line);
             s.push('\n');
