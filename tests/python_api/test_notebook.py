@@ -27,4 +27,9 @@ def test_quickstart_notebook_runs(root, tmp_path):
     assert "omega  -60.0 rad/s: sweet spot" in text
     assert "peak force" in text and "moves it most:" in text
     assert images == 4, f"{images} figures"
+    # batstudy.run's progress bar is a Jupyter widget (tqdm.auto with ipywidgets)
+    widgets = [
+        o for o in nb.cells[1].get("outputs", []) if "application/vnd.jupyter.widget-view+json" in o.get("data", {})
+    ]
+    assert widgets, "no progress widget in the run cell"
     assert (tmp_path / "results" / "quickstart.h5").exists()
