@@ -41,9 +41,15 @@ pub(super) fn complete_coords(plan: &mut Plan) {
                 })
                 .collect()
         };
-        let (first, last) = (trees(false), trees(true));
+        // When every other dim has one value, first and last are the same points.
+        let others_vary = (0..n_dims).any(|k| k != d && plan.dims[k].size > 1);
+        let first = trees(false);
+        let last = if others_vary { trees(true) } else { Vec::new() };
         let resolved = |path: &str, i: usize| -> Option<Json> {
             let a = first[i].as_ref().and_then(|t| resolved_value(t, path));
+            if !others_vary {
+                return a;
+            }
             let b = last[i].as_ref().and_then(|t| resolved_value(t, path));
             (a == b).then_some(a).flatten()
         };
