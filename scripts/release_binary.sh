@@ -4,6 +4,6 @@
 bin=${1:-}
 if [ -z "$bin" ]; then
   bash scripts/setup.sh >/dev/null
-  cargo build --release --quiet
+  bash scripts/build_release.sh
   bin=target/release/batstudy
 fi

@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cargo build --release --quiet
+bash scripts/build_release.sh
 study=studies/param_space.yaml
 if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then study=$1; shift; fi
 # --force: rerunning the main job recomputes it (use --resume to finish an interrupted run).

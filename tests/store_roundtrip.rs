@@ -795,8 +795,9 @@ fn journal_writer_extent_equals_a_scan() {
 
 /// Finishing reads every record it takes from the journal against its checksum: a journal
 /// changed under a running session makes `finish` fail loudly instead of storing the changed
-/// values. A fresh summary-only session builds the file from the records it was handed (the
-/// journal is not read back), so the change cannot reach the file.
+/// values. A fresh session builds the file from the records it was handed (the summaries it
+/// gathered, the histories it placed or held: the journal is not read back), so the change
+/// cannot reach the file.
 #[test]
 fn finish_refuses_a_journal_changed_after_it_was_written() {
     let _g = shared();
@@ -827,7 +828,7 @@ fn finish_refuses_a_journal_changed_after_it_was_written() {
         }
         s.flush().unwrap();
         corrupt(&path);
-        if history || resumed {
+        if resumed {
             let e = s.finish().unwrap_err().to_string();
             assert!(e.contains("checksum") || e.contains("changed"), "{e}");
             assert!(!path.exists(), "no final file from a changed journal");
@@ -986,4 +987,112 @@ fn chunk_layout_does_not_depend_on_the_threads() {
         .iter()
         .all(|(_, c)| c.iter().all(|&(a, s)| a > 0 && s > 0)));
     assert_eq!(layouts[0], layouts[1]);
+}
+
+extern "C" {
+    // libhdf5 ≥ 1.10.5
+    fn H5Dget_num_chunks(dset: i64, fspace: i64, nchunks: *mut u64) -> i32;
+    fn H5Dget_chunk_info(
+        dset: i64,
+        fspace: i64,
+        index: u64,
+        offset: *mut u64,
+        filter_mask: *mut u32,
+        addr: *mut u64,
+        size: *mut u64,
+    ) -> i32;
+}
+
+/// (variable, [(chunk offset, file address, stored bytes)]) of every chunk of every
+/// variable of `group`, in HDF5's order.
+fn all_chunks(path: &Path, group: &str) -> Vec<(String, Vec<(Vec<u64>, u64, u64)>)> {
+    let f = hdf5::File::open(path).unwrap();
+    let g = f.group(group).unwrap();
+    let mut names = g.member_names().unwrap();
+    names.sort();
+    let mut out = Vec::new();
+    for name in names {
+        let ds = g.dataset(&name).unwrap();
+        if !ds.is_chunked() {
+            continue;
+        }
+        let space = ds.space().unwrap();
+        let chunks = hdf5::sync::sync(|| {
+            let mut n = 0u64;
+            assert!(unsafe { H5Dget_num_chunks(ds.id(), space.id(), &mut n) } >= 0);
+            (0..n)
+                .map(|i| {
+                    let mut offset = vec![0u64; ds.ndim()];
+                    let (mut mask, mut addr, mut size) = (0u32, 0u64, 0u64);
+                    let r = unsafe {
+                        H5Dget_chunk_info(
+                            ds.id(),
+                            space.id(),
+                            i,
+                            offset.as_mut_ptr(),
+                            &mut mask,
+                            &mut addr,
+                            &mut size,
+                        )
+                    };
+                    assert!(r >= 0, "{name} chunk {i}");
+                    (offset, addr, size)
+                })
+                .collect()
+        });
+        out.push((name, chunks));
+    }
+    out
+}
+
+// issue 22: the histories are written into the final file while the run goes on, in
+// flat-index order (`store::placer`), and the finish writes the rest after them. Where every
+// chunk lands must not depend on the order the points arrived in, on whether the placer kept
+// up or gave up, nor on a resume (whose histories all come from the journal at the finish):
+// the files are the same size and every chunk of `/history` and `/summary` is at the same
+// address with the same size.
+#[test]
+fn history_layout_does_not_depend_on_arrival_order_placer_or_resume() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F32);
+    let n = info.shape.n_points();
+    let scrambled: Vec<usize> = (0..n).map(|k| (k * 11 + 5) % n).collect();
+    let in_order: Vec<usize> = (0..n).collect();
+    let layout = |path: &Path| {
+        (
+            std::fs::metadata(path).unwrap().len(),
+            all_chunks(path, "history"),
+            all_chunks(path, "summary"),
+        )
+    };
+    let run = |name: &str, order: &[usize], hold: usize, resume_after: Option<usize>| {
+        let path = dir.path().join(format!("{name}.h5"));
+        let o = StoreOptions {
+            history_hold: hold,
+            ..opts(false, false)
+        };
+        let mut s = store::open(&path, &info, &o).unwrap();
+        for (k, &i) in order.iter().enumerate() {
+            if resume_after == Some(k) {
+                s.flush().unwrap();
+                drop(s); // as if killed: the journal stays
+                s = store::open(&path, &info, &opts(true, false)).unwrap();
+            }
+            s.write(record(&info, i)).unwrap();
+        }
+        s.finish().unwrap();
+        layout(&path)
+    };
+    let want = run("in_order", &in_order, usize::MAX, None);
+    // 27 points, 23 with histories (every 7th from 3 failed), 3 variables: one chunk each
+    assert_eq!(want.1.len(), 3);
+    assert!(want.1.iter().all(|(_, c)| c.len() == 23), "{:?}", want.1);
+    assert_eq!(run("scrambled", &scrambled, usize::MAX, None), want);
+    assert_eq!(run("gave_up", &scrambled, 0, None), want);
+    assert_eq!(run("resumed", &scrambled, usize::MAX, Some(n / 2)), want);
+    assert_eq!(
+        run("resumed_in_order", &in_order, usize::MAX, Some(n / 3)),
+        want
+    );
 }

@@ -335,56 +335,74 @@ pub fn run_plan<S: Simulator, K: Sink>(
             })
             .expect("spawn writer thread");
 
-        pool.install(|| {
-            range.into_par_iter().for_each_with(tx, |tx, i| {
-                if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
-                    return;
-                }
-                if skip.contains(i) {
-                    skipped.fetch_add(1, Ordering::Relaxed);
-                    pb.inc(1);
-                    count_done();
-                    return;
-                }
-                let rec = match plan.point(i) {
-                    Err(e) => PointRecord {
+        // One point: false once the run stops (Ctrl-C, --fail-fast, the writer gone).
+        let one = |tx: &crossbeam_channel::Sender<Finished<Record<K>>>, i: usize| -> bool {
+            if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
+                return false;
+            }
+            if skip.contains(i) {
+                skipped.fetch_add(1, Ordering::Relaxed);
+                pb.inc(1);
+                count_done();
+                return true;
+            }
+            let rec = match plan.point(i) {
+                Err(e) => PointRecord {
+                    index: i,
+                    id: e.id,
+                    bat: 0,
+                    result: Err(e.message),
+                },
+                Ok(p) => {
+                    let result = match &bats.handles[p.bat as usize] {
+                        Err(e) => Err(e.clone()),
+                        Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
+                            sim.simulate(bat, &p.spec, history.filter(|_| p.record_history))
+                        })) {
+                            Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
+                            Ok(Err(e)) => Err(e),
+                            Err(payload) => Err(format!("panic: {}", panic_text(payload))),
+                        },
+                    };
+                    PointRecord {
                         index: i,
-                        id: e.id,
-                        bat: 0,
-                        result: Err(e.message),
-                    },
-                    Ok(p) => {
-                        let result = match &bats.handles[p.bat as usize] {
-                            Err(e) => Err(e.clone()),
-                            Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
-                                sim.simulate(bat, &p.spec, history.filter(|_| p.record_history))
-                            })) {
-                                Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
-                                Ok(Err(e)) => Err(e),
-                                Err(payload) => Err(format!("panic: {}", panic_text(payload))),
-                            },
-                        };
-                        PointRecord {
-                            index: i,
-                            id: p.id,
-                            bat: p.bat,
-                            result,
-                        }
+                        id: p.id,
+                        bat: p.bat,
+                        result,
                     }
-                };
-                if rec.result.is_err() && fail_fast {
-                    abort.store(true, Ordering::Relaxed);
                 }
-                let finished = Finished {
-                    index: rec.index,
-                    error: rec.result.as_ref().err().cloned(),
-                    record: encoder.encode(rec),
-                };
-                if tx.send(finished).is_err() {
-                    // The writer has stopped (a sink error): stop dispatching.
-                    abort.store(true, Ordering::Relaxed);
-                }
-            });
+            };
+            if rec.result.is_err() && fail_fast {
+                abort.store(true, Ordering::Relaxed);
+            }
+            let finished = Finished {
+                index: rec.index,
+                error: rec.result.as_ref().err().cloned(),
+                record: encoder.encode(rec),
+            };
+            if tx.send(finished).is_err() {
+                // The writer has stopped (a sink error): stop dispatching.
+                abort.store(true, Ordering::Relaxed);
+                return false;
+            }
+            true
+        };
+        // Points are handed out in index order, one at a time, to whichever worker is free:
+        // records then reach the writer nearly in order, and it places their histories in
+        // the final file as the run goes on (`store::placer`, issue 22). (Rayon's splitting
+        // of the range gave each worker its own far-apart part.)
+        let next = AtomicUsize::new(range.start);
+        let workers = pool.current_num_threads().max(1);
+        pool.install(|| {
+            (0..workers)
+                .into_par_iter()
+                .with_max_len(1)
+                .for_each_with(tx, |tx, _| loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= range.end || !one(tx, i) {
+                        break;
+                    }
+                });
         });
         writer
             .join()

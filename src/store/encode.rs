@@ -22,6 +22,8 @@ pub struct EncodedRecord {
     pub summary: PointRecord,
     /// The framed journal record (prefix, payload).
     pub framed: Vec<u8>,
+    /// Whether the record holds histories (chunks for the final file's `/history`).
+    pub has_history: bool,
 }
 
 /// What a study stores of a point's histories.
@@ -128,6 +130,7 @@ impl RecordEncoder {
         Ok(EncodedRecord {
             summary: rec,
             framed,
+            has_history: stored.is_some(),
         })
     }
 }

@@ -29,6 +29,7 @@ pub mod lock;
 pub mod merge;
 pub mod options;
 pub mod paths;
+pub mod placer;
 pub mod read;
 pub mod session;
 

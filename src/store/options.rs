@@ -86,6 +86,9 @@ pub struct StoreOptions {
     /// 380 000 points). A larger study is built window by window (its journal first split
     /// into one spill file per window), so the store's memory does not grow with the study.
     pub build_memory: usize,
+    /// Bytes of history records the placer holds ahead of its cursor before it gives up and
+    /// leaves the rest to the finish (default 64 MiB; `store::placer`).
+    pub history_hold: usize,
 }
 
 impl Default for StoreOptions {
@@ -97,6 +100,7 @@ impl Default for StoreOptions {
             flush_interval: Duration::from_millis(50),
             sync_interval: Duration::from_secs(1),
             build_memory: 64 << 20,
+            history_hold: super::placer::HELD_BYTES,
         }
     }
 }

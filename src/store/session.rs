@@ -10,6 +10,7 @@ use super::header::JournalHeader;
 use super::journal::{self, JournalWriter};
 use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
 use super::paths::{journal_path, partial_path, remove_if_exists};
+use super::placer::{HistoryPlacer, Place};
 use super::read;
 use crate::pointset::PointSet;
 use crate::results::{PointRecord, ResultShape, StudyInfo};
@@ -35,6 +36,11 @@ pub struct Session {
     gathered: Option<build::Gathered>,
     /// Encodes the points handed to [`Session::write`]; the runner's workers use clones.
     encoder: RecordEncoder,
+    /// Writes the histories into the final file as the run goes on, in flat-index order
+    /// (a fresh journal of a study with histories; `store::placer`).
+    placer: Option<HistoryPlacer>,
+    /// Where the histories the run has not placed are, once the placer gave up.
+    history_tail: Option<build::HistoryTail>,
     flush_interval: Duration,
     sync_interval: Duration,
     last_flush: Instant,
@@ -141,6 +147,8 @@ pub fn open_begun(
         skeleton,
         gathered: None,
         encoder: RecordEncoder::new(path, info),
+        placer: None,
+        history_tail: None,
         flush_interval: opts.flush_interval,
         sync_interval: opts.sync_interval,
         last_flush: Instant::now(),
@@ -203,6 +211,10 @@ pub fn open_begun(
     s.journal = Some(JournalWriter::create(&jpath, &want)?);
     // a fresh journal: this session sees every record it will store
     s.gathered = build::Gathered::new(info, opts.build_memory);
+    if info.history.is_some() {
+        let (start, end) = opts.run_meta.shard_range.unwrap_or((0, n_points));
+        s.placer = Some(HistoryPlacer::new(start, end, opts.history_hold));
+    }
     Ok(s)
 }
 
@@ -288,7 +300,38 @@ impl Session {
             self.last_flush = Instant::now();
         }
         self.sync_if_due()?;
-        self.prepare_final_file()
+        self.prepare_final_file()?;
+        self.place_histories(index, rec.has_history.then_some(rec.framed))
+    }
+
+    /// Hand a stored point to the placer, which writes the histories its cursor can now pass
+    /// into the final file (in flat-index order; `store::placer`).
+    fn place_histories(&mut self, index: usize, framed: Option<Vec<u8>>) -> Result<(), StoreError> {
+        let Some(placer) = self.placer.as_mut() else {
+            return Ok(());
+        };
+        struct IntoFile<'a> {
+            skeleton: &'a build::Skeleton,
+            info: &'a StudyInfo,
+        }
+        impl Place for IntoFile<'_> {
+            type Error = StoreError;
+            fn place(&mut self, index: usize, framed: &[u8]) -> Result<(), StoreError> {
+                build::place_history(self.skeleton, self.info, index, framed)
+            }
+        }
+        let mut file = IntoFile {
+            skeleton: self
+                .skeleton
+                .as_ref()
+                .expect("prepared with the first record"),
+            info: &self.info,
+        };
+        if !placer.arrived(index, framed, &self.done, &mut file)? {
+            let placer = self.placer.take().expect("checked above");
+            self.history_tail = Some(placer.tail(false));
+        }
+        Ok(())
     }
 
     /// fsync the journal when `sync_interval` has passed since the last time.
@@ -342,6 +385,11 @@ impl Session {
         let partial = partial_path(&self.path);
         self.prepare_final_file()?;
         let skeleton = self.skeleton.take().expect("prepared above");
+        let histories = match (self.placer.take(), self.history_tail.take()) {
+            (Some(placer), _) => placer.tail(true),
+            (None, Some(tail)) => tail,
+            (None, None) => build::HistoryTail::Journal { from: 0 },
+        };
         let summary = build::fill(
             skeleton,
             &self.journal_path,
@@ -350,6 +398,7 @@ impl Session {
             &iso8601_now(),
             self.build_memory,
             self.gathered.take(),
+            histories,
         )?;
         std::fs::File::open(&partial)
             .and_then(|f| f.sync_all())

@@ -1,10 +1,10 @@
 //! Filling a skeleton with the journal's records, window by window: the summary and sweet
-//! spots, `/errors`, `/history`, then the counts; memory bounded by the build's budget.
+//! spots, `/errors`, then the counts (the histories the run has not placed yet first); memory bounded by the build's budget.
 
 use super::attrs::final_attrs;
 use super::errors::write_errors;
 use super::grid::{plan_windows, summary_chunk, BlockGrid};
-use super::history::write_histories;
+use super::history::{write_histories, HistoryTail};
 use super::pieces::{block_pieces, compress_and_write, Piece};
 use super::skeleton::Skeleton;
 use super::spill::{Source, Spill};
@@ -29,11 +29,18 @@ pub fn fill(
     created: &str,
     memory: usize,
     mut gathered: Option<Gathered>,
+    histories: HistoryTail,
 ) -> Result<Summary, StoreError> {
     let out = sk.out.as_path();
     let n_points = info.shape.n_points();
     let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
     let chunk = summary_chunk(&info.shape.dims);
+    // ---- /history first: its chunks follow those placed while the run went on, so that the
+    // file's layout is the same however far the placer got (issue 22)
+    if info.history.is_some() {
+        write_histories(&sk.history, info, journal, scan, out, histories)?;
+    }
+
     let mut tally = Tally::default();
     let blocks = BlockGrid::new(&shape, &chunk);
     let windows = plan_windows(&blocks, memory);
@@ -85,11 +92,6 @@ pub fn fill(
     } = tally;
     // ---- /errors: made empty with the skeleton; grown only when points failed
     write_errors(&sk.errors, errors, out)?;
-
-    // ---- /history
-    if info.history.is_some() {
-        write_histories(&sk.history, info, journal, scan, out)?;
-    }
 
     let f = &sk.f;
     final_attrs(f, created, (n_done, n_failed, n_points), out)?;

@@ -1,6 +1,7 @@
 //! `/history`: its (empty) variables, made with the skeleton, and every stored history
 //! copied into them from the journal, in flat-index order.
 
+use super::skeleton::Skeleton;
 use super::vars::{new_var_level, study_dims};
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
 use crate::pointset::PointSet;
@@ -9,9 +10,12 @@ use crate::store::chunks;
 use crate::store::dimscale::{self as h5u, attr_str, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::header::history_vars;
-use crate::store::journal::{history_chunks, read_payload, RecordPlace, RecordReader, Scan};
+use crate::store::journal::{
+    history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
+};
 use crate::store::layout as l;
 use hdf5::Dataset;
+use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::Path;
 
@@ -70,10 +74,74 @@ pub(super) fn create_history(
     Ok(created)
 }
 
-/// Write every stored history into the variables of [`create_history`]: the chunks the
-/// workers made (`store::encode`), copied from the journal as they are, in flat-index order.
-/// Nothing is compressed here, and the file's layout does not depend on the order in which
-/// points finished, so a study's file is the same whatever the thread count (issue 22).
+/// The histories still to write when the run finishes (the placer's, `store::placer`).
+pub enum HistoryTail {
+    /// Every history record at or after the placer's cursor, held in memory: framed journal
+    /// records by flat index.
+    Held(BTreeMap<usize, Vec<u8>>),
+    /// In the journal: every history record at flat index `from` or after (a resumed run's
+    /// records, or a placer that gave up holding them).
+    Journal { from: usize },
+}
+
+/// Write one point's histories: the chunks of its framed journal record (`framed`, made by
+/// `store::encode` on the worker), as they are. `store::placer` calls this in flat-index
+/// order while the run goes on; [`write_histories`] continues from where it stopped.
+pub fn place_history(
+    sk: &Skeleton,
+    info: &StudyInfo,
+    index: usize,
+    framed: &[u8],
+) -> Result<(), StoreError> {
+    write_point(
+        &sk.history,
+        info,
+        index,
+        &framed[REC_PREFIX..],
+        &sk.out,
+        &sk.out,
+        0,
+    )
+}
+
+/// One point's history chunks (`payload`: its journal record's) into the variables of
+/// [`create_history`]. `source` and `at` name where the record came from, for errors.
+fn write_point(
+    created: &[(usize, Dataset, Vec<usize>)],
+    info: &StudyInfo,
+    index: usize,
+    payload: &[u8],
+    source: &Path,
+    out: &Path,
+    at: u64,
+) -> Result<(), StoreError> {
+    let rank = info.shape.dims.len();
+    let pieces = history_chunks(payload, created.len()).ok_or_else(|| StoreError::BadJournal {
+        path: source.to_path_buf(),
+        what: format!(
+            "record of point {index} at byte {at} does not hold the study's {} histories",
+            created.len()
+        ),
+    })?;
+    let mut start = info.shape.unravel(index);
+    for ((_, ds, shape), bytes) in created.iter().zip(pieces) {
+        let tail = &shape[rank..];
+        if tail.iter().product::<usize>() == 0 {
+            continue;
+        }
+        start.truncate(rank);
+        start.extend(std::iter::repeat_n(0, tail.len()));
+        chunks::write_chunk(ds, &start, bytes)
+            .ctx(out, &format!("write a history of {}", ds.name()))?;
+    }
+    Ok(())
+}
+
+/// Write the stored histories not yet in the file (`tail`) into the variables of
+/// [`create_history`]: the chunks the workers made (`store::encode`), as they are, in
+/// flat-index order after those `store::placer` wrote during the run. Nothing is compressed
+/// here, and the file's layout does not depend on the order in which points finished nor on
+/// how far the placer got, so a study's file is the same whatever the thread count (issue 22).
 /// Memory: one record, and 32 bytes per point with histories (where its record is).
 pub(super) fn write_histories(
     created: &[(usize, Dataset, Vec<usize>)],
@@ -81,8 +149,17 @@ pub(super) fn write_histories(
     journal: &Path,
     scan: &Scan,
     out: &Path,
+    tail: HistoryTail,
 ) -> Result<(), StoreError> {
-    let rank = info.shape.dims.len();
+    let from = match tail {
+        HistoryTail::Held(held) => {
+            for (index, framed) in held {
+                write_point(created, info, index, &framed[REC_PREFIX..], journal, out, 0)?;
+            }
+            return Ok(());
+        }
+        HistoryTail::Journal { from } => from,
+    };
     // Where each point's first record is (the first record of a point wins, as in the
     // summary): one pass over the summaries, histories skipped over (a small buffer, so
     // that they are not read either).
@@ -90,7 +167,7 @@ pub(super) fn write_histories(
     let mut places: Vec<(usize, RecordPlace)> = Vec::new();
     let mut rr = RecordReader::open_with_buffer(journal, scan, 1 << 12)?;
     while let Some(rec) = rr.next_summary()? {
-        if rec.index < written.len() && written.insert(rec.index) {
+        if rec.index < written.len() && written.insert(rec.index) && rec.index >= from {
             if let Some(place) = rr.history_place() {
                 places.push((rec.index, place));
             }
@@ -102,26 +179,7 @@ pub(super) fn write_histories(
     let mut payload = Vec::new();
     for (index, place) in places {
         read_payload(&file, journal, place, &mut payload)?;
-        let pieces =
-            history_chunks(&payload, created.len()).ok_or_else(|| StoreError::BadJournal {
-                path: journal.to_path_buf(),
-                what: format!(
-                    "record of point {index} at byte {} does not hold the study's {} histories",
-                    place.at,
-                    created.len()
-                ),
-            })?;
-        let mut start = info.shape.unravel(index);
-        for ((_, ds, shape), bytes) in created.iter().zip(pieces) {
-            let tail = &shape[rank..];
-            if tail.iter().product::<usize>() == 0 {
-                continue;
-            }
-            start.truncate(rank);
-            start.extend(std::iter::repeat_n(0, tail.len()));
-            chunks::write_chunk(ds, &start, bytes)
-                .ctx(out, &format!("write a history of {}", ds.name()))?;
-        }
+        write_point(created, info, index, &payload, journal, out, place.at)?;
     }
     Ok(())
 }

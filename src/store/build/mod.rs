@@ -31,6 +31,7 @@ mod window;
 
 pub use fill::fill;
 pub use grid::summary_chunk;
+pub use history::{place_history, HistoryTail};
 pub use skeleton::{begin_skeleton, complete_skeleton, create_skeleton, Skeleton};
 pub use spill::remove_stale_spills;
 pub use window::Gathered;
