@@ -1003,9 +1003,11 @@ extern "C" {
     ) -> i32;
 }
 
-/// (variable, [(chunk offset, file address, stored bytes)]) of every chunk of every
-/// variable of `group`, in HDF5's order.
-fn all_chunks(path: &Path, group: &str) -> Vec<(String, Vec<(Vec<u64>, u64, u64)>)> {
+/// (chunk offset, file address, stored bytes) of one chunk.
+type ChunkPlace = (Vec<u64>, u64, u64);
+
+/// (variable, its chunks) for every chunked variable of `group`, chunks in HDF5's order.
+fn all_chunks(path: &Path, group: &str) -> Vec<(String, Vec<ChunkPlace>)> {
     let f = hdf5::File::open(path).unwrap();
     let g = f.group(group).unwrap();
     let mut names = g.member_names().unwrap();

@@ -397,8 +397,10 @@ impl Session {
             &self.info,
             &iso8601_now(),
             self.build_memory,
-            self.gathered.take(),
-            histories,
+            build::FromRun {
+                gathered: self.gathered.take(),
+                histories,
+            },
         )?;
         std::fs::File::open(&partial)
             .and_then(|f| f.sync_all())

@@ -17,6 +17,14 @@ use hdf5::Dataset;
 use rayon::prelude::*;
 use std::path::Path;
 
+/// What the session kept while the run went on.
+pub struct FromRun {
+    /// The summary gathered as records arrived (a one-window study's own journal).
+    pub gathered: Option<Gathered>,
+    /// The histories not yet placed in the file.
+    pub histories: HistoryTail,
+}
+
 /// Fill a skeleton with the journal's records, write the counts and `created`, and close
 /// the file. Memory: `memory` bytes of summary values at most (a study larger than that is
 /// built window by window, its journal first split into one spill file per window), one
@@ -28,9 +36,12 @@ pub fn fill(
     info: &StudyInfo,
     created: &str,
     memory: usize,
-    mut gathered: Option<Gathered>,
-    histories: HistoryTail,
+    run: FromRun,
 ) -> Result<Summary, StoreError> {
+    let FromRun {
+        mut gathered,
+        histories,
+    } = run;
     let out = sk.out.as_path();
     let n_points = info.shape.n_points();
     let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();

@@ -29,7 +29,7 @@ mod sweet;
 mod vars;
 mod window;
 
-pub use fill::fill;
+pub use fill::{fill, FromRun};
 pub use grid::summary_chunk;
 pub use history::{place_history, HistoryTail};
 pub use skeleton::{begin_skeleton, complete_skeleton, create_skeleton, Skeleton};

@@ -227,6 +227,42 @@ pub(super) fn run_modal(
                 .sum()
         })
         .collect();
+    if let Some(rec) = recorder.as_mut().filter(|r| r.wants_displacement && nz > 0) {
+        let inside: Vec<bool> = points.iter().map(|&(_, _, inside)| inside).collect();
+        let (shape_by_mode, static_at) = (shape_by_mode.clone(), static_at.clone());
+        rec.project_with(Box::new(
+            move |q: &[f64], p_bat: f64, out: &mut Vec<f64>| {
+                let start = out.len();
+                out.resize(start + nz, sum_start);
+                let y = &mut out[start..];
+                // blocks of z whose sums stay in registers over all the modes
+                const BLOCK: usize = 8;
+                for (b, yb) in y.chunks_mut(BLOCK).enumerate() {
+                    let i0 = b * BLOCK;
+                    if yb.len() == BLOCK {
+                        let mut acc = [sum_start; BLOCK];
+                        for (j, &qj) in q.iter().enumerate() {
+                            let row = &shape_by_mode[j * nz + i0..j * nz + i0 + BLOCK];
+                            for (a, &psi) in acc.iter_mut().zip(row) {
+                                *a += psi * qj;
+                            }
+                        }
+                        yb.copy_from_slice(&acc);
+                    } else {
+                        for (j, &qj) in q.iter().enumerate() {
+                            let row = &shape_by_mode[j * nz + i0..j * nz + i0 + yb.len()];
+                            for (a, &psi) in yb.iter_mut().zip(row) {
+                                *a += psi * qj;
+                            }
+                        }
+                    }
+                }
+                for (yi, (&inside, st)) in y.iter_mut().zip(inside.iter().zip(&static_at)) {
+                    *yi = if inside { *yi + st * p_bat } else { f64::NAN };
+                }
+            },
+        ));
+    }
     let total_mass = bat.beam.total_mass();
     let sample =
         |q: &[f64], rec: &Recorder, force: f64, p_bat: f64, s: f64, v: f64, hoop_rel: f64| {
@@ -246,40 +282,13 @@ pub(super) fn run_modal(
                 } else {
                     0.0
                 },
-                displacement: if rec.wants_displacement && nz > 0 {
-                    let mut y = vec![sum_start; nz];
-                    // blocks of z whose sums stay in registers over all the modes
-                    const BLOCK: usize = 8;
-                    let m = n.min(q.len());
-                    for (b, yb) in y.chunks_mut(BLOCK).enumerate() {
-                        let i0 = b * BLOCK;
-                        if yb.len() == BLOCK {
-                            let mut acc = [sum_start; BLOCK];
-                            for (j, &qj) in q[..m].iter().enumerate() {
-                                let row = &shape_by_mode[j * nz + i0..j * nz + i0 + BLOCK];
-                                for (a, &psi) in acc.iter_mut().zip(row) {
-                                    *a += psi * qj;
-                                }
-                            }
-                            yb.copy_from_slice(&acc);
-                        } else {
-                            for (j, &qj) in q[..m].iter().enumerate() {
-                                let row = &shape_by_mode[j * nz + i0..j * nz + i0 + yb.len()];
-                                for (a, &psi) in yb.iter_mut().zip(row) {
-                                    *a += psi * qj;
-                                }
-                            }
-                        }
-                    }
-                    for (yi, (&(_, _, inside), st)) in
-                        y.iter_mut().zip(points.iter().zip(&static_at))
-                    {
-                        *yi = if inside { *yi + st * p_bat } else { f64::NAN };
-                    }
-                    y
+                modal: if rec.wants_displacement && nz > 0 {
+                    q[..n.min(q.len())].to_vec()
                 } else {
                     Vec::new()
                 },
+                modal_force: p_bat,
+                displacement: Vec::new(),
             }
         };
     if let Some(rec) = recorder.as_mut() {

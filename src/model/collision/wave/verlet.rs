@@ -76,6 +76,7 @@ pub(super) fn run_verlet(
         } else {
             Vec::new()
         },
+        ..Sample::default()
     };
     if let Some(rec) = recorder.as_mut() {
         let smp = sample(&y, rec, 0.0, 0.0, v, 0.0);
