@@ -202,11 +202,14 @@ pub(super) fn print_scaling(
     line(
         out,
         format!(
-            "on {} cores: efficiency summary {:.1} %, history {:.1} %; history/summary per core {:.2}",
+            "on {} cores: efficiency summary {:.1} %, history {:.1} %; history/summary per core {:.2} \
+             (with histories computed but not stored: {:.0} points/s, {:.2})",
             sc.cores,
             sc.summary_efficiency * 100.0,
             sc.history_efficiency * 100.0,
-            sc.history_vs_summary_per_core
+            sc.history_vs_summary_per_core,
+            sc.history_compute_points_per_second,
+            sc.history_vs_summary_ceiling
         ),
     );
     line(

@@ -9,6 +9,7 @@
 
 use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK};
 use super::measure::{err, median};
+use super::sinks::run_null_recording;
 use super::write_share::bench_write_to;
 use crate::results::PointRecord;
 use crate::run::{self, ModelSimulator, Simulator};
@@ -37,6 +38,12 @@ pub struct Scaling {
     pub history_efficiency: f64,
     /// History points/s per core over summary points/s per core, on every core.
     pub history_vs_summary_per_core: f64,
+    /// Points/s of the history study on every core with its histories recorded but not
+    /// stored (a null sink): what a store that cost nothing would give.
+    pub history_compute_points_per_second: f64,
+    /// history_compute / summary on every core: the most `history_vs_summary_per_core` can
+    /// be with this study, whatever the store (a history point samples the bat 400 times).
+    pub history_vs_summary_ceiling: f64,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -106,7 +113,17 @@ pub(super) fn bench_scaling(sz: &Sizes, dir: &Path) -> Result<Scaling, String> {
     }
     let (first, last) = (&points[0], &points[points.len() - 1]);
     let n = last.threads as f64;
+    // the same history study on every core, its histories computed and dropped
+    let pool = run::build_pool(cores).map_err(err("pool"))?;
+    let bats = run::prepare_bats(&ModelSimulator, &history.plan, &pool);
+    let request = history.history_request(bats.max_length());
+    let walls = (0..sz.parallel_repeats.max(1))
+        .map(|_| run_null_recording(&history, &bats, request.as_ref(), &pool).map(|(w, _)| w))
+        .collect::<Result<Vec<_>, _>>()?;
+    let history_compute = history.plan.n_points() as f64 / median(walls);
     Ok(Scaling {
+        history_compute_points_per_second: history_compute,
+        history_vs_summary_ceiling: history_compute / last.summary_points_per_second,
         cores,
         summary_points: summary.plan.n_points(),
         history_points: history.plan.n_points(),

@@ -101,6 +101,16 @@ pub(super) fn run_null(
     bats: &run::PreparedBats<crate::model::Target>,
     pool: &rayon::ThreadPool,
 ) -> Result<(f64, f64), String> {
+    run_null_recording(study, bats, None, pool)
+}
+
+/// [`run_null`], the points recording `history` (computed, then dropped by the sink).
+pub(super) fn run_null_recording(
+    study: &Study,
+    bats: &run::PreparedBats<crate::model::Target>,
+    history: Option<&crate::model::outcome::HistoryRequest>,
+    pool: &rayon::ThreadPool,
+) -> Result<(f64, f64), String> {
     let stop = AtomicBool::new(false);
     let c0 = process_cpu_seconds();
     let t0 = Instant::now();
@@ -108,7 +118,7 @@ pub(super) fn run_null(
         &study.plan,
         &ModelSimulator,
         bats,
-        None,
+        history,
         NullSink,
         pool,
         &RunOptions::default(),

@@ -219,7 +219,12 @@ pub fn run_study(
     let (report, elapsed) = run_with(
         &settings,
         &ModelSimulator,
-        || store::begin(output, shape),
+        || {
+            if settings.existing == Existing::Overwrite {
+                store::discard_output(output)?;
+            }
+            store::begin(output, shape)
+        },
         |path, info, existing, begun| {
             let mut o = store_options(existing);
             o.run_meta.shard_range = settings.options.shard.map(|sh| {

@@ -37,7 +37,7 @@ pub use encode::{EncodedRecord, RecordEncoder};
 pub use error::StoreError;
 pub use merge::{merge, merge_check};
 pub use options::{iso8601_now, RunMeta, StoreOptions, Summary};
-pub use paths::{journal_path, partial_path};
+pub use paths::{discard_output, journal_path, partial_path};
 pub use read::{
     file_info, for_each_record, inspect, present_points, read_results, FileInfo, ReadBack,
 };

@@ -28,3 +28,11 @@ pub fn remove_if_exists(p: &Path) -> Result<(), StoreError> {
         Err(e) => Err(StoreError::io(p, "remove", e)),
     }
 }
+
+/// Remove a finished output and its journal, for a run that replaces them (`--force`). The
+/// run does this while it prepares its bats (issue 22: unlinking a 92 MiB file took 56 ms,
+/// before the first point); opening the store would do it otherwise.
+pub fn discard_output(path: &Path) -> Result<(), StoreError> {
+    remove_if_exists(path)?;
+    remove_if_exists(&journal_path(path))
+}
