@@ -162,3 +162,54 @@ fn a_journal_of_the_old_format_is_refused_on_resume() {
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     assert!(!journal.exists());
 }
+
+/// `history.compression: none` stores the same histories without filters: every variable of
+/// `/history` has no filter, the data read back equal the deflated study's bit for bit, and
+/// the file holds the raw chunk sizes (samples × z × 4 bytes for f32 displacement).
+#[test]
+fn uncompressed_histories_hold_the_same_data() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, text: &str| {
+        let study = dir.path().join(format!("{name}.yaml"));
+        std::fs::write(&study, text).unwrap();
+        let path = dir.path().join(format!("{name}.h5"));
+        batstudy_ok(&[
+            "run",
+            study.to_str().unwrap(),
+            "-o",
+            path.to_str().unwrap(),
+            "-q",
+        ]);
+        path
+    };
+    let deflated = run("deflated", STUDY);
+    let raw = run(
+        "raw",
+        &STUDY.replace("  z_step: 0.05\n", "  z_step: 0.05\n  compression: none\n"),
+    );
+    let (f1, f2) = (
+        hdf5::File::open(&deflated).unwrap(),
+        hdf5::File::open(&raw).unwrap(),
+    );
+    let (g1, g2) = (f1.group("history").unwrap(), f2.group("history").unwrap());
+    for name in ["force", "displacement"] {
+        let (d1, d2) = (g1.dataset(name).unwrap(), g2.dataset(name).unwrap());
+        assert!(!d1.filters().is_empty(), "{name}: deflated by default");
+        assert!(d2.filters().is_empty(), "{name}: no filters");
+        let (v, w): (Vec<f32>, Vec<f32>) = (d1.read_raw().unwrap(), d2.read_raw().unwrap());
+        assert_eq!(v.len(), w.len());
+        assert!(
+            v.iter().zip(&w).all(|(a, b)| a.to_bits() == b.to_bits()),
+            "{name}"
+        );
+        // each stored chunk is the raw values: samples (× z) × 4 bytes
+        let per_chunk = d2.chunk().unwrap()[2..].iter().product::<usize>() * 4;
+        let c = chunks(&raw, &d2);
+        assert_eq!(c.len(), 2 * 16, "{name}");
+        assert!(
+            c.iter().all(|(_, _, bytes)| bytes.len() == per_chunk),
+            "{name}"
+        );
+    }
+    assert_eq!(stored_records(&deflated), stored_records(&raw));
+}

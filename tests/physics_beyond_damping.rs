@@ -73,6 +73,7 @@ fn free_vibration_decays_at_omega_over_2q() {
         n_samples: 3000,
         z: beam.z.clone(),
         precision: HistoryPrecision::F64,
+        compression: Default::default(),
     };
     let o = simulate(&spec, &bat, Some(&request)).unwrap();
     let h = o.history.unwrap();

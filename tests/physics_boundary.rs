@@ -52,6 +52,7 @@ fn impact_at_60_cm_reaches_the_handle_after_a_delay() {
         n_samples: 2000,
         z: vec![0.10, 0.60],
         precision: Default::default(),
+        compression: Default::default(),
     };
     let o = simulate(&spec, &bat, Some(&request)).unwrap();
     let h = o.history.unwrap();

@@ -215,6 +215,20 @@ pub(super) fn print_scaling(
     line(
         out,
         format!(
+            "history study on {} cores: deflated {:.0} points/s ({:.1} MiB), `compression: none` \
+             {:.0} points/s ({:.1} MiB)",
+            sc.cores,
+            sc.points
+                .last()
+                .map_or(0.0, |p| p.history_points_per_second),
+            sc.history_file_bytes as f64 / (1 << 20) as f64,
+            sc.history_uncompressed_points_per_second,
+            sc.history_uncompressed_file_bytes as f64 / (1 << 20) as f64
+        ),
+    );
+    line(
+        out,
+        format!(
             "writer headroom: the store's writer absorbs {:.0} points/s ({:.0} while the run \
              computes, then {:.3} s to finish {} points), one worker computes and encodes {:.0} \
              ({:.0} % of it encoding): {:.1} cores ({:.1} while the run computes)",

@@ -44,6 +44,12 @@ pub struct Scaling {
     /// history_compute / summary on every core: the most `history_vs_summary_per_core` can
     /// be with this study, whatever the store (a history point samples the bat 400 times).
     pub history_vs_summary_ceiling: f64,
+    /// Points/s of the history study on every core, stored with `history.compression: none`
+    /// (no filters: more bytes, far less CPU per point), and its file's size.
+    pub history_uncompressed_points_per_second: f64,
+    pub history_uncompressed_file_bytes: u64,
+    /// The default (deflated) history study's file size.
+    pub history_file_bytes: u64,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -121,9 +127,24 @@ pub(super) fn bench_scaling(sz: &Sizes, dir: &Path) -> Result<Scaling, String> {
         .map(|_| run_null_recording(&history, &bats, request.as_ref(), &pool).map(|(w, _)| w))
         .collect::<Result<Vec<_>, _>>()?;
     let history_compute = history.plan.n_points() as f64 / median(walls);
+    let uncompressed = load_study(
+        &curve_study_text(
+            "bench-scaling-history",
+            sz.history_omegas,
+            &format!("{HISTORY_BLOCK}  compression: none\n"),
+        ),
+        "scaling",
+    )?;
+    let history_uncompressed = rate(&uncompressed, "scaling-history-none", cores)?;
+    let size = |case: &str| {
+        std::fs::metadata(dir.join(format!("{case}-{cores}-0.h5"))).map_or(0, |m| m.len())
+    };
     Ok(Scaling {
         history_compute_points_per_second: history_compute,
         history_vs_summary_ceiling: history_compute / last.summary_points_per_second,
+        history_uncompressed_points_per_second: history_uncompressed,
+        history_uncompressed_file_bytes: size("scaling-history-none"),
+        history_file_bytes: size("scaling-history"),
         cores,
         summary_points: summary.plan.n_points(),
         history_points: history.plan.n_points(),

@@ -102,11 +102,20 @@ pub fn filtered<T: ChunkValue>(
     deflate_zlib(&shuffled, level)
 }
 
-/// [`filtered`] for values that fill their chunk (a history: one chunk per point), shuffled
+/// [`filtered`] for values that fill their chunk (a history: one chunk per point); level 0:
+/// the raw values of a dataset without filters. Shuffled
 /// straight from the values: the same bytes with one copy less. Runs on the workers
 /// (`store::encode`, issue 22).
 pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     let n = values.len();
+    if level == 0 {
+        // no filters: the values as they are, little-endian
+        let mut raw = Vec::with_capacity(n * T::SIZE);
+        for &v in values {
+            v.put_le(&mut raw);
+        }
+        return raw;
+    }
     let mut shuffled = vec![0u8; n * T::SIZE];
     let mut e = [0u8; 16];
     for (i, &v) in values.iter().enumerate() {

@@ -324,7 +324,7 @@ pub fn create_var<T: H5Type + Into<hdf5::types::OwnedDynValue>>(
     create_var_level(g, name, shape, chunk, fill, DEFLATE_LEVEL)
 }
 
-/// `create_var` with this deflate level.
+/// `create_var` with this deflate level (0: chunked, no filters).
 pub fn create_var_level<T: H5Type + Into<hdf5::types::OwnedDynValue>>(
     g: &Group,
     name: &str,
@@ -337,7 +337,11 @@ pub fn create_var_level<T: H5Type + Into<hdf5::types::OwnedDynValue>>(
     let chunkable = !shape.is_empty() && shape.iter().all(|&n| n > 0);
     b = b.fill_value(fill);
     if chunkable {
-        b = b.chunk(chunk.to_vec()).shuffle().deflate(level);
+        b = b.chunk(chunk.to_vec());
+        // level 0: stored as it is (no filter), see `layout::history_deflate_level`
+        if level > 0 {
+            b = b.shuffle().deflate(level);
+        }
     }
     b.shape(shape.to_vec()).create(name)
 }

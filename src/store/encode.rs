@@ -32,6 +32,8 @@ struct StoredHistory {
     /// (index into `layout::HISTORY_VARS`, samples expected), in the file's order.
     vars: Vec<(usize, usize)>,
     precision: HistoryPrecision,
+    /// Deflate level (0: no filters).
+    level: u8,
 }
 
 /// Turns finished points into journal records. Cheap to clone, shared by every worker.
@@ -61,6 +63,7 @@ impl RecordEncoder {
                 })
                 .collect(),
             precision: h.precision,
+            level: layout::history_deflate_level(h),
         });
         RecordEncoder {
             inner: Arc::new(Inner {
@@ -115,7 +118,7 @@ impl RecordEncoder {
                         want
                     )));
                 }
-                let level = layout::HISTORY_DEFLATE_LEVEL;
+                let level = st.level;
                 let bytes = match st.precision {
                     HistoryPrecision::F64 => chunks::filtered_whole(a, level),
                     HistoryPrecision::F32 => {

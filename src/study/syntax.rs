@@ -27,6 +27,7 @@ pub(super) const HISTORY_KEYS: &[&str] = &[
     "interval",
     "duration",
     "precision",
+    "compression",
     "z_step",
     "only",
 ];

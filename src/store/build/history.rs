@@ -37,10 +37,10 @@ pub(super) fn create_history(
     let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
     let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let vars = history_vars(h);
-    const HL: u8 = l::HISTORY_DEFLATE_LEVEL;
     let mut created: Vec<(usize, Dataset, Vec<usize>)> = Vec::new();
     for &k in &vars {
         let (def, _, with_z) = &l::HISTORY_VARS[k];
+        let level = l::history_deflate_level(h);
         let mut s = shape.clone();
         let mut c = vec![1; shape.len()];
         let mut sc: Vec<&Dataset> = scales.iter().collect();
@@ -54,10 +54,10 @@ pub(super) fn create_history(
         }
         let ds = match h.precision {
             HistoryPrecision::F64 => {
-                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux, att), HL, out)?
+                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux, att), level, out)?
             }
             HistoryPrecision::F32 => {
-                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux, att), HL, out)?
+                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux, att), level, out)?
             }
         };
         attr_str(
