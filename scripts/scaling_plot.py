@@ -25,6 +25,14 @@ def main(argv=None) -> int:
         rates = [p[key] for p in sc["points"]]
         ax.plot(t, rates, "o-", label=label)
         ax.plot(t, [rates[0] * n for n in t], ":", color=ax.lines[-1].get_color(), lw=1)
+    if "history_uncompressed_points_per_second" in sc:
+        ax.plot([t[-1]], [sc["history_uncompressed_points_per_second"]], "s", color="tab:green",
+                label=f"full histories, `compression: none`: "
+                      f"{sc['history_uncompressed_points_per_second']:.0f} points/s")
+    if "history_compute_points_per_second" in sc:
+        ax.plot([t[-1]], [sc["history_compute_points_per_second"]], "^", color="gray",
+                label=f"full histories computed, not stored: "
+                      f"{sc['history_compute_points_per_second']:.0f} points/s")
     ax.axhline(wh["writer_points_per_second"], color="firebrick", ls="--", lw=1,
                label=f"the writer alone, finish included (history study): "
                      f"{wh['writer_points_per_second']:.0f} points/s")
