@@ -6,24 +6,8 @@
 
 mod common;
 
-use common::{batstudy_command as batstudy, batstudy_ok, stored_records};
-use hdf5_sys::h5::{haddr_t, herr_t, hsize_t};
-use hdf5_sys::h5i::hid_t;
+use common::{batstudy_command as batstudy, batstudy_ok, chunk_places, stored_records};
 use std::path::Path;
-
-extern "C" {
-    // libhdf5 ≥ 1.10.5
-    fn H5Dget_num_chunks(dset_id: hid_t, fspace_id: hid_t, nchunks: *mut hsize_t) -> herr_t;
-    fn H5Dget_chunk_info(
-        dset_id: hid_t,
-        fspace_id: hid_t,
-        chk_idx: hsize_t,
-        offset: *mut hsize_t,
-        filter_mask: *mut u32,
-        addr: *mut haddr_t,
-        size: *mut hsize_t,
-    ) -> herr_t;
-}
 
 // Some points record histories (`only`), one field per kind (with and without z), f32.
 const STUDY: &str = r#"
@@ -46,28 +30,14 @@ history:
 /// (chunk offset, file address, stored bytes) of every chunk of a dataset, in HDF5's order.
 fn chunks(path: &Path, ds: &hdf5::Dataset) -> Vec<(Vec<u64>, u64, Vec<u8>)> {
     let file = std::fs::read(path).unwrap();
-    let rank = ds.ndim();
-    let space = ds.space().unwrap();
-    let mut n: hsize_t = 0;
-    assert!(unsafe { H5Dget_num_chunks(ds.id(), space.id(), &mut n) } >= 0);
-    (0..n)
-        .map(|i| {
-            let mut offset = vec![0 as hsize_t; rank];
-            let (mut mask, mut addr, mut size) = (0u32, 0 as haddr_t, 0 as hsize_t);
-            let r = unsafe {
-                H5Dget_chunk_info(
-                    ds.id(),
-                    space.id(),
-                    i,
-                    offset.as_mut_ptr(),
-                    &mut mask,
-                    &mut addr,
-                    &mut size,
-                )
-            };
-            assert!(r >= 0 && mask == 0, "chunk {i} of {}", ds.name());
-            let bytes = file[addr as usize..(addr + size) as usize].to_vec();
-            (offset, addr, bytes)
+    chunk_places(ds)
+        .into_iter()
+        .map(|(offset, addr, size)| {
+            (
+                offset,
+                addr,
+                file[addr as usize..(addr + size) as usize].to_vec(),
+            )
         })
         .collect()
 }

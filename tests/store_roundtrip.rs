@@ -1,6 +1,8 @@
 //! Store tests: round trip, crash/resume (torn journal and real `kill -9`), refusals.
 //! `write_python_fixture` (ignored) writes files for tests/python/test_store_layout.py.
 
+mod common;
+
 use batstudy::model::outcome::{
     BatProperties, EnergyPartition, History, HistoryField, HistoryPrecision, HistoryRequest,
     Outcome,
@@ -990,62 +992,19 @@ fn chunk_layout_does_not_depend_on_the_threads() {
     assert_eq!(layouts[0], layouts[1]);
 }
 
-extern "C" {
-    // libhdf5 ≥ 1.10.5
-    fn H5Dget_num_chunks(dset: i64, fspace: i64, nchunks: *mut u64) -> i32;
-    fn H5Dget_chunk_info(
-        dset: i64,
-        fspace: i64,
-        index: u64,
-        offset: *mut u64,
-        filter_mask: *mut u32,
-        addr: *mut u64,
-        size: *mut u64,
-    ) -> i32;
-}
-
-/// (chunk offset, file address, stored bytes) of one chunk.
-type ChunkPlace = (Vec<u64>, u64, u64);
-
 /// (variable, its chunks) for every chunked variable of `group`, chunks in HDF5's order.
-fn all_chunks(path: &Path, group: &str) -> Vec<(String, Vec<ChunkPlace>)> {
+fn all_chunks(path: &Path, group: &str) -> Vec<(String, Vec<common::ChunkPlace>)> {
     let f = hdf5::File::open(path).unwrap();
     let g = f.group(group).unwrap();
     let mut names = g.member_names().unwrap();
     names.sort();
-    let mut out = Vec::new();
-    for name in names {
-        let ds = g.dataset(&name).unwrap();
-        if !ds.is_chunked() {
-            continue;
-        }
-        let space = ds.space().unwrap();
-        let chunks = hdf5::sync::sync(|| {
-            let mut n = 0u64;
-            assert!(unsafe { H5Dget_num_chunks(ds.id(), space.id(), &mut n) } >= 0);
-            (0..n)
-                .map(|i| {
-                    let mut offset = vec![0u64; ds.ndim()];
-                    let (mut mask, mut addr, mut size) = (0u32, 0u64, 0u64);
-                    let r = unsafe {
-                        H5Dget_chunk_info(
-                            ds.id(),
-                            space.id(),
-                            i,
-                            offset.as_mut_ptr(),
-                            &mut mask,
-                            &mut addr,
-                            &mut size,
-                        )
-                    };
-                    assert!(r >= 0, "{name} chunk {i}");
-                    (offset, addr, size)
-                })
-                .collect()
-        });
-        out.push((name, chunks));
-    }
-    out
+    names
+        .into_iter()
+        .filter_map(|name| {
+            let ds = g.dataset(&name).unwrap();
+            ds.is_chunked().then(|| (name, common::chunk_places(&ds)))
+        })
+        .collect()
 }
 
 // issue 22: the histories are written into the final file while the run goes on, in

@@ -46,3 +46,48 @@ pub fn stored_records(path: &std::path::Path) -> Vec<String> {
         .map(|r| format!("{} {} {} {:?}", r.index, r.id, r.bat, r.result))
         .collect()
 }
+
+extern "C" {
+    // libhdf5 ≥ 1.10.5; declared here so as not to depend on the -sys crate's version gates
+    fn H5Dget_num_chunks(dset: i64, fspace: i64, nchunks: *mut u64) -> i32;
+    fn H5Dget_chunk_info(
+        dset: i64,
+        fspace: i64,
+        index: u64,
+        offset: *mut u64,
+        filter_mask: *mut u32,
+        addr: *mut u64,
+        size: *mut u64,
+    ) -> i32;
+}
+
+/// (chunk offset, file address, stored bytes) of one chunk of a dataset.
+pub type ChunkPlace = (Vec<u64>, u64, u64);
+
+/// Every allocated chunk of a chunked dataset, in HDF5's order (unfiltered: filter mask 0).
+pub fn chunk_places(ds: &hdf5::Dataset) -> Vec<ChunkPlace> {
+    let space = ds.space().unwrap();
+    hdf5::sync::sync(|| {
+        let mut n = 0u64;
+        assert!(unsafe { H5Dget_num_chunks(ds.id(), space.id(), &mut n) } >= 0);
+        (0..n)
+            .map(|i| {
+                let mut offset = vec![0u64; ds.ndim()];
+                let (mut mask, mut addr, mut size) = (0u32, 0u64, 0u64);
+                let r = unsafe {
+                    H5Dget_chunk_info(
+                        ds.id(),
+                        space.id(),
+                        i,
+                        offset.as_mut_ptr(),
+                        &mut mask,
+                        &mut addr,
+                        &mut size,
+                    )
+                };
+                assert!(r >= 0 && mask == 0, "chunk {i} of {}", ds.name());
+                (offset, addr, size)
+            })
+            .collect()
+    })
+}
