@@ -229,7 +229,6 @@ pub(super) fn run_modal(
         .collect();
     if let Some(rec) = recorder.as_mut().filter(|r| r.wants_displacement && nz > 0) {
         let inside: Vec<bool> = points.iter().map(|&(_, _, inside)| inside).collect();
-        let (shape_by_mode, static_at) = (shape_by_mode.clone(), static_at.clone());
         rec.project_with(Box::new(
             move |q: &[f64], p_bat: f64, out: &mut Vec<f64>| {
                 let start = out.len();
