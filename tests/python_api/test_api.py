@@ -192,8 +192,11 @@ def test_ctrl_c_stops_like_the_cli_and_resume_finishes(tmp_path, root):
         "  swing.omega: {linspace: [0, -60, 120]}\n  impact.z: {range: [0.40, 0.84, 0.005]}\n"
     )
     out = tmp_path / "long.h5"
+    # Python keeps SIGINT ignored when it starts with it ignored (a shell's background job,
+    # as CI may be): give the child the handler an interactive Python has.
     code = (
-        "import batstudy, sys\n"
+        "import batstudy, signal, sys\n"
+        "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "try:\n"
         f"    batstudy.run({str(study)!r}, output={str(out)!r}, jobs=1, progress=True)\n"
         "except KeyboardInterrupt as e:\n"
