@@ -122,6 +122,8 @@ impl<'r> Recorder<'r> {
 
 fn lerp(a: &Sample, b: &Sample, w: f64) -> Sample {
     let l = |x: f64, y: f64| x + w * (y - x);
+    let lerp_each =
+        |x: &[f64], y: &[f64]| -> Vec<f64> { x.iter().zip(y).map(|(x, y)| l(*x, *y)).collect() };
     Sample {
         force: l(a.force, b.force),
         compression: l(a.compression, b.compression),
@@ -129,18 +131,8 @@ fn lerp(a: &Sample, b: &Sample, w: f64) -> Sample {
         hoop_displacement: l(a.hoop_displacement, b.hoop_displacement),
         rigid_translation: l(a.rigid_translation, b.rigid_translation),
         rigid_rotation: l(a.rigid_rotation, b.rigid_rotation),
-        displacement: a
-            .displacement
-            .iter()
-            .zip(&b.displacement)
-            .map(|(x, y)| l(*x, *y))
-            .collect(),
-        modal: a
-            .modal
-            .iter()
-            .zip(&b.modal)
-            .map(|(x, y)| l(*x, *y))
-            .collect(),
+        displacement: lerp_each(&a.displacement, &b.displacement),
+        modal: lerp_each(&a.modal, &b.modal),
         modal_force: l(a.modal_force, b.modal_force),
     }
 }

@@ -1,5 +1,6 @@
-//! Filling a skeleton with the journal's records, window by window: the summary and sweet
-//! spots, `/errors`, then the counts (the histories the run has not placed yet first); memory bounded by the build's budget.
+//! Filling a skeleton with the journal's records: the histories the run has not placed yet,
+//! then window by window the summary and sweet spots, `/errors` and the counts; memory
+//! bounded by the build's budget.
 
 use super::attrs::final_attrs;
 use super::errors::write_errors;

@@ -1,5 +1,6 @@
 //! `/history`: its (empty) variables, made with the skeleton, and every stored history
-//! copied into them from the journal, in flat-index order.
+//! copied into them in flat-index order: during the run (`store::placer`), the rest at the
+//! finish.
 
 use super::skeleton::Skeleton;
 use super::vars::{new_var_level, study_dims};
@@ -37,10 +38,10 @@ pub(super) fn create_history(
     let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
     let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let vars = history_vars(h);
+    let level = l::history_deflate_level(h);
     let mut created: Vec<(usize, Dataset, Vec<usize>)> = Vec::new();
     for &k in &vars {
         let (def, _, with_z) = &l::HISTORY_VARS[k];
-        let level = l::history_deflate_level(h);
         let mut s = shape.clone();
         let mut c = vec![1; shape.len()];
         let mut sc: Vec<&Dataset> = scales.iter().collect();
