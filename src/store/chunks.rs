@@ -85,6 +85,15 @@ fn shuffle(bytes: &[u8], size: usize) -> Vec<u8> {
     out
 }
 
+/// The values' little-endian bytes, one after the other.
+fn le_bytes<T: ChunkValue>(values: &[T]) -> Vec<u8> {
+    let mut raw = Vec::with_capacity(values.len() * T::SIZE);
+    for &v in values {
+        v.put_le(&mut raw);
+    }
+    raw
+}
+
 /// The bytes HDF5 stores for one chunk of a dataset created with shuffle then deflate(`level`).
 pub fn filtered<T: ChunkValue>(
     values: &[T],
@@ -94,11 +103,7 @@ pub fn filtered<T: ChunkValue>(
     level: u8,
 ) -> Vec<u8> {
     let whole = padded(values, count, chunk, fill);
-    let mut raw = Vec::with_capacity(whole.len() * T::SIZE);
-    for &v in whole.iter() {
-        v.put_le(&mut raw);
-    }
-    let shuffled = shuffle(&raw, T::SIZE);
+    let shuffled = shuffle(&le_bytes(&whole), T::SIZE);
     deflate_zlib(&shuffled, level)
 }
 
@@ -109,12 +114,7 @@ pub fn filtered<T: ChunkValue>(
 pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     let n = values.len();
     if level == 0 {
-        // no filters: the values as they are, little-endian
-        let mut raw = Vec::with_capacity(n * T::SIZE);
-        for &v in values {
-            v.put_le(&mut raw);
-        }
-        return raw;
+        return le_bytes(values); // no filters: the values as they are
     }
     let mut shuffled = vec![0u8; n * T::SIZE];
     let mut e = [0u8; 16];
