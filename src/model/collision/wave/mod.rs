@@ -27,6 +27,7 @@ use crate::model::spec::{BeamTheory, CollisionSpec, Integrator};
 mod contact;
 mod hoop;
 mod modal;
+mod project;
 mod step;
 mod verlet;
 mod wall;

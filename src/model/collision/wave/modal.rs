@@ -2,6 +2,7 @@
 //! force linear over each step; the end force found implicitly (one scalar equation).
 
 use super::contact::Contact;
+use super::project::project;
 use super::{displacement_points, spec_history, Collision, FinalState, MIN_MODES};
 use crate::model::bat::motion::grip_vibration_amplitude;
 use crate::model::bat::PreparedBat;
@@ -204,9 +205,7 @@ pub(super) fn run_modal(
 
     let points = displacement_points(bat, spec_history(recorder));
     // The mode shapes at the requested z, mode by mode (`shape_by_mode[j * nz + i]`): a
-    // sample's displacements are summed over the modes for every z at once, so that the sums
-    // of different z run side by side (vectorised) while each keeps its own order, the order
-    // of one sum per z (issue 22: one sum at a time was a quarter of a history study's time).
+    // sample's displacements are summed over the modes for every z at once (`project`).
     let nz = points.len();
     let mut shape_by_mode = vec![0.0; n * nz];
     for (i, &(k, a, _)) in points.iter().enumerate() {
@@ -234,28 +233,7 @@ pub(super) fn run_modal(
                 let start = out.len();
                 out.resize(start + nz, sum_start);
                 let y = &mut out[start..];
-                // blocks of z whose sums stay in registers over all the modes
-                const BLOCK: usize = 8;
-                for (b, yb) in y.chunks_mut(BLOCK).enumerate() {
-                    let i0 = b * BLOCK;
-                    if yb.len() == BLOCK {
-                        let mut acc = [sum_start; BLOCK];
-                        for (j, &qj) in q.iter().enumerate() {
-                            let row = &shape_by_mode[j * nz + i0..j * nz + i0 + BLOCK];
-                            for (a, &psi) in acc.iter_mut().zip(row) {
-                                *a += psi * qj;
-                            }
-                        }
-                        yb.copy_from_slice(&acc);
-                    } else {
-                        for (j, &qj) in q.iter().enumerate() {
-                            let row = &shape_by_mode[j * nz + i0..j * nz + i0 + yb.len()];
-                            for (a, &psi) in yb.iter_mut().zip(row) {
-                                *a += psi * qj;
-                            }
-                        }
-                    }
-                }
+                project(q, &shape_by_mode, y, sum_start);
                 for (yi, (&inside, st)) in y.iter_mut().zip(inside.iter().zip(&static_at)) {
                     *yi = if inside { *yi + st * p_bat } else { f64::NAN };
                 }
