@@ -183,9 +183,12 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
 }
 
 /// Whether a byte plane is as good as uniform noise, which deflate cannot shrink: its bytes
-/// collide within 2 % as often as uniform bytes would. Σ c(c − 1) / (n(n − 1)) is an unbiased
-/// estimate of the collision probability Σ p² (1/256 for uniform bytes), and integers keep
-/// the decision the same on every machine.
+/// collide at most 3 % more often than uniform bytes would. Σ c(c − 1) / (n(n − 1)) is an
+/// unbiased estimate of the collision probability Σ p² (1/256 for uniform bytes); 3 % above
+/// it, entropy coding could save at most about 0.3 % of the plane (8 − H ≈ (256 Σ p² − 1) /
+/// (2 ln 2) bits near uniform). Measured on displacement chunks: planes 0 and 1 at 1.004 to
+/// 1.011, plane 2 (which deflate shrinks by 10 %) at 1.054 to 1.066. Integers keep the
+/// decision the same on every machine.
 fn looks_uniform(plane: &[u8]) -> bool {
     let mut counts = [0u64; 256];
     for &b in plane {
@@ -196,8 +199,8 @@ fn looks_uniform(plane: &[u8]) -> bool {
         .iter()
         .map(|&c| u128::from(c * c.saturating_sub(1)))
         .sum();
-    // 256 Σ c(c − 1) ≤ 1.02 n(n − 1)
-    pairs * 256 * 100 <= 102 * n * n.saturating_sub(1)
+    // 256 Σ c(c − 1) ≤ 1.03 n(n − 1)
+    pairs * 256 * 100 <= 103 * n * n.saturating_sub(1)
 }
 
 thread_local! {
