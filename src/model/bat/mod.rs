@@ -1,7 +1,8 @@
 //! The bat: outer profile R(z) (`profile`), resolved cross-sections and material
-//! (`section`), the lumped beam (`beam`), its modes (`modal`), all of it prepared once per
+//! (`section`), the lumped beam (`beam`), its modes (`modal`, solved by `band_eigen`), all of it prepared once per
 //! distinct bat (`prepared`), and the motion of a bat state (`motion`).
 
+pub mod band_eigen;
 pub mod beam;
 pub mod modal;
 pub mod motion;
