@@ -186,7 +186,7 @@ pub fn open_begun(
         read::for_each_record(path, |rec| {
             let index = rec.index;
             if index < n_points && !done.contains(index) {
-                w.append(&encoder.encode(rec)?.framed);
+                w.append(&encoder.encode(rec)?.framed)?;
                 done.insert(index);
                 if w.buffered_bytes() > 1 << 22 {
                     w.flush()?;
@@ -290,7 +290,7 @@ impl Session {
             return Ok(());
         }
         let j = self.journal.as_mut().expect("open session has a journal");
-        j.append(&rec.framed);
+        j.append(&rec.framed)?;
         self.done.insert(index);
         if let Some(g) = self.gathered.as_mut() {
             g.put(&rec.summary);
