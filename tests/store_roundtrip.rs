@@ -774,7 +774,7 @@ fn journal_writer_extent_equals_a_scan() {
     check(&w);
     // ok points with histories, a failed point with its message (index 3 fails in `outcome`)
     for k in 0..9 {
-        w.append(&framed(k));
+        w.append(&framed(k)).unwrap();
     }
     w.flush().unwrap();
     check(&w);
@@ -790,7 +790,7 @@ fn journal_writer_extent_equals_a_scan() {
     assert!(torn.dropped_bytes > 0);
     let mut w = JournalWriter::append_to(&path, &torn).unwrap();
     for k in 9..14 {
-        w.append(&framed(k));
+        w.append(&framed(k)).unwrap();
     }
     w.flush().unwrap();
     check(&w);
