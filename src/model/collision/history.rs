@@ -41,11 +41,29 @@ pub(crate) struct Recorder<'r> {
 impl<'r> Recorder<'r> {
     pub fn new(request: &'r HistoryRequest) -> Self {
         let has = |f: HistoryField| request.fields.contains(&f);
+        // every requested series at its final length at once: grown by doubling, the
+        // displacement (n_samples × z) was copied about twice over
+        let room = |f: HistoryField, per_sample: usize| {
+            Vec::with_capacity(if has(f) {
+                request.n_samples * per_sample
+            } else {
+                0
+            })
+        };
+        let history = History {
+            force: room(HistoryField::Force, 1),
+            compression: room(HistoryField::Compression, 1),
+            ball_velocity: room(HistoryField::BallVelocity, 1),
+            displacement: room(HistoryField::Displacement, request.z.len()),
+            rigid_translation: room(HistoryField::RigidMotion, 1),
+            rigid_rotation: room(HistoryField::RigidMotion, 1),
+            hoop_displacement: room(HistoryField::HoopDisplacement, 1),
+        };
         Self {
             request,
             next: 0,
             previous: None,
-            history: History::default(),
+            history,
             wants_displacement: has(HistoryField::Displacement),
             wants_rigid: has(HistoryField::RigidMotion),
             projector: None,
