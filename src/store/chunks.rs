@@ -361,6 +361,26 @@ mod tests {
         assert_eq!(&back[n..], &noisy[..]);
     }
 
+    // Every plane noise, 280 000 bytes in all where a stored block holds 65 535: the stream
+    // is five stored blocks, the last one final, and inflates to the shuffled bytes.
+    #[test]
+    fn all_noise_chunks_are_stored_blocks_only() {
+        let n = 70_000;
+        let v: Vec<f32> = noise(4 * n)
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        let bytes = filtered_whole(&v, 1);
+        let shuffled = shuffle(&le_bytes(&v), 4);
+        // zlib header, the bytes with 5 bytes of header per stored block, Adler-32
+        assert_eq!(bytes.len(), 2 + 4 * n + 5 * 5 + 4);
+        let mut inflated = vec![0u8; shuffled.len()];
+        let got = libdeflater::Decompressor::new()
+            .zlib_decompress(&bytes, &mut inflated)
+            .unwrap();
+        assert_eq!((got, &inflated), (shuffled.len(), &shuffled));
+    }
+
     // An edge block keeps its values at their places in the whole chunk; the rest is fill.
     #[test]
     fn edge_block_is_padded_in_place() {
