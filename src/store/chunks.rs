@@ -134,8 +134,8 @@ const PLANE_MIN_VALUES: usize = 1024;
 /// Shuffled bytes (`size` planes of equal length) as one zlib stream, which is what the
 /// deflate filter reads. The planes that hold the low-order bytes of measured or computed
 /// floats are noise: deflate spends most of its time on them and saves nothing (issue 22: on
-/// a displacement chunk of 17 000 f32, planes 0 and 1 deflate to 99.8 % of their size and
-/// take 60 % of the time). So the leading planes that look like uniform bytes go in as
+/// a displacement chunk of 17 000 f32, libdeflate takes 50 µs on each of planes 0 and 1 and
+/// they come out at 99.8 % of their size). So the leading planes that look like uniform bytes go in as
 /// stored blocks and only the rest is deflated; deflate allows mixing block types in one
 /// stream, so every zlib reader (HDF5's filter, h5py, xarray) reads it as before.
 fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
