@@ -35,13 +35,20 @@ fn killed_runs_resume_to_the_uninterrupted_result() {
     let want = data(&reference);
     assert_eq!(want.len(), 5 * 3 * 111);
 
+    // Killed at several moments of the run itself, counted from when its journal appears
+    // (the bats are prepared by then): fixed delays from the start missed the run once it
+    // took less than the first of them.
     let mut interrupted = 0;
-    for (k, delay_ms) in [40u64, 150, 400, 900].into_iter().enumerate() {
+    for (k, delay_ms) in [0u64, 10, 30, 60].into_iter().enumerate() {
         let path = dir.path().join(format!("killed-{k}.h5"));
         let p = path.to_str().unwrap();
         let mut child = batstudy(&["run", study, "-o", p, "-j", "2", "-q"])
             .spawn()
             .unwrap();
+        let journal = format!("{p}.journal");
+        while !Path::new(&journal).exists() && child.try_wait().unwrap().is_none() {
+            std::thread::sleep(Duration::from_millis(1));
+        }
         std::thread::sleep(Duration::from_millis(delay_ms));
         let _ = child.kill(); // SIGKILL: no chance to flush or clean up
         let _ = child.wait();
@@ -63,5 +70,9 @@ fn killed_runs_resume_to_the_uninterrupted_result() {
             "journal left behind"
         );
     }
-    assert!(interrupted >= 1, "no kill landed before the run finished");
+    eprintln!("{interrupted} of 4 kills landed before the run finished");
+    assert!(
+        interrupted >= 2,
+        "only {interrupted} kills landed before the run finished"
+    );
 }

@@ -115,7 +115,12 @@ fn a_sigkilled_holder_does_not_block_the_next_run() {
         .spawn()
         .unwrap();
     wait_for_lock(&out);
-    std::thread::sleep(Duration::from_millis(200));
+    // mid-run: its points have begun (the journal is there), most are still to come
+    let journal = PathBuf::from(format!("{o}.journal"));
+    while !journal.exists() && holder.try_wait().unwrap().is_none() {
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    std::thread::sleep(Duration::from_millis(20));
     holder.kill().unwrap(); // SIGKILL: the lock file stays, the lock does not
     let _ = holder.wait();
     assert!(lock_of(&out).exists(), "a killed run leaves its lock file");
