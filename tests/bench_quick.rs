@@ -57,6 +57,12 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
     assert!(r.hdf5.iter().all(|w| w.file_bytes > 0 && w.share > 0.0));
     assert!(r.hdf5[1].history_bytes_in_memory > 0);
     assert!(r.memory.plan_points >= 10_000);
+    // issue 22: the writer's headroom, and the disk's over the bytes a history point makes
+    let wh = &r.writer_headroom;
+    assert!(wh.headroom > 0.0 && wh.run_headroom > 0.0);
+    assert!(wh.disk_bytes_per_second > 0.0 && wh.disk_headroom > 0.0);
+    // force, compression, ball velocity, rigid motion and 85 z of displacement, 200 samples
+    assert!(wh.file_bytes_per_point > 10e3, "{} B/point", wh.file_bytes_per_point);
     // the JSON form serializes
     let json = serde_json::to_value(&r).unwrap();
     for key in [
@@ -66,6 +72,8 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
         "parallel",
         "hdf5",
         "memory",
+        "scaling",
+        "writer_headroom",
     ] {
         assert!(json.get(key).is_some(), "json lacks {key}");
     }

@@ -16,7 +16,9 @@
 //! - `scaling`: points/s of a summary and of a full-history study at 1, 2, 4, … threads up to
 //!   every core; `writer_headroom`: the points/s the writer alone absorbs (appending
 //!   encoded records, then finishing the file) over the points/s one worker computes and
-//!   encodes (the cores the writer can keep up with), overall and while the run computes;
+//!   encodes (the cores the writer can keep up with), overall and while the run computes,
+//!   and the disk's durable write rate over the bytes one worker produces (the cores any
+//!   store on this disk can keep up with);
 //!   `curve_process`: the 45-point curve as a whole `batstudy run` process (issue 22);
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before each
 //!   case) for a 10-million-point summary-only plan run through the driver with the rigid

@@ -71,6 +71,14 @@ pub struct WriterHeadroom {
     pub worker_encode_share: f64,
     /// writer / worker: the number of cores the writer can keep up with.
     pub headroom: f64,
+    /// Bytes of the finished file per point (the histories, nearly all of it).
+    pub file_bytes_per_point: f64,
+    /// The disk under the bench's directory: bytes/s of a sequential write made durable
+    /// (`fdatasync`), pseudo-random bytes so that no layer can skip them.
+    pub disk_bytes_per_second: f64,
+    /// disk / (file bytes per point × worker): the workers whose results the disk can make
+    /// durable once each, the ceiling of any store on this disk (issue 22).
+    pub disk_headroom: f64,
 }
 
 /// 1, 2, 4, … up to `cores`, and `cores` itself.
@@ -212,6 +220,9 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
     let finish = t0.elapsed().as_secs_f64();
     write += finish;
     let (writer, worker) = (n as f64 / write, n as f64 / (compute + encode));
+    let file_bytes_per_point =
+        std::fs::metadata(&path).map_err(err("stat"))?.len() as f64 / n as f64;
+    let disk = disk_write_rate(dir, if sz.write_repeats > 1 { 256 } else { 8 })?;
     Ok(WriterHeadroom {
         points: n,
         writer_points_per_second: writer,
@@ -221,7 +232,38 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
         worker_points_per_second: worker,
         worker_encode_share: encode / (compute + encode),
         headroom: writer / worker,
+        file_bytes_per_point,
+        disk_bytes_per_second: disk,
+        disk_headroom: disk / (file_bytes_per_point * worker),
     })
+}
+
+/// Bytes/s of writing `mib` MiB to a new file in `dir` and making them durable
+/// (`fdatasync`), as a finished results file must be: what a store on this disk can
+/// sustain, whatever its design.
+fn disk_write_rate(dir: &Path, mib: usize) -> Result<f64, String> {
+    use std::io::Write;
+    // xorshift bytes (Marsaglia 2003): a block no layer can compress or deduplicate
+    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+    let block: Vec<u8> = (0..1 << 20)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 56) as u8
+        })
+        .collect();
+    let path = dir.join("disk-probe");
+    let t0 = Instant::now();
+    let mut f = std::fs::File::create(&path).map_err(err("create the disk probe"))?;
+    for _ in 0..mib {
+        f.write_all(&block).map_err(err("write the disk probe"))?;
+    }
+    f.sync_data().map_err(err("sync the disk probe"))?;
+    let seconds = t0.elapsed().as_secs_f64();
+    drop(f);
+    let _ = std::fs::remove_file(&path);
+    Ok((mib << 20) as f64 / seconds)
 }
 
 /// The smallest useful study, one 45-point exit-speed curve, as a whole `batstudy run`
