@@ -62,7 +62,11 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
     assert!(wh.headroom > 0.0 && wh.run_headroom > 0.0);
     assert!(wh.disk_bytes_per_second > 0.0 && wh.disk_headroom > 0.0);
     // force, compression, ball velocity, rigid motion and 85 z of displacement, 200 samples
-    assert!(wh.file_bytes_per_point > 10e3, "{} B/point", wh.file_bytes_per_point);
+    assert!(
+        wh.file_bytes_per_point > 10e3,
+        "{} B/point",
+        wh.file_bytes_per_point
+    );
     // the JSON form serializes
     let json = serde_json::to_value(&r).unwrap();
     for key in [

@@ -245,7 +245,8 @@ pub(super) fn print_scaling(
     line(
         out,
         format!(
-            "the disk takes {:.0} MB/s made durable (fdatasync); at {:.0} KB of results per point              that is the output of {:.1} such workers, the most any store on this disk keeps up with",
+            "the disk takes {:.0} MB/s made durable (fdatasync); at {:.0} KB of results per point, \
+             the output of {:.1} such workers: the most any store on this disk keeps up with",
             wh.disk_bytes_per_second / 1e6,
             wh.file_bytes_per_point / 1e3,
             wh.disk_headroom
