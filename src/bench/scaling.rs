@@ -244,15 +244,10 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
 /// the file system (a virtual disk here took 256 MiB at 1.4 GB/s and 1 GiB at 0.5–1.4 GB/s).
 fn disk_write_rate(dir: &Path, mib: usize) -> Result<f64, String> {
     use std::io::Write;
-    // xorshift bytes (Marsaglia 2003): a block no layer can compress or deduplicate
+    // pseudo-random bytes: a block no layer can compress or deduplicate
     let mut x: u64 = 0x2545_F491_4F6C_DD1D;
     let block: Vec<u8> = (0..1 << 20)
-        .map(|_| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 56) as u8
-        })
+        .map(|_| (crate::model::xorshift::next(&mut x) >> 56) as u8)
         .collect();
     let path = dir.join("disk-probe");
     let t0 = Instant::now();

@@ -3,7 +3,8 @@
 //!
 //! Rooms, each importing only the ones above it:
 //! - `spec`, `error`, `protocol`, `outcome`, `plausible`: what a collision is (parameters,
-//!   errors, certification constants, results) and the values real bats and balls have.
+//!   errors, certification constants, results) and the values real bats and balls have;
+//!   `xorshift`, the seeded generator for fixed pseudo-random inputs.
 //! - `bat/`: the bat — outer profile, cross-sections, the discretised beam, its modes, the
 //!   prepared bat, and the motion of a bat state (grip vibration, recoil).
 //! - `ball`: the ball's force–compression laws.
@@ -22,6 +23,7 @@ pub mod plausible;
 pub mod protocol;
 pub mod resolved;
 pub mod spec;
+pub mod xorshift;
 
 pub use bat::{prepare_bat, PreparedBat};
 pub use collision::simulate::{simulate, simulate_target, simulate_with_diagnostics};

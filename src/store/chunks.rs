@@ -294,16 +294,11 @@ mod tests {
             .collect()
     }
 
-    /// Bytes of a xorshift generator (Marsaglia 2003): uniform for this purpose.
+    /// Bytes of `model::xorshift`: uniform for this purpose.
     fn noise(n: usize) -> Vec<u8> {
         let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
         (0..n)
-            .map(|_| {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                (x >> 56) as u8
-            })
+            .map(|_| (crate::model::xorshift::next(&mut x) >> 56) as u8)
             .collect()
     }
 

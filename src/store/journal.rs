@@ -507,7 +507,7 @@ impl JournalWriter {
         if framed.len() >= DIRECT_RECORD {
             let mut parts = [IoSlice::new(&self.buf), IoSlice::new(framed)];
             let mut parts = &mut parts[..];
-            IoSlice::advance_slices(&mut parts, 0);
+            IoSlice::advance_slices(&mut parts, 0); // drops an empty buffer's slice
             while !parts.is_empty() {
                 let n = self
                     .file

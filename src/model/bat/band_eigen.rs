@@ -19,6 +19,8 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
+use crate::model::xorshift;
+
 /// Eigenvalues, ascending, and the unit eigenvectors as the columns of `vectors` (column k
 /// belongs to `values[k]`).
 #[derive(Debug, Clone)]
@@ -49,24 +51,22 @@ pub fn symmetric_eigen(a: DMatrix<f64>, order: &[usize]) -> Eigen {
     let norm = (0..n)
         .map(|i| permuted.row(i).iter().map(|x| x.abs()).sum::<f64>())
         .fold(0.0, f64::max);
-    let (mut diag, mut off) = tridiagonal(permuted.clone(), band);
+    let mut lu = BandLu::new(&permuted, band);
+    let (mut diag, mut off) = tridiagonal(permuted, band);
     if !tridiagonal_eigenvalues(&mut diag, &mut off) {
         return dense(a);
     }
     let mut values = diag;
     values.sort_by(f64::total_cmp);
-    let lower = Band::lower_of(&permuted, band);
     // in band order while they are found; the rows are put back in the matrix's order last
     let mut found = DMatrix::zeros(n, n);
     let mut cluster_start = 0;
     let mut x = vec![0.0; n];
-    let mut lu = BandLu::new(&lower);
-    let a_rows = lu.rows.clone();
     for (k, &lambda) in values.iter().enumerate() {
         if k > 0 && lambda - values[k - 1] > CLUSTER * norm {
             cluster_start = k;
         }
-        lu.factor(&a_rows, lambda, norm);
+        lu.factor(lambda, norm);
         start_vector(k, &mut x);
         for _ in 0..SOLVES {
             lu.solve(&mut x);
@@ -235,37 +235,13 @@ fn pythag(a: f64, b: f64) -> f64 {
     }
 }
 
-/// The lower band of a symmetric matrix: `diag[d][i]` = A[i + d][i].
-struct Band {
-    n: usize,
-    band: usize,
-    diag: Vec<Vec<f64>>,
-}
-
-impl Band {
-    fn lower_of(m: &DMatrix<f64>, band: usize) -> Self {
-        let n = m.nrows();
-        let diag = (0..=band)
-            .map(|d| (0..n - d.min(n)).map(|i| m[(i + d, i)]).collect())
-            .collect();
-        Band { n, band, diag }
-    }
-
-    fn get(&self, i: usize, j: usize) -> f64 {
-        let (lo, hi) = if i < j { (i, j) } else { (j, i) };
-        if hi - lo > self.band {
-            0.0
-        } else {
-            self.diag[hi - lo][lo]
-        }
-    }
-}
-
 /// LU factors with partial pivoting of A − σI for a symmetric band A: row i of U spans
 /// columns i..=i + 2b (the pivoting's fill), stored from column i − b on.
 struct BandLu {
     n: usize,
     band: usize,
+    /// A's band laid out as `rows` is, for each new σ.
+    a: Vec<f64>,
     /// Row i's entries for columns i − b ..= i + 2b (U after the factorisation).
     rows: Vec<f64>,
     /// Multipliers: `mult[col * band + (r − col − 1)]` eliminated row r with row col.
@@ -283,12 +259,13 @@ impl BandLu {
         i * Self::width(self.band) + (j + self.band - i)
     }
 
-    /// Room for the factors of A − σI for any σ, A's rows laid out as the factors' are.
-    fn new(a: &Band) -> Self {
-        let (n, b) = (a.n, a.band);
+    /// Room for the factors of A − σI for any σ, for the symmetric `m` of half-bandwidth `b`.
+    fn new(m: &DMatrix<f64>, b: usize) -> Self {
+        let n = m.nrows();
         let mut lu = BandLu {
             n,
             band: b,
+            a: vec![0.0; n * Self::width(b)],
             rows: vec![0.0; n * Self::width(b)],
             mult: vec![0.0; n * b],
             pivot: vec![0; n],
@@ -296,18 +273,17 @@ impl BandLu {
         for i in 0..n {
             for j in i.saturating_sub(b)..=(i + b).min(n - 1) {
                 let at = lu.at(i, j);
-                lu.rows[at] = a.get(i, j);
+                lu.a[at] = m[(i, j)];
             }
         }
         lu
     }
 
-    /// Factor A − σI (`a_rows`: A laid out by [`Self::new`]); a pivot that vanishes is
-    /// replaced by ε‖A‖ (as in `dstein`), which only makes the solves grow the wanted
-    /// eigenvector the more.
-    fn factor(&mut self, a_rows: &[f64], sigma: f64, norm: f64) {
+    /// Factor A − σI; a pivot that vanishes is replaced by ε‖A‖ (as in `dstein`), which
+    /// only makes the solves grow the wanted eigenvector the more.
+    fn factor(&mut self, sigma: f64, norm: f64) {
         let (n, b) = (self.n, self.band);
-        self.rows.copy_from_slice(a_rows);
+        self.rows.copy_from_slice(&self.a);
         for i in 0..n {
             let at = self.at(i, i);
             self.rows[at] -= sigma;
@@ -380,16 +356,13 @@ impl BandLu {
     }
 }
 
-/// The fixed start of inverse iteration for eigenvector `k`: uniform in [−1, 1) from a
-/// xorshift generator (Marsaglia 2003) seeded by k, so that no eigenvector is missed by
-/// symmetry (a constant start is orthogonal to every antisymmetric mode of a symmetric beam).
+/// The fixed start of inverse iteration for eigenvector `k`: uniform in [−1, 1) from
+/// `xorshift` seeded by k, so that no eigenvector is missed by symmetry (a constant start is
+/// orthogonal to every antisymmetric mode of a symmetric beam).
 fn start_vector(k: usize, x: &mut [f64]) {
     let mut s: u64 = 0x9E37_79B9_7F4A_7C15 ^ (k as u64).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     for v in x.iter_mut() {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        *v = (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0;
+        *v = (xorshift::next(&mut s) >> 11) as f64 / (1u64 << 52) as f64 - 1.0;
     }
 }
 
