@@ -4,6 +4,7 @@
 //! finish a run, and that time is serial). Any zlib stream is what the deflate filter reads;
 //! libdeflate makes one about twice as fast as zlib.
 
+use super::fixed_deflate;
 use hdf5::Dataset;
 use hdf5_sys::h5::{herr_t, hsize_t};
 use hdf5_sys::h5i::hid_t;
@@ -140,7 +141,13 @@ const PLANE_MIN_VALUES: usize = 1024;
 /// stream, so every zlib reader (HDF5's filter, h5py, xarray) reads it as before.
 fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
     let n = shuffled.len() / size.max(1);
-    if size <= 1 || n < PLANE_MIN_VALUES {
+    if n < PLANE_MIN_VALUES {
+        // small chunks (a history's scalar series, a short study's summaries): fixed codes,
+        // without libdeflate's set-up of several µs per call
+        return fixed_deflate::zlib_small(shuffled)
+            .unwrap_or_else(|| deflate_zlib(shuffled, level));
+    }
+    if size <= 1 {
         return deflate_zlib(shuffled, level);
     }
     let stored_planes = shuffled
@@ -374,6 +381,60 @@ mod tests {
             .zlib_decompress(&bytes, &mut inflated)
             .unwrap();
         assert_eq!((got, &inflated), (shuffled.len(), &shuffled));
+    }
+
+    // Small chunks go out with fixed Huffman codes (`store::fixed_deflate`); HDF5's
+    // deflate filter (zlib's inflate, RFC 1950/1951) reads them back: a force history that
+    // ends in zeros, a constant, noise (stored) and a few f64 summaries.
+    #[test]
+    fn small_chunks_read_back_through_hdf5() {
+        let force: Vec<f32> = (0..200)
+            .map(|i| {
+                if i < 90 {
+                    (i as f32 * 0.035).sin() * 3.1e3
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let constant = vec![-27.25f32; 200];
+        let noisy: Vec<f32> = noise(800)
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], 0x3f]))
+            .collect();
+        let dir = tempfile::tempdir().unwrap();
+        let file = hdf5::File::create(dir.path().join("small.h5")).unwrap();
+        let ds = file
+            .new_dataset::<f32>()
+            .shape([3, 200])
+            .chunk([1, 200])
+            .shuffle()
+            .deflate(1)
+            .create("v")
+            .unwrap();
+        for (row, values) in [&force, &constant, &noisy].into_iter().enumerate() {
+            let bytes = filtered_whole(values, 1);
+            assert_eq!(bytes[..2], [0x78, 0x01]);
+            write_chunk(&ds, &[row, 0], &bytes).unwrap();
+        }
+        // the zeros and the constant shrink; noise does not grow by more than a block header
+        assert!(filtered_whole(&force, 1).len() < 700);
+        assert!(filtered_whole(&constant, 1).len() < 40);
+        assert!(filtered_whole(&noisy, 1).len() <= 800 + 2 + 5 + 4);
+        let back = ds.read_raw::<f32>().unwrap();
+        assert_eq!(back, [force, constant, noisy].concat());
+
+        let summary: Vec<f64> = (0..45).map(|i| 30.0 + (i as f64 * 0.1).cos()).collect();
+        let sd = file
+            .new_dataset::<f64>()
+            .shape([45])
+            .chunk([45])
+            .shuffle()
+            .deflate(1)
+            .create("s")
+            .unwrap();
+        write_chunk(&sd, &[0], &filtered(&summary, &[45], &[45], f64::NAN, 1)).unwrap();
+        assert_eq!(sd.read_raw::<f64>().unwrap(), summary);
     }
 
     // An edge block keeps its values at their places in the whole chunk; the rest is fill.

@@ -22,6 +22,7 @@ pub mod chunks;
 pub mod dimscale;
 pub mod encode;
 pub mod error;
+pub mod fixed_deflate;
 pub mod header;
 pub mod journal;
 pub mod layout;

@@ -1,0 +1,316 @@
+//! A zlib stream for a small chunk, in one deflate block with the fixed Huffman codes.
+//!
+//! Why: a history's scalar series (force, compression, …) is one chunk of a few hundred
+//! values per point. libdeflate spends about 6.5 µs on such a chunk whatever its size (it
+//! clears its hash table and builds dynamic Huffman codes for every call), which was a fifth
+//! of the CPU time of a study that records the scalar histories (issue 22). For inputs this
+//! small the fixed codes (RFC 1951 §3.2.6) cost little against dynamic ones, whose table
+//! would take a good part of the block, and they need no table at all: one greedy pass with a
+//! small hash table finds the repeats (runs of equal bytes, the zeros after separation), and
+//! the symbols go straight out. Tests inflate its output with two decoders of their own
+//! (libdeflate's, and zlib's inside HDF5's filter in `store::chunks`).
+//!
+//! Any zlib reader reads the stream: HDF5's deflate filter, h5py, xarray.
+
+/// Largest input taken: positions fit the u16 hash table (and chunks this size are not
+/// "small": `store::chunks` deflates those with libdeflate).
+pub const MAX_INPUT: usize = u16::MAX as usize;
+
+const HASH_BITS: u32 = 12;
+const MIN_MATCH: usize = 3;
+const MAX_MATCH: usize = 258;
+/// Deflate's window; larger than any input taken, kept for clarity.
+const WINDOW: usize = 32_768;
+
+/// RFC 1951 §3.2.5: base length of length codes 257..=285 and their extra bits.
+const LENGTH_BASE: [u16; 29] = [
+    3, 4, 5, 6, 7, 8, 9, 10, 11, 13, 15, 17, 19, 23, 27, 31, 35, 43, 51, 59, 67, 83, 99, 115, 131,
+    163, 195, 227, 258,
+];
+const LENGTH_EXTRA: [u8; 29] = [
+    0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0,
+];
+/// Base distance of distance codes 0..=29 and their extra bits.
+const DIST_BASE: [u16; 30] = [
+    1, 2, 3, 4, 5, 7, 9, 13, 17, 25, 33, 49, 65, 97, 129, 193, 257, 385, 513, 769, 1025, 1537,
+    2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577,
+];
+const DIST_EXTRA: [u8; 30] = [
+    0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13,
+    13,
+];
+
+/// Deflate's bit order: fields least-significant bit first, into bytes from their low bit.
+struct BitWriter {
+    out: Vec<u8>,
+    acc: u64,
+    bits: u32,
+}
+
+impl BitWriter {
+    /// `count` ≤ 32 bits of `value` (higher bits zero).
+    #[inline]
+    fn put(&mut self, value: u32, count: u32) {
+        self.acc |= u64::from(value) << self.bits;
+        self.bits += count;
+        if self.bits >= 32 {
+            self.out.extend_from_slice(&(self.acc as u32).to_le_bytes());
+            self.acc >>= 32;
+            self.bits -= 32;
+        }
+    }
+
+    fn finish(mut self) -> Vec<u8> {
+        while self.bits > 0 {
+            self.out.push(self.acc as u8);
+            self.acc >>= 8;
+            self.bits = self.bits.saturating_sub(8);
+        }
+        self.out
+    }
+}
+
+/// The fixed literal/length code of `symbol` (0..=287): (code, length).
+const fn literal_code(symbol: u16) -> (u32, u32) {
+    let s = symbol as u32;
+    match symbol {
+        0..=143 => (0x30 + s, 8),
+        144..=255 => (0x190 + s - 144, 9),
+        256..=279 => (s - 256, 7),
+        _ => (0xC0 + s - 280, 8),
+    }
+}
+
+/// A Huffman code as it goes out: sent from its most significant bit (RFC 1951 §3.1.1),
+/// that is reversed into the LSB-first stream.
+const fn reversed(code: u32, length: u32) -> u32 {
+    code.reverse_bits() >> (32 - length)
+}
+
+/// Every literal/length symbol's reversed fixed code and its length.
+const LITERALS: [(u16, u8); 288] = {
+    let mut t = [(0u16, 0u8); 288];
+    let mut s = 0;
+    while s < 288 {
+        let (code, length) = literal_code(s as u16);
+        t[s] = (reversed(code, length) as u16, length as u8);
+        s += 1;
+    }
+    t
+};
+
+#[inline]
+fn put_symbol(w: &mut BitWriter, symbol: usize) {
+    let (code, length) = LITERALS[symbol];
+    w.put(u32::from(code), u32::from(length));
+}
+
+fn put_match(w: &mut BitWriter, length: usize, distance: usize) {
+    // the last base ≤ value: its code and the extra bits of the rest
+    let l = LENGTH_BASE.partition_point(|&b| usize::from(b) <= length) - 1;
+    put_symbol(w, 257 + l);
+    w.put(
+        (length - usize::from(LENGTH_BASE[l])) as u32,
+        u32::from(LENGTH_EXTRA[l]),
+    );
+    let d = DIST_BASE.partition_point(|&b| usize::from(b) <= distance) - 1;
+    w.put(reversed(d as u32, 5), 5);
+    w.put(
+        (distance - usize::from(DIST_BASE[d])) as u32,
+        u32::from(DIST_EXTRA[d]),
+    );
+}
+
+fn hash3(b: &[u8]) -> usize {
+    let v = u32::from(b[0]) | u32::from(b[1]) << 8 | u32::from(b[2]) << 16;
+    (v.wrapping_mul(0x9E37_79B1) >> (32 - HASH_BITS)) as usize
+}
+
+/// The raw deflate stream (one final block with the fixed codes, or one stored block when
+/// that is shorter) of `bytes` (at most `MAX_INPUT`).
+fn raw_deflate(bytes: &[u8]) -> Vec<u8> {
+    debug_assert!(bytes.len() <= MAX_INPUT);
+    let n = bytes.len();
+    let mut w = BitWriter {
+        out: Vec::with_capacity(n + n / 8 + 16),
+        acc: 0,
+        bits: 0,
+    };
+    w.put(1, 1); // BFINAL
+    w.put(1, 2); // BTYPE 01: fixed Huffman codes
+    let mut table = [u16::MAX; 1 << HASH_BITS];
+    let mut i = 0;
+    while i < n {
+        if i + MIN_MATCH <= n {
+            let h = hash3(&bytes[i..]);
+            let candidate = table[h];
+            table[h] = i as u16;
+            if candidate != u16::MAX {
+                let c = usize::from(candidate);
+                let limit = (n - i).min(MAX_MATCH);
+                let mut length = 0;
+                while length < limit && bytes[c + length] == bytes[i + length] {
+                    length += 1;
+                }
+                if length >= MIN_MATCH && i - c <= WINDOW {
+                    put_match(&mut w, length, i - c);
+                    // the positions inside the match join the table for later matches
+                    for j in i + 1..(i + length).min(n.saturating_sub(MIN_MATCH - 1)) {
+                        table[hash3(&bytes[j..])] = j as u16;
+                    }
+                    i += length;
+                    continue;
+                }
+            }
+        }
+        put_symbol(&mut w, usize::from(bytes[i]));
+        i += 1;
+    }
+    put_symbol(&mut w, 256); // end of block
+    let fixed = w.finish();
+    if fixed.len() <= n + 5 {
+        return fixed;
+    }
+    // RFC 1951 §3.2.4: BFINAL, BTYPE 00, to the byte boundary, LEN, NLEN, the bytes
+    let len = n as u16;
+    let mut stored = Vec::with_capacity(n + 5);
+    stored.push(1);
+    stored.extend_from_slice(&len.to_le_bytes());
+    stored.extend_from_slice(&(!len).to_le_bytes());
+    stored.extend_from_slice(bytes);
+    stored
+}
+
+/// `bytes` as a zlib stream (RFC 1950): header, one fixed-code or stored deflate block,
+/// Adler-32; `None` above `MAX_INPUT` bytes.
+pub fn zlib_small(bytes: &[u8]) -> Option<Vec<u8>> {
+    if bytes.len() > MAX_INPUT {
+        return None;
+    }
+    // CMF 0x78 (deflate, 32 KiB window), FLG 0x01 ("fastest"; 0x7801 is a multiple of 31)
+    let mut out = vec![0x78, 0x01];
+    out.extend_from_slice(&raw_deflate(bytes));
+    out.extend_from_slice(&libdeflater::adler32(bytes).to_be_bytes());
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::xorshift;
+
+    /// RFC 1950/1951 decoders independent of this encoder: libdeflate's and zlib's (flate2's
+    /// miniz backend is not in the tree; HDF5's filter is zlib, checked in `store::chunks`).
+    fn inflate(stream: &[u8], n: usize) -> Vec<u8> {
+        let mut back = vec![0u8; n];
+        let got = libdeflater::Decompressor::new()
+            .zlib_decompress(stream, &mut back)
+            .expect("a valid zlib stream");
+        assert_eq!(got, n);
+        back
+    }
+
+    fn roundtrip(bytes: &[u8]) -> usize {
+        let stream = zlib_small(bytes).expect("encodes");
+        assert_eq!(inflate(&stream, bytes.len()), bytes);
+        stream.len()
+    }
+
+    // RFC 1951 §3.2.6: the fixed literal/length code lengths are 8 (0–143), 9 (144–255),
+    // 7 (256–279), 8 (280–287), and the codes are consecutive within each range.
+    #[test]
+    fn fixed_codes_are_the_rfcs() {
+        assert_eq!(literal_code(0), (0b0011_0000, 8));
+        assert_eq!(literal_code(143), (0b1011_1111, 8));
+        assert_eq!(literal_code(144), (0b1_1001_0000, 9));
+        assert_eq!(literal_code(255), (0b1_1111_1111, 9));
+        assert_eq!(literal_code(256), (0, 7));
+        assert_eq!(literal_code(279), (0b001_0111, 7));
+        assert_eq!(literal_code(280), (0b1100_0000, 8));
+        assert_eq!(literal_code(287), (0b1100_0111, 8));
+    }
+
+    // Every match length 3..=258 and distances across the code table inflate back.
+    #[test]
+    fn every_length_and_many_distances_inflate_back() {
+        for length in MIN_MATCH..=MAX_MATCH {
+            let mut v: Vec<u8> = (0..40u8).collect();
+            v.extend(std::iter::repeat_n(7u8, length + 1));
+            roundtrip(&v);
+        }
+        let mut x = 1u64;
+        for distance in [
+            1usize, 2, 4, 5, 8, 13, 24, 100, 257, 1000, 4097, 20000, 32768,
+        ] {
+            // literals below 144 take 8 bits, as many as they had: only the repeat shrinks
+            let mut v: Vec<u8> = (0..distance + 300)
+                .map(|_| (xorshift::next(&mut x) % 128) as u8)
+                .collect();
+            // 200 bytes that repeat those `distance` back (overlapping when it is short)
+            for _ in 0..200 {
+                v.push(v[v.len() - distance]);
+            }
+            let n = roundtrip(&v);
+            assert!(n < v.len(), "distance {distance}: the repeat was not found");
+        }
+    }
+
+    // Random inputs of many sizes and alphabets (from pure noise, which goes out stored, to
+    // two symbols) inflate back.
+    #[test]
+    fn random_inputs_inflate_back() {
+        let mut x = 0x1234_5678u64;
+        for size in [
+            0usize, 1, 2, 3, 4, 5, 17, 200, 800, 1000, 4096, 8000, 65_535,
+        ] {
+            for alphabet in [256u64, 16, 2] {
+                let v: Vec<u8> = (0..size)
+                    .map(|_| (xorshift::next(&mut x) % alphabet) as u8)
+                    .collect();
+                let n = roundtrip(&v);
+                // stored when the fixed codes would not shrink it: never more than 5 bytes
+                // over the input plus the zlib wrapper (RFC 1951 §3.2.4)
+                assert!(n <= size + 5 + 6, "{size} {alphabet}: {n}");
+            }
+        }
+        assert_eq!(zlib_small(&vec![0u8; MAX_INPUT + 1]), None);
+    }
+
+    // Inputs built from random pieces (runs, copies from random distances, noise, a small
+    // alphabet), the shapes a chunk's shuffled planes take, inflate back: 3 000 of them.
+    #[test]
+    fn random_structured_inputs_inflate_back() {
+        let mut x = 0xDEAD_BEEFu64;
+        let mut next = |m: u64| xorshift::next(&mut x) % m;
+        for _ in 0..3_000 {
+            let target = next(9_000) as usize;
+            let mut v: Vec<u8> = Vec::with_capacity(target + 300);
+            while v.len() < target {
+                let len = 1 + next(300) as usize;
+                match next(4) {
+                    0 => {
+                        let b = next(256) as u8;
+                        v.extend(std::iter::repeat_n(b, len));
+                    }
+                    1 if !v.is_empty() => {
+                        let distance = 1 + next(v.len() as u64) as usize;
+                        for _ in 0..len {
+                            v.push(v[v.len() - distance]);
+                        }
+                    }
+                    2 => v.extend((0..len).map(|_| next(256) as u8)),
+                    _ => v.extend((0..len).map(|_| next(3) as u8)),
+                }
+            }
+            roundtrip(&v);
+        }
+    }
+
+    // Runs (the zeros of a force after separation) shrink: 800 zero bytes take 1 literal and
+    // ⌈799/258⌉ = 4 matches of 7+5 bits (+ extra bits), about 8 bytes in all.
+    #[test]
+    fn runs_shrink() {
+        let n = roundtrip(&[0u8; 800]);
+        assert!(n <= 2 + 10 + 4, "{n}");
+    }
+}
