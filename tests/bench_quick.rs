@@ -57,6 +57,13 @@ fn bench_quick_reports_every_section_and_integrators_are_accurate() {
     assert!(r.hdf5.iter().all(|w| w.file_bytes > 0 && w.share > 0.0));
     assert!(r.hdf5[1].history_bytes_in_memory > 0);
     assert!(r.memory.plan_points >= 10_000);
+    // issue 22: the scalar-history study is measured, and its points are not free
+    let sc = &r.scaling;
+    assert!(sc.history_scalar_points_per_second > 0.0);
+    assert!(
+        sc.history_scalar_vs_summary_per_core > 0.0
+            && sc.history_scalar_vs_summary_per_core.is_finite()
+    );
     // issue 22: the writer's headroom, and the disk's over the bytes a history point makes
     let wh = &r.writer_headroom;
     assert!(wh.headroom > 0.0 && wh.run_headroom > 0.0);

@@ -229,6 +229,14 @@ pub(super) fn print_scaling(
     line(
         out,
         format!(
+            "history study without displacement (scalar series only) on {} cores: {:.0} points/s, \
+             {:.2} of the summary study's per core",
+            sc.cores, sc.history_scalar_points_per_second, sc.history_scalar_vs_summary_per_core
+        ),
+    );
+    line(
+        out,
+        format!(
             "writer headroom: the store's writer absorbs {:.0} points/s ({:.0} while the run \
              computes, then {:.3} s to finish {} points), one worker computes and encodes {:.0} \
              ({:.0} % of it encoding): {:.1} cores ({:.1} while the run computes)",

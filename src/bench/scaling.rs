@@ -7,7 +7,7 @@
 //!   encoded beforehand, then appended to the journal and the final file built, on one
 //!   thread) over the points/s one worker computes and encodes them, as in a run.
 
-use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK};
+use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK, SCALAR_HISTORY_BLOCK};
 use super::measure::{err, median};
 use super::sinks::run_null_recording;
 use super::write_share::bench_write_to;
@@ -50,6 +50,11 @@ pub struct Scaling {
     pub history_uncompressed_file_bytes: u64,
     /// The default (deflated) history study's file size.
     pub history_file_bytes: u64,
+    /// Points/s on every core of the history study without `displacement` (the scalar
+    /// series: force, compression, ball velocity, rigid motion), and per core over the
+    /// summary study's.
+    pub history_scalar_points_per_second: f64,
+    pub history_scalar_vs_summary_per_core: f64,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -144,6 +149,15 @@ pub(super) fn bench_scaling(sz: &Sizes, dir: &Path) -> Result<Scaling, String> {
         "scaling",
     )?;
     let history_uncompressed = rate(&uncompressed, "scaling-history-none", cores)?;
+    let scalar = load_study(
+        &curve_study_text(
+            "bench-scaling-history-scalar",
+            sz.history_omegas,
+            SCALAR_HISTORY_BLOCK,
+        ),
+        "scaling",
+    )?;
+    let history_scalar = rate(&scalar, "scaling-history-scalar", cores)?;
     let size = |case: &str| {
         std::fs::metadata(dir.join(format!("{case}-{cores}-0.h5"))).map_or(0, |m| m.len())
     };
@@ -153,6 +167,8 @@ pub(super) fn bench_scaling(sz: &Sizes, dir: &Path) -> Result<Scaling, String> {
         history_uncompressed_points_per_second: history_uncompressed,
         history_uncompressed_file_bytes: size("scaling-history-none"),
         history_file_bytes: size("scaling-history"),
+        history_scalar_points_per_second: history_scalar,
+        history_scalar_vs_summary_per_core: history_scalar / last.summary_points_per_second,
         cores,
         summary_points: summary.plan.n_points(),
         history_points: history.plan.n_points(),
