@@ -29,6 +29,10 @@ def main(argv=None) -> int:
         ax.plot([t[-1]], [sc["history_uncompressed_points_per_second"]], "s", color="tab:green",
                 label=f"full histories, `compression: none`: "
                       f"{sc['history_uncompressed_points_per_second']:.0f} points/s")
+    if "history_scalar_points_per_second" in sc:
+        ax.plot([t[-1]], [sc["history_scalar_points_per_second"]], "D", color="tab:purple",
+                label=f"scalar histories only (no displacement): "
+                      f"{sc['history_scalar_points_per_second']:.0f} points/s")
     if "history_compute_points_per_second" in sc:
         ax.plot([t[-1]], [sc["history_compute_points_per_second"]], "^", color="gray",
                 label=f"full histories computed, not stored: "
