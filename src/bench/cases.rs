@@ -87,15 +87,15 @@ pub fn load_study(text: &str, name: &str) -> Result<Study, String> {
 }
 
 /// The history block of the history study: every field but the hoop's, 1 cm apart.
+pub(super) const HISTORY_BLOCK: &str =
+    "history:\n  fields: [force, compression, ball_velocity, displacement, rigid_motion]\n  \
+                interval: 1.0e-5\n  duration: 2.0e-3\n  z_step: 0.01\n";
+
 /// The same histories without the bat's displacement: the scalar series only (force-time
 /// curves and the like), a few KB per point instead of 53.
 pub(super) const SCALAR_HISTORY_BLOCK: &str =
     "history:\n  fields: [force, compression, ball_velocity, rigid_motion]\n  \
                 interval: 1.0e-5\n  duration: 2.0e-3\n";
-
-pub(super) const HISTORY_BLOCK: &str =
-    "history:\n  fields: [force, compression, ball_velocity, displacement, rigid_motion]\n  \
-                interval: 1.0e-5\n  duration: 2.0e-3\n  z_step: 0.01\n";
 
 /// A summary-only rigid-model study: `impacts` positions × `omegas` swing speeds × `speeds`
 /// ball speeds (cheap points, for the memory cases).

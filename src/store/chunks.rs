@@ -158,20 +158,12 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
         return deflate_zlib(shuffled, level);
     }
     let (stored, rest) = shuffled.split_at(stored_planes * n);
-    // zlib header: deflate with a 32 KiB window, "fastest" (the one libdeflate writes at
-    // levels 0 and 1); 0x7801 is a multiple of 31 as RFC 1950 requires
     let mut out = Vec::with_capacity(shuffled.len() + 64);
-    out.extend_from_slice(&[0x78, 0x01]);
+    out.extend_from_slice(&fixed_deflate::ZLIB_HEADER);
     let blocks: Vec<&[u8]> = stored.chunks(u16::MAX as usize).collect();
     for (i, block) in blocks.iter().enumerate() {
-        // RFC 1951 §3.2.4: a stored block is BFINAL, BTYPE = 00, padding to the byte, then
-        // LEN and its one's complement, little-endian, and the bytes
         let last = rest.is_empty() && i + 1 == blocks.len();
-        let len = block.len() as u16;
-        out.push(u8::from(last));
-        out.extend_from_slice(&len.to_le_bytes());
-        out.extend_from_slice(&(!len).to_le_bytes());
-        out.extend_from_slice(block);
+        fixed_deflate::push_stored_block(&mut out, block, last);
     }
     if !rest.is_empty() {
         // a raw deflate stream of the rest, starting on the byte boundary the stored
@@ -414,7 +406,7 @@ mod tests {
             .unwrap();
         for (row, values) in [&force, &constant, &noisy].into_iter().enumerate() {
             let bytes = filtered_whole(values, 1);
-            assert_eq!(bytes[..2], [0x78, 0x01]);
+            assert_eq!(bytes[..2], fixed_deflate::ZLIB_HEADER);
             write_chunk(&ds, &[row, 0], &bytes).unwrap();
         }
         // the zeros and the constant shrink; noise does not grow by more than a block header

@@ -19,8 +19,23 @@ pub const MAX_INPUT: usize = u16::MAX as usize;
 const HASH_BITS: u32 = 12;
 const MIN_MATCH: usize = 3;
 const MAX_MATCH: usize = 258;
-/// Deflate's window; larger than any input taken, kept for clarity.
+/// Deflate's window: how far back a match may reach (inputs may be twice as long).
 const WINDOW: usize = 32_768;
+
+/// A zlib stream's header (RFC 1950): CMF 0x78 (deflate, 32 KiB window), FLG 0x01 (level
+/// "fastest", the one libdeflate writes at levels 0 and 1; 0x7801 is a multiple of 31).
+pub const ZLIB_HEADER: [u8; 2] = [0x78, 0x01];
+
+/// RFC 1951 §3.2.4: a stored block of at most 65 535 bytes, starting on a byte boundary:
+/// BFINAL, BTYPE 00 and padding in one byte, then LEN and its one's complement
+/// (little-endian), then the bytes.
+pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
+    let len = u16::try_from(block.len()).expect("a stored block holds at most 65 535 bytes");
+    out.push(u8::from(last));
+    out.extend_from_slice(&len.to_le_bytes());
+    out.extend_from_slice(&(!len).to_le_bytes());
+    out.extend_from_slice(block);
+}
 
 /// RFC 1951 §3.2.5: base length of length codes 257..=285 and their extra bits.
 const LENGTH_BASE: [u16; 29] = [
@@ -126,13 +141,17 @@ fn hash3(b: &[u8]) -> usize {
     (v.wrapping_mul(0x9E37_79B1) >> (32 - HASH_BITS)) as usize
 }
 
-/// The raw deflate stream (one final block with the fixed codes, or one stored block when
-/// that is shorter) of `bytes` (at most `MAX_INPUT`).
-fn raw_deflate(bytes: &[u8]) -> Vec<u8> {
-    debug_assert!(bytes.len() <= MAX_INPUT);
+/// `bytes` as a zlib stream (RFC 1950): header, one final deflate block with the fixed
+/// codes (or a stored block when that is shorter), Adler-32; `None` above `MAX_INPUT` bytes.
+pub fn zlib_small(bytes: &[u8]) -> Option<Vec<u8>> {
     let n = bytes.len();
+    if n > MAX_INPUT {
+        return None;
+    }
+    let mut out = Vec::with_capacity(n + n / 8 + 16);
+    out.extend_from_slice(&ZLIB_HEADER);
     let mut w = BitWriter {
-        out: Vec::with_capacity(n + n / 8 + 16),
+        out,
         acc: 0,
         bits: 0,
     };
@@ -167,29 +186,11 @@ fn raw_deflate(bytes: &[u8]) -> Vec<u8> {
         i += 1;
     }
     put_symbol(&mut w, 256); // end of block
-    let fixed = w.finish();
-    if fixed.len() <= n + 5 {
-        return fixed;
+    let mut out = w.finish();
+    if out.len() - ZLIB_HEADER.len() > n + 5 {
+        out.truncate(ZLIB_HEADER.len());
+        push_stored_block(&mut out, bytes, true);
     }
-    // RFC 1951 §3.2.4: BFINAL, BTYPE 00, to the byte boundary, LEN, NLEN, the bytes
-    let len = n as u16;
-    let mut stored = Vec::with_capacity(n + 5);
-    stored.push(1);
-    stored.extend_from_slice(&len.to_le_bytes());
-    stored.extend_from_slice(&(!len).to_le_bytes());
-    stored.extend_from_slice(bytes);
-    stored
-}
-
-/// `bytes` as a zlib stream (RFC 1950): header, one fixed-code or stored deflate block,
-/// Adler-32; `None` above `MAX_INPUT` bytes.
-pub fn zlib_small(bytes: &[u8]) -> Option<Vec<u8>> {
-    if bytes.len() > MAX_INPUT {
-        return None;
-    }
-    // CMF 0x78 (deflate, 32 KiB window), FLG 0x01 ("fastest"; 0x7801 is a multiple of 31)
-    let mut out = vec![0x78, 0x01];
-    out.extend_from_slice(&raw_deflate(bytes));
     out.extend_from_slice(&libdeflater::adler32(bytes).to_be_bytes());
     Some(out)
 }
@@ -199,8 +200,8 @@ mod tests {
     use super::*;
     use crate::model::xorshift;
 
-    /// RFC 1950/1951 decoders independent of this encoder: libdeflate's and zlib's (flate2's
-    /// miniz backend is not in the tree; HDF5's filter is zlib, checked in `store::chunks`).
+    /// libdeflate's decoder, which shares no code with this encoder (zlib's, inside HDF5's
+    /// filter, reads these streams in `store::chunks`' tests).
     fn inflate(stream: &[u8], n: usize) -> Vec<u8> {
         let mut back = vec![0u8; n];
         let got = libdeflater::Decompressor::new()
