@@ -261,10 +261,7 @@ pub(super) fn bench_writer_headroom(sz: &Sizes, dir: &Path) -> Result<WriterHead
 fn disk_write_rate(dir: &Path, mib: usize) -> Result<f64, String> {
     use std::io::Write;
     // pseudo-random bytes: a block no layer can compress or deduplicate
-    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-    let block: Vec<u8> = (0..1 << 20)
-        .map(|_| (crate::model::xorshift::next(&mut x) >> 56) as u8)
-        .collect();
+    let block = crate::model::xorshift::bytes(0x2545_F491_4F6C_DD1D, 1 << 20);
     let path = dir.join("disk-probe");
     let t0 = Instant::now();
     let mut f = std::fs::File::create(&path).map_err(err("create the disk probe"))?;

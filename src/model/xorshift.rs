@@ -9,3 +9,10 @@ pub fn next(state: &mut u64) -> u64 {
     *state ^= *state << 17;
     *state
 }
+
+/// `n` pseudo-random bytes from `seed` (never 0): the top byte of each step, as uniform as
+/// the generator (the low bits of xorshift are its weakest).
+pub fn bytes(seed: u64, n: usize) -> Vec<u8> {
+    let mut state = seed;
+    (0..n).map(|_| (next(&mut state) >> 56) as u8).collect()
+}

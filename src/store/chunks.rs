@@ -295,10 +295,7 @@ mod tests {
 
     /// Bytes of `model::xorshift`: uniform for this purpose.
     fn noise(n: usize) -> Vec<u8> {
-        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-        (0..n)
-            .map(|_| (crate::model::xorshift::next(&mut x) >> 56) as u8)
-            .collect()
+        crate::model::xorshift::bytes(0x9E37_79B9_7F4A_7C15, n)
     }
 
     // Noise is uniform; a constant, a ramp over a few values and the exponent byte of
