@@ -3,16 +3,50 @@
 - :func:`simulate` runs one collision and returns every summary value (and, on request,
   the time histories as NumPy arrays).
 - :func:`run` runs a whole study file into one HDF5 results file, on all cores.
-- :func:`open` opens a results file as an :class:`xarray.DataTree`, lazily, with the
-  grid as named dimensions, resolved parameter values and case labels as coordinates, and
-  the stored histories only (see :func:`histories`).
+- :func:`open_results` (also ``batstudy.open``) opens a results file as an
+  :class:`xarray.DataTree`, with the grid as named dimensions, resolved parameter values
+  and case labels as coordinates, and the stored histories only (see :func:`histories`).
+- :func:`report` writes a results file's explorer, one HTML file.
+- :mod:`batstudy.plot` draws the paper's figures, or any figure of a results file
+  (matplotlib: ``pip install 'batstudy[plot]'``).
 
 The command line is installed as ``batstudy`` (``batstudy --help``).
+
+``simulate``, ``run`` and their exceptions are the native module's (the Rust library); they
+are imported on first use, so that the analysis (``open_results``, ``histories``,
+``report``, ``batstudy.plot``) works from a source tree without it (docs/architecture.md).
 """
 
-from ._api import StudyError, RunError, simulate, run
-from ._open import open, histories
+import importlib
+import importlib.util
 
-__all__ = ["simulate", "run", "open", "histories", "StudyError", "RunError", "__version__"]
+from ._open import histories, open, open_results
+from ._report import report
 
-from ._native import __version__
+__all__ = ["simulate", "run", "open_results", "histories", "report", "StudyError", "RunError", "__version__"]
+
+# name -> the module that defines it, imported when the name is first used
+_ON_FIRST_USE = {
+    "simulate": "._api",
+    "run": "._api",
+    "StudyError": "._api",
+    "RunError": "._api",
+    "__version__": "._native",
+    "plot": ".plot",
+}
+
+
+def __getattr__(name: str):
+    module = _ON_FIRST_USE.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    if module != ".plot" and importlib.util.find_spec("._native", __name__) is None:
+        raise ImportError(
+            f"batstudy.{name} needs the native module batstudy._native, which this copy of batstudy "
+            "does not have (a source tree: build and install the wheel with `pip install .`); "
+            "open_results, histories, report and batstudy.plot work without it"
+        )
+    imported = importlib.import_module(module, __name__)
+    value = imported if module == ".plot" else getattr(imported, name)
+    globals()[name] = value
+    return value

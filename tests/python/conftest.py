@@ -1,6 +1,9 @@
-"""Shared by the Python tests: the project's own results-layout checker, scripts/check_layout.py.
+"""Shared by the Python tests: the package's analysis from the source tree, and the project's
+own results-layout checker, scripts/check_layout.py.
 
-The checker is part of the repository; a missing checker is a failure, never a skip."""
+The tests import `batstudy` from python/ (its analysis needs no native module: the wheel's
+own tests are tests/python_api). The checker is part of the repository; a missing checker is
+a failure, never a skip."""
 import subprocess
 import sys
 from pathlib import Path
@@ -8,6 +11,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
 CHECK_LAYOUT = ROOT / "scripts" / "check_layout.py"
 
 

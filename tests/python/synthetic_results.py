@@ -321,5 +321,48 @@ def write_bats(g, bat_list):
     _var(g, "bbcor_max_position", peak, ["bat"], "m", "max BBCOR position")
 
 
+def write_many_histories(path, n_cases: int = 200, n_impacts: int = 200) -> tuple[str, int]:
+    """A results file of ``n_impacts`` x ``n_cases`` points (summary dims impact_z, case) in
+    which every other case stored a force history: ``(path, number of stored histories)``.
+    The history of point (i, c) is ``i + 1000 c`` at every time, so a row says which point
+    it is."""
+    impact_z = np.round(np.linspace(0.4, 0.84, n_impacts), 6)
+    t = np.arange(0.0, 2.0e-3, 1.0e-4)
+    stored = np.arange(0, n_cases, 2)
+    with h5py.File(path, "w") as f:
+        f.attrs.update(study_name="many_histories", layout_version=3)
+        s, h = f.create_group("summary"), f.create_group("history")
+        for g in (s, h):
+            _scale(g, "impact_z", impact_z, "m", "impact position")
+            _scale(g, "case", np.arange(n_cases), "1", "case index")
+        _var(s, "status", np.zeros((n_impacts, n_cases), np.int8), ["impact_z", "case"], "1", "status")
+        _scale(h, "time", t, "s", "time since first contact")
+        _scale(h, "z", np.array([0.0]), "m", "position from the knob")
+        force = _var(h, "force", None, ["impact_z", "case", "time"], "N", "force",
+                     shape=(n_impacts, n_cases, len(t)), dtype="f8", chunks=(1, 1, len(t)), fillvalue=NAN)  # fmt: skip
+        rows = np.arange(n_impacts)[:, None, None] + 1000.0 * stored[None, :, None]
+        force[:, ::2, :] = np.broadcast_to(rows, (n_impacts, len(stored), len(t)))
+    return str(path), n_impacts * len(stored)
+
+
+def write_hostile(path, payload: str) -> str:
+    """The synthetic file with `payload` appended to every string a page of it can show: the
+    study's name and description, every text value of /summary, /sweet_spot and /history
+    (the models, the bat presets, the case labels, ...), and their variables' units and long
+    names. Returns the path."""
+    write(path)
+    with h5py.File(path, "r+") as f:
+        for attr in ("study_name", "study_description", "title"):
+            f.attrs[attr] = str(f.attrs[attr]) + payload
+        for group in ("summary", "sweet_spot", "history"):
+            for ds in f[group].values():
+                if ds.dtype.kind == "O":
+                    ds[...] = np.array([v.decode() + payload for v in ds[...]], dtype=object)
+                for attr in ("units", "long_name"):
+                    if attr in ds.attrs:
+                        ds.attrs[attr] = str(ds.attrs[attr]) + payload
+    return str(path)
+
+
 if __name__ == "__main__":
     print(write(sys.argv[1] if len(sys.argv) > 1 else "synthetic.h5"))

@@ -1,39 +1,43 @@
-"""The study explorer (scripts/report.py) in a real headless browser: Debian's Chromium,
-driven by Playwright. The page must load with no console error and no network request, a
-control must change the plotted curve, and the numbers it shows (the curve, the sweet spot)
-must be the file's. Needs SMOKE_H5 (the smoke study's output, set by scripts/test.sh) and
-/usr/bin/chromium (scripts/test.sh installs Debian's chromium)."""
+"""The explorer (batstudy.report) in a real headless browser: Debian's Chromium, driven by
+Playwright.
+
+- On the smoke study's output (SMOKE_H5, set by scripts/test.sh): the page loads with no
+  console error and no network request, a control changes the plotted curve, and the
+  numbers it shows (the curve, the sweet spot) are the file's.
+- On a synthetic file whose every string carries HTML and script (tests/python/
+  synthetic_results.py): nothing of it runs, and the page shows it as written.
+
+Needs /usr/bin/chromium (scripts/test.sh installs Debian's chromium)."""
 import os
 import shutil
-import subprocess
-import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+import batstudy
+import synthetic_results
+
 SMOKE = os.environ.get("SMOKE_H5")
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-pytestmark = pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
+# What a user's string might hold: the end of the script it is written into, markup with an
+# event handler, a comment opener, the line separators JavaScript once took as line ends, an
+# entity, and a placeholder of the page's template.
+PAYLOAD = (' </script><script>window.__pwned=1</script> "><img src=x onerror="window.__pwned=2">'
+           " '><svg onload=window.__pwned=3> <!-- <script> \u2028 \u2029 &amp; ` ${x} __DATA__ end")  # fmt: skip
 
 
-def test_the_explorer_works_in_a_browser(tmp_path):
+@contextmanager
+def browser_page(errors: list, requests: list):
+    """A page of headless Chromium that records console errors and network requests."""
     if not Path(CHROMIUM).exists():
         if os.environ.get("CI") == "true":
             pytest.fail("chromium is missing (scripts/test.sh installs Debian's chromium in CI)")
         pytest.skip("no chromium on this machine")
     from playwright.sync_api import sync_playwright
 
-    page_path = tmp_path / "report.html"
-    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "report.py"), SMOKE, "-o", str(page_path)],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    with h5py.File(SMOKE, "r") as f:
-        exit_speed = f["summary/exit_speed"][()]  # (model, swing_omega, impact_z, case)
-        position = f["sweet_spot/position"][()]  # (model, swing_omega, case)
-    errors, requests = [], []
     with sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, args=[
             "--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
@@ -41,7 +45,23 @@ def test_the_explorer_works_in_a_browser(tmp_path):
         page = browser.new_page()
         page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
         page.on("pageerror", lambda e: errors.append(str(e)))
+        page.on("dialog", lambda d: (errors.append(f"dialog: {d.message}"), d.dismiss()))
         page.on("request", lambda q: requests.append(q.url) if not q.url.startswith(("file:", "data:")) else None)
+        try:
+            yield page
+        finally:
+            browser.close()
+
+
+@pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
+def test_the_explorer_works_in_a_browser(tmp_path):
+    page_path = batstudy.report(SMOKE, tmp_path / "report.html")
+    assert page_path == tmp_path / "report.html"
+    with h5py.File(SMOKE, "r") as f:
+        exit_speed = f["summary/exit_speed"][()]  # (model, swing_omega, impact_z, case)
+        position = f["sweet_spot/position"][()]  # (model, swing_omega, case)
+    errors, requests = [], []
+    with browser_page(errors, requests) as page:
         page.goto(page_path.as_uri())
         page.wait_for_function("document.getElementById('exit').data !== undefined")
         first = page.evaluate("document.getElementById('exit').data[0].y")
@@ -54,11 +74,43 @@ def test_the_explorer_works_in_a_browser(tmp_path):
         assert after != first
         shown = float(page.text_content("#sweet-position"))
         assert abs(shown - position[0, 3, 0]) < 5e-5, (shown, position[0, 3, 0])
+        # the cases are named by their labels
+        assert page.text_content("#control-case option") == "base"
         # a force history is drawn, and the bending slider moves the curve
         assert page.evaluate("document.getElementById('force').data[0].y.length") > 10
         page.fill("#frame", "20")
         page.dispatch_event("#frame", "input")
         assert "t = " in page.text_content("#frame-time")
-        browser.close()
+    assert not errors, errors
+    assert not requests, f"the page reached the network: {requests}"
+
+
+def test_strings_of_the_file_never_run_and_show_as_written(tmp_path):
+    results = synthetic_results.write_hostile(tmp_path / "hostile.h5", PAYLOAD)
+    page_path = batstudy.report(results)
+    assert page_path == tmp_path / "hostile.html"
+    study = "synthetic" + PAYLOAD
+    errors, requests = [], []
+    with browser_page(errors, requests) as page:
+        page.goto(page_path.as_uri())  # returns once the page has loaded
+        assert page.evaluate("window.__pwned") is None, "a string of the file ran as script"
+        page.wait_for_function("document.getElementById('force').data !== undefined")
+        assert page.evaluate("document.querySelectorAll('script').length") == 2  # Plotly's and the page's
+        assert page.evaluate("document.querySelectorAll('img, svg[onload], [onerror]').length") == 0
+        # shown literally: the title, the heading, every control's options, the histories,
+        # the units in Plotly's axis title
+        assert page.evaluate("document.title") == f"batstudy explorer: {study}"
+        assert page.text_content("#study") == study
+        options = page.evaluate("[...document.querySelectorAll('#control-model option')].map(o => o.textContent)")
+        assert options == ["wave" + PAYLOAD, "rigid" + PAYLOAD]
+        cases = page.evaluate("[...document.querySelectorAll('#control-case option')].map(o => o.textContent)")
+        assert cases[0] == "base (R161 wood)" + PAYLOAD
+        history = page.text_content("#history option")
+        assert f"model=wave{PAYLOAD}" in history and f"case=base (R161 wood){PAYLOAD}" in history
+        y_title = page.text_content("#exit .ytitle")
+        assert y_title == f"exit speed (m/s{PAYLOAD})", y_title
+        page.select_option("#control-model", "1")  # the page still works
+        assert page.evaluate("document.getElementById('exit').data[0].y.length") > 10
+        assert page.evaluate("window.__pwned") is None
     assert not errors, errors
     assert not requests, f"the page reached the network: {requests}"

@@ -1,0 +1,275 @@
+"""The explorer of a results file: one HTML file that any browser opens, no server, no network.
+
+The page shows, for any batstudy results file:
+
+- exit speed against impact position, with one control per other dimension of the study
+  (model, swing speed, case, ...), and the sweet spot of the chosen curve (position, exit
+  speed, width) as numbers and as a marker;
+- the force history of any point that recorded one;
+- the bat's bending (displacement with time along the bat) for the points that recorded
+  displacement, with a time slider.
+
+Plotly's JavaScript (from the `plotly` package: ``pip install 'batstudy[plot]'``) is inlined,
+and so are the data, read through :func:`batstudy.open_results`: the summary's exit speeds,
+the sweet spots and the stored histories. Every string of the file reaches the page through
+one escaping function per context (``batstudy._html``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import re
+import sys
+from pathlib import Path
+from typing import Union
+
+import numpy as np
+import xarray as xr
+
+from . import _html
+from ._open import history_grid_index, open_results
+
+IMPACT = "impact_z"
+MAX_DISPLACEMENT_HISTORIES = 8  # bending animations embedded (each time × z values)
+MAX_FRAMES = 80  # time samples of an animation
+
+
+def _text(v) -> str:
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def _numbers(a) -> list:
+    """Floats for JSON: NaN → null; full precision (repr round-trips)."""
+    return [None if not math.isfinite(x) else float(x) for x in np.asarray(a, dtype=float).ravel()]
+
+
+def _value_text(v) -> str:
+    return f"{v:g}" if isinstance(v, (float, np.floating)) else _text(v)
+
+
+def dim_labels(summary: xr.Dataset, dim: str) -> list[str]:
+    """A label per index of `dim`: its label coordinate (``case_label``), else what differs
+    from the first entry among the coordinates along it, else its own values."""
+    if f"{dim}_label" in summary.coords:
+        return [_text(v) for v in summary[f"{dim}_label"].values]
+    along = [n for n, c in summary.coords.items() if c.dims == (dim,) and n != dim]
+    if not along:
+        values = summary[dim].values if dim in summary.coords else range(summary.sizes[dim])
+        return [_value_text(v) for v in values]
+    parts: list[list[str]] = [[] for _ in range(summary.sizes[dim])]
+    for name in along:
+        texts = ["" if isinstance(v, float) and not math.isfinite(v) else _value_text(v)
+                 for v in summary[name].values.tolist()]  # fmt: skip
+        for i, t in enumerate(texts):
+            if t and t != texts[0]:  # what differs from the first (the base) entry
+                parts[i].append(f"{name}={t}")
+    return [f"{i}: " + (", ".join(p) if p else ("base" if i == 0 else "as the base")) for i, p in enumerate(parts)]
+
+
+def collect(tree: xr.DataTree) -> dict:
+    """What the page shows, as plain data for its script."""
+    if "summary" not in tree.children or "exit_speed" not in tree["summary"]:
+        raise ValueError("the file has no /summary/exit_speed; nothing to plot")
+    summary = tree["summary"].to_dataset()
+    exit_speed = summary["exit_speed"]
+    dims = [str(d) for d in exit_speed.dims]
+    if IMPACT not in dims:
+        raise ValueError(f"the summary has no {IMPACT} dimension; nothing to plot against")
+    controls = [{"name": d, "labels": dim_labels(summary, d)} for d in dims if d != IMPACT]
+    data = {
+        "study": _text(tree.attrs.get("study_name", "study")),
+        "dims": dims,
+        "shape": list(exit_speed.shape),
+        "controls": controls,
+        "impact_z": _numbers(summary[IMPACT].values),
+        "exit_speed": _numbers(exit_speed.values),
+        "units": _text(exit_speed.attrs.get("units", "m/s")),
+    }
+    if "sweet_spot" in tree.children:
+        sweet = tree["sweet_spot"].to_dataset()
+        order = [d for d in dims if d != IMPACT]
+        data["sweet"] = {k: _numbers(sweet[k].transpose(*order).values)
+                         for k in ("position", "exit_speed", "width") if k in sweet}  # fmt: skip
+    data["histories"] = histories(tree, dims, controls)
+    return data
+
+
+def histories(tree: xr.DataTree, dims: list[str], controls: list[dict]) -> list[dict]:
+    """The stored histories: force always, displacement for the first few."""
+    if "history" not in tree.children or "force" not in tree["history"]:
+        return []
+    h = tree["history"].to_dataset()
+    where = history_grid_index(tree)
+    labels = {c["name"]: c["labels"] for c in controls}
+    t_ms = h["time"].values * 1e3
+    out = []
+    for row in range(h.sizes["history"]):
+        index = [int(where[d][row]) for d in dims]
+        label = ", ".join(f"{d}={h[IMPACT].values[row]:g}" if d == IMPACT else f"{d}={labels[d][i]}"
+                          for d, i in zip(dims, index))  # fmt: skip
+        entry = {"label": label, "index": index, "time_ms": _numbers(t_ms),
+                 "force": _numbers(h["force"].isel(history=row).values)}  # fmt: skip
+        if "displacement" in h and row < MAX_DISPLACEMENT_HISTORIES:
+            entry["bending"] = bending(h["displacement"].isel(history=row).values, h["z"].values, t_ms)
+        out.append(entry)
+    return out
+
+
+def bending(displacement: np.ndarray, z: np.ndarray, t_ms: np.ndarray) -> dict:
+    """At most MAX_FRAMES time samples of a (time, z) displacement, in mm, on the z the bat
+    covers."""
+    step = max(1, math.ceil(displacement.shape[0] / MAX_FRAMES))
+    keep = np.isfinite(displacement).any(axis=0)
+    return {"z": _numbers(z[keep]), "time_ms": _numbers(t_ms[::step]),
+            "mm": [_numbers(row[keep] * 1e3) for row in displacement[::step]]}  # fmt: skip
+
+
+PAGE = """<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>batstudy explorer: __STUDY__</title>
+<style>
+ body { font-family: system-ui, sans-serif; margin: 1em 2em; color: #222; }
+ .controls label { margin-right: 1.2em; display: inline-block; margin-bottom: .4em; }
+ select { max-width: 34em; }
+ .numbers { font-family: monospace; margin: .3em 0 1em 0; }
+ .plot { width: 100%; max-width: 1000px; height: 430px; }
+ h2 { font-size: 1.1em; margin-top: 1.5em; }
+</style>
+<script>__PLOTLY__</script>
+</head><body>
+<h1>batstudy explorer: <span id="study">__STUDY__</span></h1>
+<p>Exit speed against impact position for the chosen values of every other dimension of the study.</p>
+<div class="controls" id="controls"></div>
+<div class="numbers">sweet spot: <span id="sweet-position">–</span> m,
+ exit speed <span id="sweet-exit">–</span> m/s, width <span id="sweet-width">–</span> m</div>
+<div id="exit" class="plot"></div>
+<h2>Force histories (points that recorded one)</h2>
+<div class="controls"><label>history <select id="history"></select></label></div>
+<div id="force" class="plot"></div>
+<h2>The bat bending (displacement along the bat)</h2>
+<div class="controls"><label>time <input type="range" id="frame" min="0" max="0" value="0"></label>
+ <span id="frame-time"></span></div>
+<div id="bending" class="plot"></div>
+<script>
+const DATA = __DATA__;
+// Plotly reads its titles as text with a few HTML-like tags and entities: the file's
+// strings reach it with & < > as entities, so that they show as written
+function plotlyText(s) { return s.replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;"); }
+const impactAxis = DATA.dims.indexOf("impact_z");
+const strides = DATA.shape.map((_, k) => DATA.shape.slice(k + 1).reduce((a, b) => a * b, 1));
+const choice = {};
+function select(id, labels, onchange) {
+  const s = document.createElement("select");
+  s.id = id;
+  labels.forEach((l, i) => { const o = document.createElement("option"); o.value = i; o.textContent = l; s.appendChild(o); });
+  s.addEventListener("change", onchange);
+  return s;
+}
+DATA.controls.forEach(c => {
+  choice[c.name] = 0;
+  const label = document.createElement("label");
+  label.textContent = c.name + " ";
+  label.appendChild(select("control-" + c.name, c.labels, e => { choice[c.name] = +e.target.value; drawExit(); }));
+  document.getElementById("controls").appendChild(label);
+});
+function curve() {
+  let base = 0;
+  DATA.dims.forEach((d, k) => { if (k !== impactAxis) base += choice[d] * strides[k]; });
+  return DATA.impact_z.map((_, i) => DATA.exit_speed[base + i * strides[impactAxis]]);
+}
+function sweetIndex() {  // the sweet-spot arrays lack impact_z
+  let i = 0, stride = 1;
+  for (let k = DATA.dims.length - 1; k >= 0; k--) {
+    if (k === impactAxis) continue;
+    i += choice[DATA.dims[k]] * stride; stride *= DATA.shape[k];
+  }
+  return i;
+}
+function fmt(x, d) { return x === null || x === undefined ? "–" : x.toFixed(d); }
+function drawExit() {
+  const y = curve();
+  const traces = [{ x: DATA.impact_z, y: y, mode: "lines+markers", name: "exit speed" }];
+  if (DATA.sweet) {
+    const i = sweetIndex();
+    const p = DATA.sweet.position[i], v = DATA.sweet.exit_speed[i], w = DATA.sweet.width ? DATA.sweet.width[i] : null;
+    document.getElementById("sweet-position").textContent = fmt(p, 4);
+    document.getElementById("sweet-exit").textContent = fmt(v, 3);
+    document.getElementById("sweet-width").textContent = fmt(w, 4);
+    if (p !== null) traces.push({ x: [p], y: [v], mode: "markers", marker: { size: 12, symbol: "star" }, name: "sweet spot" });
+  }
+  Plotly.react("exit", traces, { xaxis: { title: { text: "impact position z (m from the knob)" } },
+    yaxis: { title: { text: "exit speed (" + plotlyText(DATA.units) + ")" } }, margin: { t: 20 } });
+}
+const hs = DATA.histories;
+const hsel = document.getElementById("history");
+hs.forEach((h, i) => { const o = document.createElement("option"); o.value = i; o.textContent = h.label; hsel.appendChild(o); });
+function drawHistory() {
+  if (!hs.length) { document.getElementById("force").textContent = "This study recorded no force history."; return; }
+  const h = hs[+hsel.value];
+  Plotly.react("force", [{ x: h.time_ms, y: h.force.map(f => f === null ? null : f / 1000), mode: "lines", name: "force" }],
+    { xaxis: { title: { text: "time from first contact (ms)" } }, yaxis: { title: { text: "contact force (kN)" } }, margin: { t: 20 } });
+  const slider = document.getElementById("frame");
+  if (h.bending) { slider.max = h.bending.time_ms.length - 1; slider.value = 0; }
+  drawBending();
+}
+function drawBending() {
+  const h = hs.length ? hs[+hsel.value] : null;
+  if (!h || !h.bending) { document.getElementById("bending").textContent = "No displacement history for this point."; return; }
+  const k = +document.getElementById("frame").value, b = h.bending;
+  const all = b.mm.flat().filter(v => v !== null);
+  const top = Math.max(...all.map(Math.abs)) * 1.1 || 1;
+  document.getElementById("frame-time").textContent = "t = " + fmt(b.time_ms[k], 3) + " ms";
+  Plotly.react("bending", [{ x: b.z, y: b.mm[k], mode: "lines", name: "displacement" }],
+    { xaxis: { title: { text: "z (m from the knob)" } }, yaxis: { title: { text: "displacement (mm)" }, range: [-top, top] }, margin: { t: 20 } });
+}
+hsel.addEventListener("change", drawHistory);
+document.getElementById("frame").addEventListener("input", drawBending);
+drawExit();
+drawHistory();
+</script>
+</body></html>
+"""
+
+
+def plotly_js() -> str:
+    try:
+        import plotly
+    except ImportError as err:
+        raise ImportError("the explorer inlines Plotly's JavaScript: pip install 'batstudy[plot]'") from err
+    return (Path(plotly.__file__).parent / "package_data" / "plotly.min.js").read_text(encoding="utf-8")
+
+
+def page(data: dict) -> str:
+    """The HTML page of `data` (:func:`collect`): every placeholder filled in one pass, each
+    value escaped for where it goes."""
+    values = {
+        "STUDY": _html.text(data["study"]),
+        "PLOTLY": _html.script_code(plotly_js()),
+        "DATA": _html.script_json(data),
+    }
+    return re.sub(r"__(STUDY|PLOTLY|DATA)__", lambda m: values[m.group(1)], PAGE)
+
+
+def report(path: Union[str, os.PathLike], output: Union[str, os.PathLike, None] = None) -> Path:
+    """Write the explorer of the results file `path`, one HTML file (default: next to it,
+    ``RESULTS.html``), and return its path. Needs Plotly (``pip install 'batstudy[plot]'``)."""
+    out = Path(path).with_suffix(".html") if output is None else Path(output)
+    out.write_text(page(collect(open_results(path))), encoding="utf-8")
+    return out
+
+
+def main(argv=None, prog: str = "batstudy report") -> int:
+    ap = argparse.ArgumentParser(prog=prog, description="Write a results file's explorer: one HTML file, "
+                                 "opened by any browser (no server, no network).")  # fmt: skip
+    ap.add_argument("results", help="batstudy results file (HDF5)")
+    ap.add_argument("-o", "--output", help="the HTML file to write (default: RESULTS with .html)")
+    args = ap.parse_args(argv)
+    try:
+        out = report(args.results, args.output)
+    except (OSError, ValueError) as err:
+        print(f"{prog}: {args.results}: {err}", file=sys.stderr)
+        return 2
+    print(f"wrote {out} ({out.stat().st_size // 1024} KiB)")
+    return 0
