@@ -2,9 +2,18 @@
 //!
 //! Three files in one folder: `array.sbatch` (a job array, one task per shard, each running
 //! `batstudy run STUDY --shard $SLURM_ARRAY_TASK_ID/N --resume` on its task's cores),
-//! `merge.sbatch` (`batstudy merge` of the shard files into the study's results file) and
-//! `submit.sh` (submits the array, then the merge with `--dependency=afterok:<array job id>`).
-//! Paths in the scripts are absolute, so they can be submitted from anywhere.
+//! `merge.sbatch` (`batstudy merge` of the shard files into the study's results file, after
+//! checking that every shard is finished) and `submit.sh` (submits the array tasks whose
+//! shard is not finished yet, then the merge with `--dependency=afterany:<array job id>`).
+//! `submit.sh` is idempotent: after a time-out, a cancellation or a failed task, running it
+//! again submits only the unfinished shards (`batstudy slurm --resubmit DIR` runs it).
+//!
+//! Safe by construction (issue 31): every value that comes from the study, the command line
+//! or the file system reaches a script once, as the right-hand side of a shell assignment
+//! quoted by [`sh_quote`], and is used afterwards only as `"$VAR"`. No value is written
+//! inside another quoting context (an `echo "…"`, a comment) or anywhere bash would parse
+//! it again. The few values that must go into `#SBATCH` lines (which Slurm does not unquote)
+//! are checked by [`sbatch_safe`] or their own format checks before the scripts are written.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -12,11 +21,12 @@ use std::path::{Path, PathBuf};
 /// Everything the scripts need (paths absolute).
 #[derive(Debug, Clone)]
 pub struct SlurmJob {
-    /// The batstudy binary.
-    pub binary: PathBuf,
+    /// The command that runs batstudy on a compute node, as words (e.g. the binary's path,
+    /// or the wheel's `batstudy` command, or `python -m batstudy`).
+    pub command: Vec<String>,
     /// The study file.
     pub study: PathBuf,
-    /// Study name (job names, shard file names).
+    /// Study name (job names, shard file names; validated: letters, digits, `_-.`).
     pub name: String,
     /// Number of shards (array tasks).
     pub shards: usize,
@@ -34,7 +44,9 @@ pub struct SlurmJob {
     pub dir: PathBuf,
 }
 
-/// Quote for bash (single quotes).
+/// Quote one word for bash: the only way a value enters a generated script. Plain words
+/// stay as they are; anything else is single-quoted (a `'` inside becomes `'\''`), which
+/// bash takes literally: no expansion, substitution or word splitting, newlines included.
 pub fn sh_quote(s: &str) -> String {
     if !s.is_empty()
         && s.bytes()
@@ -73,23 +85,41 @@ pub fn valid_mem(s: &str) -> bool {
     !t.is_empty() && t.len() + 1 >= s.len() && t.bytes().all(|b| b.is_ascii_digit())
 }
 
-/// Is `s` safe in an `#SBATCH` line (Slurm does not unquote these)?
+/// Is `s` safe in an `#SBATCH` line (Slurm does not unquote these)? Printable ASCII without
+/// white space, quotes, `\`, `$`, backticks, `#`, `;` or `%` (a Slurm filename pattern).
 pub fn sbatch_safe(s: &str) -> bool {
     !s.is_empty()
-        && !s
-            .chars()
-            .any(|c| c.is_whitespace() || "'\"\\$`#;".contains(c))
+        && s.chars()
+            .all(|c| c.is_ascii_graphic() && !"'\"\\$`#;%".contains(c))
 }
 
+/// The shell lines every script starts with after its `#SBATCH` header: the values as
+/// quoted assignments, and `shard_file I` (the path of shard I's file).
+fn variables(job: &SlurmJob) -> String {
+    let mut s = String::new();
+    let words: Vec<String> = job.command.iter().map(|w| sh_quote(w)).collect();
+    let _ = writeln!(s, "BATSTUDY=({})", words.join(" "));
+    let _ = writeln!(s, "STUDY={}", q(&job.study));
+    let _ = writeln!(s, "NAME={}", sh_quote(&job.name));
+    let _ = writeln!(s, "SHARDS={}", job.shards);
+    let _ = writeln!(s, "OUTPUT={}", q(&job.output));
+    let _ = writeln!(s, "DIR={}", q(&job.dir));
+    s.push_str("shard_file() { printf '%s/%s.shard-%s-of-%s.h5' \"$DIR\" \"$NAME\" \"$1\" \"$SHARDS\"; }\n");
+    s
+}
+
+/// Lists the unfinished shards (those without a finished file) in the array `missing`.
+const FIND_MISSING: &str = r#"missing=()
+for i in $(seq 1 "$SHARDS"); do
+  [ -e "$(shard_file "$i")" ] || missing+=("$i")
+done
+"#;
+
 impl SlurmJob {
-    /// The shard file of shard `i` (1-based); `$I` gives the bash expression for the task's.
-    pub fn shard_file(&self, i: &str) -> String {
-        format!(
-            "{}/{}.shard-{i}-of-{}.h5",
-            self.dir.display(),
-            self.name,
-            self.shards
-        )
+    /// The shard file of shard `i` (1-based).
+    pub fn shard_file(&self, i: usize) -> PathBuf {
+        self.dir
+            .join(format!("{}.shard-{i}-of-{}.h5", self.name, self.shards))
     }
 
     fn logs(&self) -> PathBuf {
@@ -107,7 +137,18 @@ impl SlurmJob {
         }
     }
 
-    /// The job array: one task per shard.
+    fn resources(&self, s: &mut String, cpus: usize, log: &str) {
+        let _ = writeln!(s, "#SBATCH --nodes=1");
+        let _ = writeln!(s, "#SBATCH --ntasks=1");
+        let _ = writeln!(s, "#SBATCH --cpus-per-task={cpus}");
+        if let Some(m) = &self.mem {
+            let _ = writeln!(s, "#SBATCH --mem={m}");
+        }
+        let _ = writeln!(s, "#SBATCH --output={}/{log}", self.logs().display());
+        let _ = writeln!(s, "#SBATCH --chdir={}", self.dir.display());
+    }
+
+    /// The job array: one task per shard (`submit.sh` narrows `--array` to the unfinished).
     pub fn array_script(&self) -> String {
         let mut s = String::new();
         self.header(
@@ -116,44 +157,38 @@ impl SlurmJob {
             self.time.as_deref(),
         );
         let _ = writeln!(s, "#SBATCH --array=1-{}", self.shards);
-        let _ = writeln!(s, "#SBATCH --nodes=1");
-        let _ = writeln!(s, "#SBATCH --ntasks=1");
-        let _ = writeln!(s, "#SBATCH --cpus-per-task={}", self.cpus_per_task);
-        if let Some(m) = &self.mem {
-            let _ = writeln!(s, "#SBATCH --mem={m}");
-        }
-        let _ = writeln!(s, "#SBATCH --output={}/shard-%a.out", self.logs().display());
-        let _ = writeln!(s, "#SBATCH --chdir={}", self.dir.display());
+        self.resources(&mut s, self.cpus_per_task, "shard-%a.out");
+        s.push_str(
+            r#"# Generated by `batstudy slurm`: one shard of the study per array task.
+# Re-running a task (requeue, or submitting again) continues its shard file with --resume:
+# only the points not yet finished are computed. Slurm's SIGTERM (time limit, scancel)
+# stops it as Ctrl-C does: the points in flight finish and everything done is kept.
+set -euo pipefail
+"#,
+        );
+        s.push_str(&variables(self));
         let _ = write!(
             s,
-            r#"# Generated by `batstudy slurm` for study {name}: shard $SLURM_ARRAY_TASK_ID of {n}.
-# Re-running a task (requeue, or submitting this script again) continues its shard file
-# with --resume: only the points not yet finished are computed.
-set -euo pipefail
-I=${{SLURM_ARRAY_TASK_ID:?this script is a Slurm array job: submit it with sbatch}}
+            r#"I=${{SLURM_ARRAY_TASK_ID:?this script is a Slurm array job: submit it with sbatch}}
 JOBS=${{SLURM_CPUS_PER_TASK:-{cpus}}}
-OUT="{shard}"
-echo "batstudy shard $I/{n} of {study_q} on $(hostname) with $JOBS threads -> $OUT"
+OUT=$(shard_file "$I")
+printf 'batstudy shard %s/%s of %s on %s with %s threads -> %s\n' "$I" "$SHARDS" "$STUDY" "$(hostname)" "$JOBS" "$OUT"
 rc=0
-{bin} run {study_q} --shard "$I/{n}" --jobs "$JOBS" --resume --quiet -o "$OUT" || rc=$?
+"${{BATSTUDY[@]}}" run "$STUDY" --shard "$I/$SHARDS" --jobs "$JOBS" --resume --quiet -o "$OUT" || rc=$?
 if [ "$rc" -eq 1 ]; then
   # some points failed: their error text is in the shard file, as in a single run
-  echo "shard $I/{n}: some points failed (recorded in $OUT)"
+  printf 'shard %s/%s: some points failed (recorded in %s)\n' "$I" "$SHARDS" "$OUT"
   exit 0
 fi
 exit "$rc"
 "#,
-            name = self.name,
-            n = self.shards,
             cpus = self.cpus_per_task,
-            shard = self.shard_file("${I}"),
-            bin = q(&self.binary),
-            study_q = q(&self.study),
         );
         s
     }
 
-    /// The merge job (submitted with a dependency on the array).
+    /// The merge job: runs after the array however it ended (`afterany`), refuses an
+    /// incomplete set with the command that completes it.
     pub fn merge_script(&self) -> String {
         let mut s = String::new();
         self.header(
@@ -161,65 +196,83 @@ exit "$rc"
             &format!("batstudy-{}-merge", self.name),
             self.merge_time.as_deref(),
         );
-        let _ = writeln!(s, "#SBATCH --nodes=1");
-        let _ = writeln!(s, "#SBATCH --ntasks=1");
-        let _ = writeln!(s, "#SBATCH --cpus-per-task=1");
-        if let Some(m) = &self.mem {
-            let _ = writeln!(s, "#SBATCH --mem={m}");
-        }
-        let _ = writeln!(s, "#SBATCH --output={}/merge.out", self.logs().display());
-        let _ = writeln!(s, "#SBATCH --chdir={}", self.dir.display());
-        let _ = write!(
-            s,
-            r#"# Generated by `batstudy slurm` for study {name}: merges the {n} shard files into one
-# results file, identical in data to a single-process run. Refuses (exit 2, nothing written)
-# if a shard is missing, incomplete or of another study.
+        self.resources(&mut s, 1, "merge.out");
+        s.push_str(
+            r#"# Generated by `batstudy slurm`: merges the shard files into one results file, identical
+# in data to a single-process run. Runs after the array however it ended; refuses (exit 2,
+# nothing written) if a shard is unfinished, naming the command that finishes it.
 set -euo pipefail
+"#,
+        );
+        s.push_str(&variables(self));
+        s.push_str(FIND_MISSING);
+        s.push_str(
+            r#"if ((${#missing[@]})); then
+  {
+    printf 'batstudy merge: %s of %s shards are not finished (shards %s); nothing was merged.\n' \
+      "${#missing[@]}" "$SHARDS" "${missing[*]}"
+    printf 'Submit only those, and the merge again, with:\n  bash %q\n' "$DIR/submit.sh"
+    printf 'or: batstudy slurm --resubmit %q\n' "$DIR"
+  } >&2
+  exit 2
+fi
 shards=()
-for i in $(seq 1 {n}); do
-  shards+=("{shard}")
+for i in $(seq 1 "$SHARDS"); do
+  shards+=("$(shard_file "$i")")
 done
 rc=0
-{bin} merge -o {out} "${{shards[@]}}" || rc=$?
+"${BATSTUDY[@]}" merge -o "$OUTPUT" "${shards[@]}" || rc=$?
 if [ "$rc" -eq 1 ]; then
-  echo "merged into {out_plain}; some points failed (their error text is stored)"
+  printf 'merged into %s; some points failed (their error text is stored)\n' "$OUTPUT"
   exit 0
 fi
 exit "$rc"
 "#,
-            name = self.name,
-            n = self.shards,
-            shard = self.shard_file("${i}"),
-            bin = q(&self.binary),
-            out = q(&self.output),
-            out_plain = self.output.display(),
         );
         s
     }
 
-    /// Submits the array, then the merge after it (`afterok`).
+    /// Submits the array tasks of the unfinished shards, then the merge after them.
     pub fn submit_script(&self) -> String {
-        format!(
+        let mut s = String::from(
             r#"#!/bin/bash
-# Generated by `batstudy slurm` for study {name}: submits the {n}-task array, then the
-# merge job, which starts only when every array task succeeded (afterok).
-# Extra sbatch options (e.g. --account=X) can be given as arguments; they go to both jobs.
+# Generated by `batstudy slurm`: submits the array tasks of every shard that is not finished
+# yet (all of them the first time), then the merge job, which runs when they have ended
+# (afterany) and refuses an incomplete set. Run it again after a time-out, a cancellation or
+# a failed task: it submits only what is left. Extra sbatch options (e.g. --account=X) can
+# be given as arguments; they go to both jobs.
 set -euo pipefail
-dir={dir}
-mkdir -p "$dir/logs"
-array_id=$(sbatch --parsable "$@" "$dir/array.sbatch")
-array_id=${{array_id%%;*}}   # --parsable prints "jobid[;cluster]"
-merge_id=$(sbatch --parsable "$@" --dependency=afterok:"$array_id" "$dir/merge.sbatch")
-merge_id=${{merge_id%%;*}}
-printf 'ARRAY_JOB_ID=%s\nMERGE_JOB_ID=%s\n' "$array_id" "$merge_id" > "$dir/jobs.env"
-echo "submitted array job $array_id ({n} shards) and merge job $merge_id (after the array)"
-echo "results: {out_plain}"
 "#,
-            name = self.name,
-            n = self.shards,
-            dir = q(&self.dir),
-            out_plain = self.output.display(),
-        )
+        );
+        s.push_str(&variables(self));
+        s.push_str(
+            r#"if [ -e "$OUTPUT" ]; then
+  printf 'results already merged: %s (remove it to merge again)\n' "$OUTPUT"
+  exit 0
+fi
+mkdir -p "$DIR/logs"
+"#,
+        );
+        s.push_str(FIND_MISSING);
+        s.push_str(
+            r#"dependency=()
+array_id=none
+if ((${#missing[@]})); then
+  list=$(IFS=,; printf '%s' "${missing[*]}")
+  array_id=$(sbatch --parsable "$@" --array="$list" "$DIR/array.sbatch")
+  array_id=${array_id%%;*}   # --parsable prints "jobid[;cluster]"
+  dependency=(--dependency=afterany:"$array_id")
+  printf 'submitted array job %s: shards %s of %s\n' "$array_id" "$list" "$SHARDS"
+else
+  printf 'every shard is finished: submitting the merge only\n'
+fi
+merge_id=$(sbatch --parsable "$@" "${dependency[@]}" "$DIR/merge.sbatch")
+merge_id=${merge_id%%;*}
+printf 'ARRAY_JOB_ID=%s\nMERGE_JOB_ID=%s\n' "$array_id" "$merge_id" > "$DIR/jobs.env"
+printf 'submitted merge job %s (after the array); results: %s\n' "$merge_id" "$OUTPUT"
+"#,
+        );
+        s
     }
 
     /// Write the three scripts (and the logs folder) into `dir`; returns their paths.
@@ -266,5 +319,30 @@ mod tests {
         assert_eq!(sh_quote("/a/b c"), "'/a/b c'");
         assert_eq!(sh_quote("it's"), r"'it'\''s'");
         assert_eq!(sh_quote("/a/b.h5"), "/a/b.h5");
+    }
+
+    // issue 31: what bash reads back from a quoted word is the word, whatever it holds
+    #[test]
+    fn quoted_words_read_back_literally() {
+        for w in [
+            "$(touch /tmp/x)",
+            "`id`",
+            "a\";id;\"b",
+            "it's",
+            "new\nline",
+            "tab\there",
+            "*",
+            "~",
+            "!x",
+            "",
+            "\\",
+        ] {
+            let script = format!("printf '%s' {}", sh_quote(w));
+            let out = std::process::Command::new("bash")
+                .args(["-c", &script])
+                .output()
+                .unwrap();
+            assert_eq!(String::from_utf8_lossy(&out.stdout), w, "{script}");
+        }
     }
 }

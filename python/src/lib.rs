@@ -18,18 +18,30 @@ use std::time::Duration;
 /// Run the command line with `argv` (program name first); returns its exit code. Used by
 /// the `batstudy` command the wheel installs, so it behaves as the binary does: its own
 /// Ctrl-C handling, and a closed pipe ends it quietly.
+/// `command`: the words that start this same command again (the installed `batstudy`
+/// script, or `python -m batstudy`), for the Slurm scripts it writes.
 #[pyfunction]
-fn cli_main(py: Python<'_>, argv: Vec<String>) -> i32 {
+#[pyo3(signature = (argv, command=None))]
+fn cli_main(py: Python<'_>, argv: Vec<String>, command: Option<Vec<String>>) -> i32 {
     // SAFETY: this process is the command now; Python set SIGPIPE to "ignore" at start-up.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    py.detach(|| cli::main_exit_code_from(argv))
+    let invocation = cli::Invocation { command };
+    py.detach(|| cli::main_exit_code_as(argv, &invocation))
 }
 
 /// Lines the wrapper study puts before the user's spec (the spec's own line numbers are
 /// restored in error messages).
 const SPEC_LINE_OFFSET: usize = 2;
+
+/// The lines of YAML text, split at every line break YAML knows (`\r\n`, `\r`, `\n`, and
+/// YAML 1.1's NEL, LS and PS), so that every line of the spec is indented under its block
+/// key (issue 31: a bare `\r` let top-level keys such as `allow_implausible` escape `base:`).
+fn yaml_lines(text: &str) -> impl Iterator<Item = &str> {
+    text.split("\r\n")
+        .flat_map(|l| l.split(['\r', '\n', '\u{85}', '\u{2028}', '\u{2029}']))
+}
 
 /// A one-point study around a spec's text (YAML or JSON), with an optional history block.
 fn spec_study(spec: &str, history: Option<&str>) -> String {
@@ -38,7 +50,7 @@ fn spec_study(spec: &str, history: Option<&str>) -> String {
         let Some(text) = text else { continue };
         s.push_str(key);
         s.push_str(":\n");
-        for line in text.lines() {
+        for line in yaml_lines(text) {
             s.push_str("  ");
             s.push_str(line);
             s.push('\n');

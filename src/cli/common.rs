@@ -39,12 +39,17 @@ pub(super) fn load_or_report(path: &Path, max_points: usize) -> Result<Study, i3
     })
 }
 
+/// Most worker threads a run may start (issue 31: `-j 100000` spawned threads until the
+/// process ran out of resources). Far above any node's cores.
+pub(super) const MAX_JOBS: usize = 4096;
+pub(super) use crate::run::MAX_SHARDS;
+
 pub(super) fn jobs_or_all(jobs: Option<usize>, file: &Path) -> Result<usize, StudyError> {
     match jobs {
-        Some(0) => Err(StudyError::new(file, "bad --jobs")
+        Some(j) if !(1..=MAX_JOBS).contains(&j) => Err(StudyError::new(file, "bad --jobs")
             .field("--jobs")
-            .value("0")
-            .allowed("a number of threads >= 1")),
+            .value(j.to_string())
+            .allowed(format!("a number of threads from 1 to {MAX_JOBS}"))),
         Some(j) => Ok(j),
         None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
     }
@@ -62,11 +67,15 @@ pub(super) fn lock_output(output: &Path) -> Result<store::lock::OutputLock, (i32
             ));
         }
     }
-    store::lock::OutputLock::acquire(output).map_err(|e| {
+    let lock = store::lock::OutputLock::acquire(output).map_err(|e| {
         let code = match e {
             store::lock::LockError::Held { .. } => EXIT_BAD_INPUT,
             store::lock::LockError::Io { .. } => EXIT_RUN_FAILED,
         };
         (code, format!("error: {e}"))
-    })
+    })?;
+    if let Some(w) = lock.warning() {
+        eprintln!("warning: {w}");
+    }
+    Ok(lock)
 }

@@ -81,6 +81,16 @@ pub enum Command {
     Slurm(SlurmArgs),
 }
 
+/// How this process was started, for what it writes that starts batstudy again (the Slurm
+/// scripts). The binary leaves it empty: it is `current_exe()`. The Python wheel's command
+/// gives its own (the installed `batstudy` script, or `python -m batstudy`): there,
+/// `current_exe()` is the Python interpreter.
+#[derive(Debug, Clone, Default)]
+pub struct Invocation {
+    /// The words that run batstudy (None: this executable's path).
+    pub command: Option<Vec<String>>,
+}
+
 /// Parse the process's arguments and run; returns the exit code.
 pub fn main_exit_code() -> i32 {
     main_exit_code_from(std::env::args_os())
@@ -89,6 +99,15 @@ pub fn main_exit_code() -> i32 {
 /// Parse `args` (the program name first) and run; returns the exit code. The Python
 /// package's `batstudy` command calls this with its own argv.
 pub fn main_exit_code_from<I, T>(args: I) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    main_exit_code_as(args, &Invocation::default())
+}
+
+/// [`main_exit_code_from`], started as `invocation` says.
+pub fn main_exit_code_as<I, T>(args: I, invocation: &Invocation) -> i32
 where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
@@ -104,11 +123,11 @@ where
             };
         }
     };
-    run_command(cli.command)
+    run_command(cli.command, invocation)
 }
 
 /// Run one subcommand; returns the exit code.
-pub fn run_command(cmd: Command) -> i32 {
+pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
     match cmd {
         Command::Run(a) => run::cmd_run(&a),
         Command::Plan(a) => plan::cmd_plan(&a),
@@ -121,7 +140,7 @@ pub fn run_command(cmd: Command) -> i32 {
             EXIT_OK
         }
         Command::Merge(a) => merge::cmd_merge(&a),
-        Command::Slurm(a) => slurm::cmd_slurm(&a),
+        Command::Slurm(a) => slurm::cmd_slurm(&a, invocation),
         Command::Bench { quick, json } => {
             crate::bench::main(&crate::bench::BenchOptions { quick }, json.as_deref())
         }

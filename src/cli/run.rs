@@ -2,7 +2,7 @@
 
 #![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
 
-use super::common::{check_output_of, lock_output};
+use super::common::{check_output_of, jobs_or_all, lock_output};
 use super::{EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_POINTS_FAILED, EXIT_RUN_FAILED};
 use crate::results::StudyInfo;
 use crate::run::ModelSimulator;
@@ -75,16 +75,7 @@ impl RunSettings {
                 max_points: a.max_points,
             },
         )?;
-        let jobs = match a.jobs {
-            Some(0) => {
-                return Err(StudyError::new(&a.study, "bad --jobs")
-                    .field("--jobs")
-                    .value("0")
-                    .allowed("a number of threads >= 1"))
-            }
-            Some(j) => j,
-            None => std::thread::available_parallelism().map_or(1, |n| n.get()),
-        };
+        let jobs = jobs_or_all(a.jobs, &a.study)?;
         let existing = match (a.resume, a.force) {
             (true, _) => Existing::Resume,
             (_, true) => Existing::Overwrite,

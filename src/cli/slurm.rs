@@ -3,7 +3,8 @@
 #![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
 
 use super::common::load_or_report;
-use super::{EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED};
+use super::common::{MAX_JOBS, MAX_SHARDS};
+use super::{Invocation, EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED};
 use crate::study::output::check_output;
 use crate::study::output::Existing;
 use crate::study::StudyError;
@@ -15,10 +16,19 @@ use std::path::PathBuf;
 #[derive(Debug, Args)]
 pub struct SlurmArgs {
     /// The study file (YAML).
-    pub study: PathBuf,
+    #[arg(required_unless_present = "resubmit")]
+    pub study: Option<PathBuf>,
     /// Number of shards (array tasks).
-    #[arg(long)]
-    pub shards: usize,
+    #[arg(long, required_unless_present = "resubmit")]
+    pub shards: Option<usize>,
+    /// Submit again, from a folder `batstudy slurm` wrote, the array tasks of the shards that
+    /// are not finished (a time-out, a cancellation, a failed task), then the merge: runs
+    /// DIR/submit.sh. Further arguments go to sbatch (e.g. --account=X).
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["study", "shards"])]
+    pub resubmit: Option<PathBuf>,
+    /// With --resubmit: extra sbatch options, after `--`.
+    #[arg(last = true)]
+    pub sbatch_args: Vec<String>,
     /// Time limit of each array task (Slurm format, e.g. 02:00:00 or 1-00:00:00).
     #[arg(long)]
     pub time: Option<String>,
@@ -56,27 +66,93 @@ fn absolute(p: &Path) -> PathBuf {
     }
 }
 
+/// `batstudy slurm --resubmit DIR`: run DIR/submit.sh, which submits what is unfinished.
+fn resubmit(dir: &Path, sbatch_args: &[String]) -> i32 {
+    let script = dir.join("submit.sh");
+    if !script.is_file() {
+        eprintln!(
+            "{}",
+            StudyError::new(dir, "no submit.sh in this folder")
+                .field("--resubmit")
+                .value(dir.display().to_string())
+                .allowed("a folder written by `batstudy slurm` (its --dir)")
+        );
+        return EXIT_BAD_INPUT;
+    }
+    match std::process::Command::new("bash")
+        .arg(&script)
+        .args(sbatch_args)
+        .status()
+    {
+        Ok(st) if st.success() => EXIT_OK,
+        Ok(st) => {
+            eprintln!("error: {} failed ({st})", script.display());
+            EXIT_RUN_FAILED
+        }
+        Err(e) => {
+            eprintln!("error: cannot run bash {}: {e}", script.display());
+            EXIT_RUN_FAILED
+        }
+    }
+}
+
+/// The words that run batstudy on a compute node: the caller's (the Python wheel's
+/// command), else this executable.
+fn batstudy_command(invocation: &Invocation) -> Result<Vec<String>, String> {
+    if let Some(c) = invocation.command.as_ref().filter(|c| !c.is_empty()) {
+        return Ok(c.clone());
+    }
+    std::env::current_exe()
+        .and_then(|p| p.canonicalize())
+        .map(|p| vec![p.display().to_string()])
+        .map_err(|e| format!("cannot find the batstudy binary's path: {e}"))
+}
+
 /// `batstudy slurm`: write the job array, merge job and submit scripts.
-pub(super) fn cmd_slurm(a: &SlurmArgs) -> i32 {
-    let study = match load_or_report(&a.study, a.max_points) {
+pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
+    if let Some(dir) = &a.resubmit {
+        return resubmit(dir, &a.sbatch_args);
+    }
+    let (Some(study_file), Some(shards)) = (a.study.as_deref(), a.shards) else {
+        unreachable!("clap requires STUDY and --shards without --resubmit")
+    };
+    if !a.sbatch_args.is_empty() {
+        eprintln!(
+            "{}",
+            StudyError::new(study_file, "extra arguments")
+                .field("-- ARGS")
+                .value(a.sbatch_args.join(" "))
+                .allowed("sbatch options only with --resubmit (give them to submit.sh otherwise)")
+        );
+        return EXIT_BAD_INPUT;
+    }
+    let study = match load_or_report(study_file, a.max_points) {
         Ok(s) => s,
         Err(code) => return code,
     };
     let flag = |name: &str, value: String, allowed: &str| {
         eprintln!(
             "{}",
-            StudyError::new(&a.study, format!("bad {name}"))
+            StudyError::new(study_file, format!("bad {name}"))
                 .field(name)
                 .value(value)
                 .allowed(allowed)
         );
         EXIT_BAD_INPUT
     };
-    if a.shards == 0 {
-        return flag("--shards", "0".into(), "a number of shards >= 1");
+    if !(1..=MAX_SHARDS).contains(&shards) {
+        return flag(
+            "--shards",
+            shards.to_string(),
+            &format!("a number of shards from 1 to {MAX_SHARDS}"),
+        );
     }
-    if a.cpus_per_task == 0 {
-        return flag("--cpus-per-task", "0".into(), "a number of cores >= 1");
+    if !(1..=MAX_JOBS).contains(&a.cpus_per_task) {
+        return flag(
+            "--cpus-per-task",
+            a.cpus_per_task.to_string(),
+            &format!("a number of cores from 1 to {MAX_JOBS}"),
+        );
     }
     for (name, v) in [("--time", &a.time), ("--merge-time", &a.merge_time)] {
         if let Some(t) = v.as_ref().filter(|t| !crate::slurm::valid_time(t)) {
@@ -97,16 +173,16 @@ pub(super) fn cmd_slurm(a: &SlurmArgs) -> i32 {
     {
         return flag("--partition", p.clone(), "a partition name");
     }
-    let binary = match std::env::current_exe().and_then(|p| p.canonicalize()) {
-        Ok(p) => p,
+    let command = match batstudy_command(invocation) {
+        Ok(c) => c,
         Err(e) => {
-            eprintln!("error: cannot find the batstudy binary's path: {e}");
+            eprintln!("error: {e}");
             return EXIT_RUN_FAILED;
         }
     };
-    let study_path = match a.study.canonicalize() {
+    let study_path = match study_file.canonicalize() {
         Ok(p) => p,
-        Err(e) => return flag("STUDY", format!("{} ({e})", a.study.display()), "a file"),
+        Err(e) => return flag("STUDY", format!("{} ({e})", study_file.display()), "a file"),
     };
     let name = study.file.name.clone();
     let dir = absolute(
@@ -118,7 +194,7 @@ pub(super) fn cmd_slurm(a: &SlurmArgs) -> i32 {
         return flag(
             "--dir",
             dir.display().to_string(),
-            "a folder path without spaces, quotes, `$`, `#` or `;` (it goes into #SBATCH lines)",
+            "a folder path of printable ASCII without spaces, quotes, `\\`, `$`, backticks, `#`, `;` or `%` (it goes into #SBATCH lines)",
         );
     }
     let output = absolute(&study.output_path(a.output.as_deref()));
@@ -130,18 +206,17 @@ pub(super) fn cmd_slurm(a: &SlurmArgs) -> i32 {
         }
     }
     let n = study.plan.n_points();
-    if a.shards > n {
+    if shards > n {
         eprintln!(
-            "warning: {} shards for {n} points: {} shards will be empty",
-            a.shards,
-            a.shards - n
+            "warning: {shards} shards for {n} points: {} shards will be empty",
+            shards - n
         );
     }
     let job = crate::slurm::SlurmJob {
-        binary,
+        command,
         study: study_path,
         name,
-        shards: a.shards,
+        shards,
         merge_time: a.merge_time.clone().or_else(|| a.time.clone()),
         time: a.time.clone(),
         partition: a.partition.clone(),

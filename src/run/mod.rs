@@ -12,5 +12,5 @@ pub use driver::{
     build_pool, check_finite, check_finite_for, prepare_bats, prepare_bats_alongside, run_plan,
     PointCounter, PreparedBats, RunError, RunOptions, RunReport,
 };
-pub use shard::{estimate_cost, shard_range, CostModel, Shard};
+pub use shard::{estimate_cost, shard_range, CostModel, Shard, MAX_SHARDS};
 pub use traits::{AsIs, Encode, Simulator, Sink};

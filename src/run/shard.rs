@@ -29,6 +29,9 @@ pub struct Shard {
     pub count: usize,
 }
 
+/// Most shards a study may be split into (issue 31: a huge N was a panic).
+pub const MAX_SHARDS: usize = 1_000_000;
+
 impl FromStr for Shard {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
@@ -43,6 +46,11 @@ impl FromStr for Shard {
             .trim()
             .parse()
             .map_err(|_| format!("`{n}` is not a whole number"))?;
+        if count > MAX_SHARDS {
+            return Err(format!(
+                "`{s}`: at most {MAX_SHARDS} shards (Slurm's largest arrays are smaller)"
+            ));
+        }
         if count == 0 || index == 0 || index > count {
             return Err(format!(
                 "`{s}`: need 1 <= I <= N (shards are numbered from 1)"

@@ -9,10 +9,15 @@
 //! The lock file holds one line naming its holder (`pid`, `host`, `started`), for the
 //! refusal message. It is removed when the lock is released; a taker that finds the path
 //! replaced while it waited checks again, so removing it is safe.
+//!
+//! A symbolic link planted at `OUT.h5.lock` is never followed (`O_NOFOLLOW`; issue 31: its
+//! target was truncated). Where the file system does not support `flock` (Lustre mounted
+//! without `flock`, some NFS: `ENOLCK`, `ENOSYS`, `EOPNOTSUPP`), the run goes on without the
+//! lock, as Cargo and HDF5 do there, and the lock says so ([`OutputLock::warning`]).
 
 use std::fs::{File, OpenOptions};
 use std::io::{Read, Seek, SeekFrom, Write};
-use std::os::unix::fs::MetadataExt;
+use std::os::unix::fs::{MetadataExt, OpenOptionsExt};
 use std::os::unix::io::AsRawFd;
 use std::path::{Path, PathBuf};
 
@@ -28,6 +33,8 @@ pub fn lock_path(output: &Path) -> PathBuf {
 pub struct OutputLock {
     file: File,
     path: PathBuf,
+    /// Set when the file system could not lock: the run is not protected from a second one.
+    warning: Option<String>,
 }
 
 /// Why the lock was not taken.
@@ -84,9 +91,35 @@ fn holder_line() -> String {
     )
 }
 
+/// `flock(fd, LOCK_EX | LOCK_NB)`.
+fn flock_exclusive(fd: std::os::unix::io::RawFd) -> std::io::Result<()> {
+    // SAFETY: flock on a descriptor the caller owns; no memory is shared with the call.
+    match unsafe { libc::flock(fd, libc::LOCK_EX | libc::LOCK_NB) } {
+        0 => Ok(()),
+        _ => Err(std::io::Error::last_os_error()),
+    }
+}
+
+/// Errors by which a file system says it has no `flock` (not that the file is locked).
+fn flock_unsupported(e: &std::io::Error) -> bool {
+    matches!(
+        e.raw_os_error(),
+        Some(libc::ENOLCK | libc::ENOSYS | libc::EOPNOTSUPP | libc::EINVAL)
+    )
+}
+
 impl OutputLock {
     /// Take the lock of `output` without waiting. The output's folder must exist.
     pub fn acquire(output: &Path) -> Result<OutputLock, LockError> {
+        Self::acquire_with(output, flock_exclusive)
+    }
+
+    /// [`Self::acquire`] with the `flock` call given (tests give one that fails as a file
+    /// system without locks does).
+    fn acquire_with(
+        output: &Path,
+        flock: fn(std::os::unix::io::RawFd) -> std::io::Result<()>,
+    ) -> Result<OutputLock, LockError> {
         let path = lock_path(output);
         let io = |e: std::io::Error| LockError::Io {
             lock_file: path.clone(),
@@ -100,13 +133,22 @@ impl OutputLock {
                 .write(true)
                 .create(true)
                 .truncate(false)
+                .custom_flags(libc::O_NOFOLLOW)
                 .open(&path)
-                .map_err(io)?;
-            // SAFETY: flock on a descriptor we own; no memory is shared with the call.
-            let rc = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
-            if rc != 0 {
-                let err = std::io::Error::last_os_error();
-                if err.raw_os_error() == Some(libc::EWOULDBLOCK) {
+                .map_err(|e| match e.raw_os_error() {
+                    Some(libc::ELOOP) => io(std::io::Error::other(
+                        "it is a symbolic link, which batstudy never follows (remove it)",
+                    )),
+                    _ => io(e),
+                })?;
+            let mut warning = None;
+            if let Err(err) = flock(file.as_raw_fd()) {
+                if flock_unsupported(&err) {
+                    warning = Some(format!(
+                        "this file system cannot lock {} ({err}): running without the lock, so nothing stops a second run on the same output",
+                        path.display()
+                    ));
+                } else if err.raw_os_error() == Some(libc::EWOULDBLOCK) {
                     let mut holder = String::new();
                     let _ = file.read_to_string(&mut holder);
                     return Err(LockError::Held {
@@ -114,8 +156,9 @@ impl OutputLock {
                         lock_file: path,
                         holder: Some(holder.trim().to_string()),
                     });
+                } else {
+                    return Err(io(err));
                 }
-                return Err(io(err));
             }
             let same = match (file.metadata(), std::fs::metadata(&path)) {
                 (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
@@ -128,7 +171,11 @@ impl OutputLock {
             file.seek(SeekFrom::Start(0)).map_err(io)?;
             file.write_all(format!("{}\n", holder_line()).as_bytes())
                 .map_err(io)?;
-            return Ok(OutputLock { file, path });
+            return Ok(OutputLock {
+                file,
+                path,
+                warning,
+            });
         }
         Err(io(std::io::Error::other(
             "the lock file kept being replaced",
@@ -138,6 +185,11 @@ impl OutputLock {
     /// The lock file's path.
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Why this lock protects nothing (the file system has no `flock`), if it does not.
+    pub fn warning(&self) -> Option<&str> {
+        self.warning.as_deref()
     }
 }
 
@@ -178,5 +230,45 @@ mod tests {
         let third = OutputLock::acquire(&out).unwrap();
         assert!(lock_path(&out).exists());
         drop(third);
+    }
+
+    // issue 31: a symlink planted at OUT.h5.lock was followed and its target truncated
+    #[test]
+    fn a_symlink_at_the_lock_is_refused_and_its_target_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("x.h5");
+        let victim = dir.path().join("victim.txt");
+        std::fs::write(&victim, "precious").unwrap();
+        std::os::unix::fs::symlink(&victim, lock_path(&out)).unwrap();
+        let e = OutputLock::acquire(&out).unwrap_err();
+        assert!(e.to_string().contains("symbolic link"), "{e}");
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+    }
+
+    // issue 32: where the file system has no flock (ENOLCK on NFS, ENOSYS on Lustre without
+    // `-o flock`), the run goes on with a warning instead of failing outright; a held lock
+    // (EWOULDBLOCK) is still a refusal and other errors still fail
+    #[test]
+    fn no_flock_on_the_file_system_is_a_warning() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("x.h5");
+        type Flock = fn(std::os::unix::io::RawFd) -> std::io::Result<()>;
+        let unsupported: [Flock; 3] = [
+            |_| Err(std::io::Error::from_raw_os_error(libc::ENOLCK)),
+            |_| Err(std::io::Error::from_raw_os_error(libc::ENOSYS)),
+            |_| Err(std::io::Error::from_raw_os_error(libc::EOPNOTSUPP)),
+        ];
+        for flock in unsupported {
+            let lock = OutputLock::acquire_with(&out, flock).unwrap();
+            assert!(lock.warning().unwrap().contains("without the lock"));
+        }
+        let held = OutputLock::acquire_with(&out, |_| {
+            Err(std::io::Error::from_raw_os_error(libc::EWOULDBLOCK))
+        });
+        assert!(matches!(held, Err(LockError::Held { .. })));
+        let io =
+            OutputLock::acquire_with(&out, |_| Err(std::io::Error::from_raw_os_error(libc::EIO)));
+        assert!(matches!(io, Err(LockError::Io { .. })));
+        assert!(OutputLock::acquire(&out).unwrap().warning().is_none());
     }
 }

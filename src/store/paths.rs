@@ -29,6 +29,18 @@ pub fn remove_if_exists(p: &Path) -> Result<(), StoreError> {
     }
 }
 
+/// Create `p` afresh for writing: whatever is there (a stale file, or a symbolic link
+/// planted in a shared folder) is removed, not followed, and the new file is created
+/// exclusively (`O_EXCL` follows no link), so no file outside the output is ever written.
+pub fn create_fresh(p: &Path, what: &str) -> Result<std::fs::File, StoreError> {
+    remove_if_exists(p)?;
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(p)
+        .map_err(|e| StoreError::io(p, what, e))
+}
+
 /// Remove a finished output and its journal, for a run that replaces them (`--force`). The
 /// run does this while it prepares its bats (issue 22: unlinking a 92 MiB file took 56 ms,
 /// before the first point); opening the store would do it otherwise.

@@ -58,9 +58,12 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
     // No chunk cache: every chunk is written whole and already filtered (H5Dwrite_chunk),
     // never read back, and HDF5 allocates and zeroes each dataset's cache when it is created
     // (issue 22: a third of a 45-point curve's page faults, 67 datasets).
+    // Whatever is at `out` (a stale `.partial`, or a symbolic link planted there) is removed,
+    // not followed, and the file is created exclusively (O_EXCL: no link is followed).
+    crate::store::paths::remove_if_exists(out)?;
     let f = hdf5::File::with_options()
         .with_fapl(|p| p.chunk_cache(1, 0, 1.0))
-        .create(out)
+        .create_excl(out)
         .ctx(out, "create the results file")?;
 
     let dims = &study_shape.dims;

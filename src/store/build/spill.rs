@@ -71,7 +71,7 @@ impl Spill {
         };
         let mut files = Vec::with_capacity(windows.len());
         for p in &spill.paths {
-            let f = File::create(p).map_err(|e| StoreError::io(p, "create a spill file", e))?;
+            let f = crate::store::paths::create_fresh(p, "create a spill file")?;
             files.push(BufWriter::with_capacity(1 << 16, f));
         }
         let n_points = blocks.n_points();
