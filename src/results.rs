@@ -3,6 +3,57 @@
 
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 
+/// The names the results file gives its own variables beside a study's coordinates (in
+/// `/summary`, `/sweet_spot`, `/history`; `history` is the Python reader's dimension of
+/// stored histories): a study's dimension or coordinate may not take one (issue 31).
+/// `store::layout`'s tests keep this list complete.
+pub const RESERVED_NAMES: &[&str] = &[
+    "exit_speed",
+    "exit_speed_lab",
+    "collision_efficiency",
+    "approach_speed",
+    "contact_time",
+    "peak_force",
+    "max_compression",
+    "impulse",
+    "energy_initial",
+    "energy_ball_final",
+    "energy_ball_loss",
+    "energy_bat_rigid",
+    "energy_bat_vibration",
+    "energy_hoop",
+    "grip_vibration_amplitude",
+    "grip_recoil_speed",
+    "energy_bat_damping",
+    "energy_grip_damping",
+    "impulse_time_99",
+    "bbcor",
+    "besr",
+    "bpf",
+    "hoop_mode_frequency",
+    "hoop_mode_mass",
+    "recontact",
+    "status",
+    "point_id",
+    "bat_index",
+    "position",
+    "width",
+    "min_vibration_position",
+    "min_vibration_amplitude",
+    "min_vibration_energy_position",
+    "position_at_edge",
+    "time",
+    "z",
+    "force",
+    "compression",
+    "ball_velocity",
+    "displacement",
+    "rigid_translation",
+    "rigid_rotation",
+    "hoop_displacement",
+    "history",
+];
+
 /// A stable identifier of one point: a hash of its canonical (fully resolved) parameters.
 pub type PointId = u64;
 

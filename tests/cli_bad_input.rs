@@ -14,6 +14,43 @@ fn batstudy(args: &[&str]) -> std::process::Output {
 
 /// (file, substrings the message must contain: file:line, field, value, allowed)
 const CASES: &[(&str, &[&str])] = &[
+    // issue 31: what a hostile or careless study held, refused before anything is written
+    (
+        "history_too_big",
+        &["history_too_big.yaml:5:1", "`history`", "MiB per point", "allowed: at most 256 MiB per point"],
+    ),
+    (
+        "history_field_twice",
+        &["history_field_twice.yaml:5:27", "`history.fields[1]`", "value: force", "allowed: each field once"],
+    ),
+    (
+        "history_z_step_tiny",
+        &["history_z_step_tiny.yaml:5:71", "`history.z_step`", "value: 0.00000001", "allowed: a step that gives at most"],
+    ),
+    (
+        "points_named_like_a_variable",
+        &["points_named_like_a_variable.yaml:6:3", "value: exit_speed", "allowed: a name the results file does not use"],
+    ),
+    (
+        "zip_name_with_slash",
+        &["zip_name_with_slash.yaml:6:5", "value: a/b", "allowed: a name of letters, digits"],
+    ),
+    (
+        "zip_name_empty",
+        &["zip_name_empty.yaml:6:5", "value: \n", "allowed: a name of letters, digits"],
+    ),
+    (
+        "zip_name_is_a_coordinate",
+        &["zip_name_is_a_coordinate.yaml:10:5", "value: swing_omega", "allowed: a name not already used"],
+    ),
+    (
+        "points_malformed",
+        &["points_malformed.yaml:5:1", "`points`", "allowed: a list of parameter sets"],
+    ),
+    (
+        "profile_not_a_profile",
+        &["profile_not_a_profile.yaml:5:19", "`bat.profile.csv`", "value: /dev/zero", "not a regular file"],
+    ),
     (
         "malformed_yaml",
         &["malformed_yaml.yaml:5:5", "malformed YAML"],

@@ -97,6 +97,18 @@ pub(crate) fn allowed_from_serde(msg: &str) -> Option<String> {
     if msg.starts_with("missing field") {
         return Some("this field is required".into());
     }
+    // serde's untagged enums say only that no form matched: name the forms (issue 31)
+    if let Some(kind) = msg.strip_prefix("data did not match any variant of untagged enum ") {
+        return Some(
+            match kind.trim() {
+                "PointsBlock" => "a list of parameter sets `[{path: value, …}, …]`, or `{name: DIM, sets: [{path: value, …}, …]}`",
+                "AxisValues" => "a non-empty list, {linspace: [start, stop, n]}, {range: [start, stop, step]}",
+                "ProfileSpec" => "`{csv: PATH}` or a list of knots `[[z, radius], …]` (m)",
+                _ => "one of the forms in docs/study-files.md",
+            }
+            .to_string(),
+        );
+    }
     msg.split_once(", expected ").map(|(_, a)| match a {
         "f64" | "f32" => "a number".to_string(),
         "usize" | "u64" | "u32" => "a whole number >= 0".to_string(),

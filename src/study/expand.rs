@@ -3,6 +3,7 @@
 
 use super::error::StudyError;
 use super::history_only::check_history_only;
+use super::history_size::check_history_size;
 use super::locate::{dim_elem, located, written_at, Ctx};
 use super::paths::{coord_name, set_path, with_defaults};
 use super::plan::{
@@ -10,8 +11,9 @@ use super::plan::{
 };
 use super::source::{keys, Seg};
 use super::syntax::{check_base_types, check_param_keys, check_path};
-use super::types::StudyFile;
+use super::types::{AxisValues, StudyFile};
 use crate::results::ResultShape;
+use crate::results::RESERVED_NAMES;
 use serde_yaml_ng::{Mapping, Value};
 use std::collections::HashMap;
 use std::path::Path;
@@ -43,7 +45,55 @@ pub(super) fn build_plan(
     file: &StudyFile,
     opts: &LoadOptions,
 ) -> Result<Plan, StudyError> {
-    // Base.
+    let base = base_value(cx, file)?;
+    let mut names = AutoNames::default();
+    let mut dims = grid_dims(cx, file)?;
+    dims.extend(zip_dims(cx, file, &mut names)?);
+    dims.extend(points_dim(cx, file, &mut names)?);
+    check_one_block_per_path(cx, file, &dims)?;
+    let n = check_size(cx, file, &dims, opts)?;
+    let defaults = with_defaults(&base);
+    let shape = ResultShape {
+        dims: dims.iter().map(|d| dim_to_shape(d, &defaults)).collect(),
+    };
+    check_stored_names(cx, file, &dims, &shape)?;
+    let profiles = load_profiles(cx, file, &base, &dims)?;
+    let bat_dims: Vec<usize> = (0..dims.len())
+        .filter(|&d| dims[d].params.iter().any(|(p, _)| is_bat_path(p)))
+        .collect();
+    let history_only = file
+        .history
+        .as_ref()
+        .map(|h| h.only.iter().map(|(k, v)| (k.clone(), v.clone())).collect())
+        .unwrap_or_default();
+    let mut plan = Plan {
+        base,
+        history_only,
+        allow_implausible: file.allow_implausible,
+        history_count: None,
+        dims,
+        shape,
+        profiles,
+        bat_dims,
+        bat_of_combo: Vec::new(),
+        bats: Vec::new(),
+    };
+    let mut unused = check_axis_values(cx, file, &plan)?;
+    distinct_bats(cx, file, &mut plan)?;
+    super::coords::complete_coords(&mut plan);
+    if n <= FULL_CHECK_LIMIT {
+        check_every_point(cx, file, &mut plan, &mut unused)?;
+    }
+    check_unused(cx, file, &plan, &unused)?;
+    check_history_size(cx, file, &plan)?;
+    if file.history.as_ref().is_some_and(|h| !h.fields.is_empty()) {
+        check_history_only(cx, file, &plan)?;
+    }
+    Ok(plan)
+}
+
+/// The `base` block with the top-level `model` merged in.
+fn base_value(cx: &Ctx, file: &StudyFile) -> Result<Value, StudyError> {
     let mut base = match &file.base {
         Value::Null => Value::Mapping(Mapping::new()),
         Value::Mapping(_) => file.base.clone(),
@@ -74,24 +124,19 @@ pub(super) fn build_plan(
         }
         let _ = set_path(&mut base, "model", serde_yaml_ng::to_value(m).unwrap());
     }
+    Ok(base)
+}
 
-    // Dimensions.
-    let mut dims: Vec<PlanDim> = Vec::new();
+/// One dimension per `grid` axis.
+fn grid_dims(cx: &Ctx, file: &StudyFile) -> Result<Vec<PlanDim>, StudyError> {
+    let mut dims = Vec::new();
     for (key, axis) in &file.grid {
         let at = keys(&["grid", key]);
         check_path(cx, key, &at)?;
         let values = axis.values().map_err(|e| {
             cx.err(&at, e.clone())
                 .field(format!("grid.{key}"))
-                .value(match axis {
-                    super::types::AxisValues::List(v) => format!("{} values", v.len()),
-                    super::types::AxisValues::Linspace { start, stop, n } => {
-                        format!("{{linspace: [{start}, {stop}, {n}]}}")
-                    }
-                    super::types::AxisValues::Range { start, stop, step } => {
-                        format!("{{range: [{start}, {stop}, {step}]}}")
-                    }
-                })
+                .value(axis_text(axis))
                 .allowed(
                     "a non-empty list, {linspace: [start, stop, n]}, {range: [start, stop, step]}",
                 )
@@ -103,98 +148,138 @@ pub(super) fn build_plan(
             origin: DimOrigin::Grid { key: key.clone() },
         });
     }
-    let n_point_blocks = file.zip.len() + usize::from(file.points.is_some());
-    let mut auto = 0usize;
-    let mut next_name = |explicit: Option<&String>| {
+    Ok(dims)
+}
+
+fn axis_text(axis: &AxisValues) -> String {
+    match axis {
+        AxisValues::List(v) => format!("{} values", v.len()),
+        AxisValues::Linspace { start, stop, n } => {
+            format!("{{linspace: [{start}, {stop}, {n}]}}")
+        }
+        AxisValues::Range { start, stop, step } => {
+            format!("{{range: [{start}, {stop}, {step}]}}")
+        }
+    }
+}
+
+/// The names of unnamed `zip`/`points` dimensions: `point`, `point_2`, `point_3`, …
+#[derive(Default)]
+struct AutoNames {
+    given: usize,
+}
+
+impl AutoNames {
+    fn next(&mut self, explicit: Option<&String>) -> String {
         if let Some(n) = explicit {
             return n.clone();
         }
-        auto += 1;
-        if auto == 1 {
-            "point".to_string()
-        } else {
-            format!("point_{auto}")
+        self.given += 1;
+        match self.given {
+            1 => "point".to_string(),
+            k => format!("point_{k}"),
         }
-    };
-    let _ = n_point_blocks;
+    }
+}
+
+/// One dimension per `zip` group: lists of one length, varied together.
+fn zip_dims(cx: &Ctx, file: &StudyFile, names: &mut AutoNames) -> Result<Vec<PlanDim>, StudyError> {
+    let mut dims = Vec::new();
     for (g, group) in file.zip.iter().enumerate() {
         let at = vec![Seg::Key("zip".into()), Seg::Index(g)];
-        let mut len = None;
-        let mut params = Vec::new();
+        let mut len: Option<(&String, usize)> = None;
         for (path, vals) in &group.params {
             let mut p = at.clone();
             p.push(Seg::Key(path.clone()));
             check_path(cx, path, &p)?;
-            match len {
-                None => len = Some((path.clone(), vals.len())),
-                Some((ref first, n)) if n != vals.len() => {
-                    return Err(cx
-                        .err(&p, format!("zip lists differ in length: `{first}` has {n} values, `{path}` has {}", vals.len()))
-                        .field(format!("zip[{g}].{path}"))
-                        .value(format!("{} values", vals.len()))
-                        .allowed(format!("{n} values, like `{first}`")));
-                }
-                _ => {}
+            if let Some((first, n)) = len.filter(|&(_, n)| n != vals.len()) {
+                return Err(cx
+                    .err(
+                        &p,
+                        format!(
+                            "zip lists differ in length: `{first}` has {n} values, `{path}` has {}",
+                            vals.len()
+                        ),
+                    )
+                    .field(format!("zip[{g}].{path}"))
+                    .value(format!("{} values", vals.len()))
+                    .allowed(format!("{n} values, like `{first}`")));
             }
+            len.get_or_insert((path, vals.len()));
             if vals.is_empty() {
                 return Err(cx
                     .err(&p, "empty zip list")
                     .field(format!("zip[{g}].{path}"))
                     .allowed("at least one value"));
             }
-            params.push((path.clone(), vals.clone()));
         }
-        let size = len.map(|l| l.1).unwrap_or(0);
         dims.push(PlanDim {
-            name: next_name(group.name.as_ref()),
-            size,
-            params,
+            name: names.next(group.name.as_ref()),
+            size: len.map_or(0, |l| l.1),
+            params: group.params.clone().into_iter().collect(),
             origin: DimOrigin::Zip { group: g },
         });
     }
-    if let Some(block) = &file.points {
-        let points = block.sets();
-        let at = keys(&block.sets_key());
-        if points.is_empty() {
-            return Err(cx
-                .err(&at, "`points` is empty")
-                .field("points")
-                .allowed("at least one parameter set"));
-        }
-        // The union of the paths the sets name, in order of first appearance; a set that
-        // leaves a path out keeps the base value there (marked `UNSET`).
-        let mut paths: Vec<String> = Vec::new();
-        for (i, set) in points.iter().enumerate() {
-            for k in set.keys() {
-                let mut q = at.clone();
-                q.push(Seg::Index(i));
-                q.push(Seg::Key(k.clone()));
-                check_path(cx, k, &q)?;
-                if !paths.contains(k) {
-                    paths.push(k.clone());
-                }
+    Ok(dims)
+}
+
+/// The `points` block's dimension: one index per parameter set.
+fn points_dim(
+    cx: &Ctx,
+    file: &StudyFile,
+    names: &mut AutoNames,
+) -> Result<Option<PlanDim>, StudyError> {
+    let Some(block) = &file.points else {
+        return Ok(None);
+    };
+    let points = block.sets();
+    let at = keys(&block.sets_key());
+    if points.is_empty() {
+        return Err(cx
+            .err(&at, "`points` is empty")
+            .field("points")
+            .allowed("at least one parameter set"));
+    }
+    // The union of the paths the sets name, in order of first appearance; a set that
+    // leaves a path out keeps the base value there (marked `UNSET`).
+    let mut paths: Vec<String> = Vec::new();
+    for (i, set) in points.iter().enumerate() {
+        for k in set.keys() {
+            let mut q = at.clone();
+            q.push(Seg::Index(i));
+            q.push(Seg::Key(k.clone()));
+            check_path(cx, k, &q)?;
+            if !paths.contains(k) {
+                paths.push(k.clone());
             }
         }
-        let params = paths
-            .iter()
-            .map(|k| {
-                let values = points
-                    .iter()
-                    .map(|s| s.get(k).cloned().unwrap_or_else(super::plan::unset))
-                    .collect();
-                (k.clone(), values)
-            })
-            .collect();
-        dims.push(PlanDim {
-            name: next_name(block.name()),
-            size: points.len(),
-            params,
-            origin: DimOrigin::Points,
-        });
     }
-    // One block per path; unique dimension and coordinate names.
-    let mut seen: Vec<(String, String)> = Vec::new();
-    for d in &dims {
+    let params = paths
+        .iter()
+        .map(|k| {
+            let values = points
+                .iter()
+                .map(|s| s.get(k).cloned().unwrap_or_else(super::plan::unset))
+                .collect();
+            (k.clone(), values)
+        })
+        .collect();
+    Ok(Some(PlanDim {
+        name: names.next(block.name()),
+        size: points.len(),
+        params,
+        origin: DimOrigin::Points,
+    }))
+}
+
+/// Each parameter is set by one block only.
+fn check_one_block_per_path(
+    cx: &Ctx,
+    file: &StudyFile,
+    dims: &[PlanDim],
+) -> Result<(), StudyError> {
+    let mut seen: Vec<(&String, &String)> = Vec::new();
+    for d in dims {
         for (p, _) in &d.params {
             if let Some((q, dn)) = seen.iter().find(|(q, _)| related(q, p)) {
                 let at = dim_elem(file, d, p, 0);
@@ -206,27 +291,20 @@ pub(super) fn build_plan(
                     .field(p.clone())
                     .allowed("each parameter set by one block only"));
             }
-            seen.push((p.clone(), d.name.clone()));
+            seen.push((p, &d.name));
         }
     }
-    let mut names: HashMap<String, usize> = HashMap::new();
-    for d in &dims {
-        if names.insert(d.name.clone(), 1).is_some() {
-            return Err(cx
-                .err(
-                    &keys(&["zip"]),
-                    format!("two dimensions are named `{}`", d.name),
-                )
-                .field("zip.name")
-                .value(d.name.clone())
-                .allowed("unique names"));
-        }
-    }
-    // Size.
-    let mut n: usize = 1;
-    for d in &dims {
-        n = n.saturating_mul(d.size);
-    }
+    Ok(())
+}
+
+/// The number of points: at least one, at most `opts.max_points`.
+fn check_size(
+    cx: &Ctx,
+    file: &StudyFile,
+    dims: &[PlanDim],
+    opts: &LoadOptions,
+) -> Result<usize, StudyError> {
+    let n = dims.iter().fold(1usize, |n, d| n.saturating_mul(d.size));
     if n > opts.max_points {
         let sizes: Vec<String> = dims
             .iter()
@@ -258,20 +336,91 @@ pub(super) fn build_plan(
             .field("grid")
             .allowed("at least one point"));
     }
-    let defaults = with_defaults(&base);
-    let shape = ResultShape {
-        dims: dims.iter().map(|d| dim_to_shape(d, &defaults)).collect(),
-    };
+    Ok(n)
+}
 
-    // Profiles: from base and from any block value.
+/// Where a dimension's name is written (or, unnamed, its block).
+fn dim_name_at(d: &PlanDim, file: &StudyFile) -> Vec<Seg> {
+    match &d.origin {
+        DimOrigin::Grid { key } => keys(&["grid", key]),
+        DimOrigin::Zip { group } => {
+            let mut at = vec![Seg::Key("zip".into()), Seg::Index(*group)];
+            if file.zip[*group].name.is_some() {
+                at.push(Seg::Key("name".into()));
+            }
+            at
+        }
+        DimOrigin::Points => match file.points.as_ref().and_then(|b| b.name()) {
+            Some(_) => keys(&["points", "name"]),
+            None => keys(&["points"]),
+        },
+    }
+}
+
+/// Dimension and coordinate names become variable names in the results file: each is a
+/// plain name (letters, digits, `_`, `-`, `.`, not starting with `.`), used once, and none
+/// is a name the file gives its own variables (issue 31: `exit_speed`, `status`, `a/b` or
+/// an empty name validated, then failed the run after every point was computed).
+fn check_stored_names(
+    cx: &Ctx,
+    file: &StudyFile,
+    dims: &[PlanDim],
+    shape: &ResultShape,
+) -> Result<(), StudyError> {
+    let mut seen: HashMap<&str, &str> = HashMap::new();
+    for (d, sd) in dims.iter().zip(&shape.dims) {
+        // a grid axis's coordinate has its dimension's name (its dimension scale)
+        let coords = sd.coords.iter().map(|c| &c.name).filter(|&n| *n != sd.name);
+        for name in std::iter::once(&sd.name).chain(coords) {
+            let problem = if !plain_name(name) {
+                Some("a name of letters, digits, `_`, `-`, `.` (not starting with `.`)".to_string())
+            } else if RESERVED_NAMES.contains(&name.as_str()) {
+                Some(format!(
+                    "a name the results file does not use for its own variables ({})",
+                    RESERVED_NAMES.join(", ")
+                ))
+            } else {
+                seen.insert(name, &d.name)
+                    .map(|other| format!("a name not already used (dimension `{other}` uses it)"))
+            };
+            if let Some(allowed) = problem {
+                let what = match name == &d.name {
+                    true => format!("a dimension cannot be named `{name}`"),
+                    false => format!("dimension `{}` cannot have a coordinate `{name}`", d.name),
+                };
+                return Err(cx
+                    .err(&dim_name_at(d, file), what)
+                    .field(format!("name of dimension `{}`", d.name))
+                    .value(name.clone())
+                    .allowed(allowed));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn plain_name(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
+}
+
+/// The profiles (`bat.profile.csv`) named in `base` or by any block value, read once each.
+fn load_profiles(
+    cx: &Ctx,
+    file: &StudyFile,
+    base: &Value,
+    dims: &[PlanDim],
+) -> Result<HashMap<String, Vec<[f64; 2]>>, StudyError> {
     let dir = cx.file.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut profiles = HashMap::new();
-    let mut load_profile = |f: &str, at: Vec<Seg>| -> Result<(), StudyError> {
+    let mut load = |f: &str, at: Vec<Seg>| -> Result<(), StudyError> {
         if profiles.contains_key(f) {
             return Ok(());
         }
-        let p = dir.join(f);
-        let k = super::profile::load_profile_csv(&p).map_err(|e| {
+        let k = super::profile::load_profile_csv(&dir.join(f)).map_err(|e| {
             cx.err(&at, e)
                 .field("bat.profile.csv")
                 .value(f.to_string())
@@ -280,46 +429,33 @@ pub(super) fn build_plan(
         profiles.insert(f.to_string(), k);
         Ok(())
     };
-    if let Some(Value::String(f)) = super::paths::get_path(&base, "bat.profile.csv") {
-        load_profile(f, keys(&["base", "bat", "profile", "csv"]))?;
+    if let Some(Value::String(f)) = super::paths::get_path(base, "bat.profile.csv") {
+        load(f, keys(&["base", "bat", "profile", "csv"]))?;
     }
-    for d in &dims {
+    for d in dims {
         for (p, vals) in &d.params {
             for (i, v) in vals.iter().enumerate() {
                 let mut probe = Value::Mapping(Mapping::new());
                 let _ = set_path(&mut probe, p, v.clone());
                 if let Some(Value::String(f)) = super::paths::get_path(&probe, "bat.profile.csv") {
-                    load_profile(f, dim_elem(file, d, p, i))?;
+                    load(f, dim_elem(file, d, p, i))?;
                 }
             }
         }
     }
+    Ok(profiles)
+}
 
-    let bat_dims: Vec<usize> = (0..dims.len())
-        .filter(|&d| dims[d].params.iter().any(|(p, _)| is_bat_path(p)))
-        .collect();
-    let history_only = file
-        .history
-        .as_ref()
-        .map(|h| h.only.iter().map(|(k, v)| (k.clone(), v.clone())).collect())
-        .unwrap_or_default();
-    let mut plan = Plan {
-        base,
-        history_only,
-        allow_implausible: file.allow_implausible,
-        history_count: None,
-        dims,
-        shape,
-        profiles,
-        bat_dims,
-        bat_of_combo: Vec::new(),
-        bats: Vec::new(),
-    };
-
-    // Every axis value against the base (one dimension at a time).
+/// Every axis value against the base, one dimension at a time; returns the tally of
+/// fields the checked points use.
+fn check_axis_values(
+    cx: &Ctx,
+    file: &StudyFile,
+    plan: &Plan,
+) -> Result<super::unused::Tally, StudyError> {
     let zero = vec![0usize; plan.dims.len()];
     if let Err(e) = plan.resolve(&zero) {
-        return Err(located(cx, file, &plan, &zero, None, e));
+        return Err(located(cx, file, plan, &zero, None, e));
     }
     let mut unused = super::unused::Tally::new();
     unused.add(&plan.value_at(&zero));
@@ -328,16 +464,20 @@ pub(super) fn build_plan(
             let mut m = zero.clone();
             m[d] = i;
             if let Err(e) = plan.resolve(&m) {
-                return Err(located(cx, file, &plan, &m, Some(d), e));
+                return Err(located(cx, file, plan, &m, Some(d), e));
             }
             unused.add(&plan.value_at(&m));
         }
     }
-    // Distinct bats.
-    let mut combos: usize = 1;
-    for &d in &plan.bat_dims {
-        combos = combos.saturating_mul(plan.dims[d].size);
-    }
+    Ok(unused)
+}
+
+/// The distinct bats (bat + numerics) of every combination of the bat dimensions.
+fn distinct_bats(cx: &Ctx, file: &StudyFile, plan: &mut Plan) -> Result<(), StudyError> {
+    let combos = plan
+        .bat_dims
+        .iter()
+        .fold(1usize, |c, &d| c.saturating_mul(plan.dims[d].size));
     if combos > MAX_BATS {
         return Err(cx
             .err(
@@ -351,7 +491,7 @@ pub(super) fn build_plan(
     let mut by_key: HashMap<String, u32> = HashMap::new();
     let mut bat_of_combo = Vec::with_capacity(combos);
     for c in 0..combos {
-        let mut m = zero.clone();
+        let mut m = vec![0usize; plan.dims.len()];
         let mut rest = c;
         for &d in plan.bat_dims.iter().rev() {
             m[d] = rest % plan.dims[d].size;
@@ -359,82 +499,100 @@ pub(super) fn build_plan(
         }
         let spec = plan
             .resolve(&m)
-            .map_err(|e| located(cx, file, &plan, &m, None, e))?;
+            .map_err(|e| located(cx, file, plan, &m, None, e))?;
         let key = bat_key(&spec.bat, &spec.numerics);
-        let next = plan.bats.len() as u32;
-        let idx = *by_key.entry(key.clone()).or_insert_with(|| {
-            let mut label = format!("{:?}", spec.bat.preset).to_lowercase();
-            // a profile of the user's own is part of what the bat is
-            if spec.bat.profile.is_some() {
-                match super::paths::get_path(&plan.value_at(&m), "bat.profile.csv") {
-                    Some(serde_yaml_ng::Value::String(f)) => {
-                        label.push_str(&format!(", profile {f}"));
-                    }
-                    _ => label.push_str(", custom profile"),
-                }
+        let idx = match by_key.get(&key) {
+            Some(&i) => i,
+            None => {
+                let i = plan.bats.len() as u32;
+                plan.bats.push(BatChoice {
+                    label: bat_label(plan, &m, &spec),
+                    key: key.clone(),
+                    bat: spec.bat.clone(),
+                    numerics: spec.numerics.clone(),
+                });
+                by_key.insert(key, i);
+                i
             }
-            for &d in &plan.bat_dims {
-                for (p, vals) in &plan.dims[d].params {
-                    // (a profile is named above)
-                    if is_bat_path(p)
-                        && !p.starts_with("bat.profile")
-                        && p != "bat.preset"
-                        && !super::plan::is_unset(&vals[m[d]])
-                    {
-                        let v = super::coords::short_text(&vals[m[d]]);
-                        label.push_str(&format!(", {p}={v}"));
-                    }
-                }
-            }
-            plan.bats.push(BatChoice {
-                key,
-                label,
-                bat: spec.bat.clone(),
-                numerics: spec.numerics.clone(),
-            });
-            next
-        });
+        };
         bat_of_combo.push(idx);
     }
     plan.bat_of_combo = bat_of_combo;
-    super::coords::complete_coords(&mut plan);
-    // Small plans: every point (and the exact number of histories they record).
-    let wants_history = file.history.as_ref().is_some_and(|h| !h.fields.is_empty());
-    if n <= FULL_CHECK_LIMIT {
-        let mut histories = 0usize;
-        for flat in 0..n {
-            let m = plan.shape.unravel(flat);
-            match plan.resolve(&m) {
-                Err(e) => return Err(located(cx, file, &plan, &m, None, e)),
-                Ok(spec) => {
-                    if wants_history
-                        && spec.model == crate::model::spec::ModelKind::Wave
-                        && plan.records_history(&spec)
-                    {
-                        histories += 1;
-                    }
-                }
-            }
-            unused.add(&plan.value_at(&m));
-        }
-        if wants_history {
-            plan.history_count = Some(histories);
+    Ok(())
+}
+
+/// A bat's short label: its preset, its own profile, and the bat values its dimensions set.
+fn bat_label(plan: &Plan, m: &[usize], spec: &crate::model::spec::CollisionSpec) -> String {
+    let mut label = format!("{:?}", spec.bat.preset).to_lowercase();
+    // a profile of the user's own is part of what the bat is
+    if spec.bat.profile.is_some() {
+        match super::paths::get_path(&plan.value_at(m), "bat.profile.csv") {
+            Some(Value::String(f)) => label.push_str(&format!(", profile {f}")),
+            _ => label.push_str(", custom profile"),
         }
     }
-    if let Some(rule) = unused.unused() {
-        return Err(cx
-            .err(
-                &written_at(file, &plan, rule.field),
-                format!(
-                    "`{}` is set, but no point of the study uses it: it is used only {}",
-                    rule.field, rule.used_when
-                ),
-            )
-            .field(rule.field)
-            .allowed(format!("leave it out (it is used only {})", rule.used_when)));
+    for &d in &plan.bat_dims {
+        for (p, vals) in &plan.dims[d].params {
+            // (a profile is named above)
+            if is_bat_path(p)
+                && !p.starts_with("bat.profile")
+                && p != "bat.preset"
+                && !super::plan::is_unset(&vals[m[d]])
+            {
+                let v = super::coords::short_text(&vals[m[d]]);
+                label.push_str(&format!(", {p}={v}"));
+            }
+        }
+    }
+    label
+}
+
+/// Small plans: every point resolved and checked, and the exact number of histories.
+fn check_every_point(
+    cx: &Ctx,
+    file: &StudyFile,
+    plan: &mut Plan,
+    unused: &mut super::unused::Tally,
+) -> Result<(), StudyError> {
+    let wants_history = file.history.as_ref().is_some_and(|h| !h.fields.is_empty());
+    let mut histories = 0usize;
+    for flat in 0..plan.n_points() {
+        let m = plan.shape.unravel(flat);
+        let spec = plan
+            .resolve(&m)
+            .map_err(|e| located(cx, file, plan, &m, None, e))?;
+        if wants_history
+            && spec.model == crate::model::spec::ModelKind::Wave
+            && plan.records_history(&spec)
+        {
+            histories += 1;
+        }
+        unused.add(&plan.value_at(&m));
     }
     if wants_history {
-        check_history_only(cx, file, &plan)?;
+        plan.history_count = Some(histories);
     }
-    Ok(plan)
+    Ok(())
+}
+
+/// A field set where no point uses it is an error (it would silently do nothing).
+fn check_unused(
+    cx: &Ctx,
+    file: &StudyFile,
+    plan: &Plan,
+    unused: &super::unused::Tally,
+) -> Result<(), StudyError> {
+    let Some(rule) = unused.unused() else {
+        return Ok(());
+    };
+    Err(cx
+        .err(
+            &written_at(file, plan, rule.field),
+            format!(
+                "`{}` is set, but no point of the study uses it: it is used only {}",
+                rule.field, rule.used_when
+            ),
+        )
+        .field(rule.field)
+        .allowed(format!("leave it out (it is used only {})", rule.used_when)))
 }

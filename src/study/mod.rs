@@ -11,6 +11,7 @@ pub mod coords;
 pub mod error;
 mod expand;
 mod history_only;
+mod history_size;
 pub mod load;
 mod locate;
 pub mod output;
@@ -24,6 +25,7 @@ pub mod unused;
 
 pub use error::StudyError;
 pub use expand::{LoadOptions, DEFAULT_MAX_POINTS, FULL_CHECK_LIMIT, MAX_BATS};
+pub use history_size::MAX_HISTORY_BYTES_PER_POINT;
 pub use load::{load, load_str, Study};
 pub use plan::{point_id, BatChoice, Plan, PlanDim, Point, PointError};
 pub use types::{schema_json, AxisValues, HistorySpec, StudyFile, ZipGroup};

@@ -243,6 +243,23 @@ pub(super) fn validate_history(cx: &Ctx, f: &StudyFile) -> Result<(), StudyError
     if !(h.z_step > 0.0 && h.z_step <= 1.0) {
         return bad("z_step", h.z_step, "0 < z_step <= 1 m".into());
     }
+    for (i, f) in h.fields.iter().enumerate() {
+        if h.fields[..i].contains(f) {
+            let name = serde_json::to_value(f).map_or(String::new(), |v| value_text_json(&v));
+            return Err(cx
+                .err(
+                    &[
+                        Seg::Key("history".into()),
+                        Seg::Key("fields".into()),
+                        Seg::Index(i),
+                    ],
+                    "a history field is listed twice",
+                )
+                .field(format!("history.fields[{i}]"))
+                .value(name)
+                .allowed("each field once"));
+        }
+    }
     for path in h.only.keys() {
         check_path(cx, path, &keys(&["history", "only", path]))?;
     }
@@ -281,4 +298,8 @@ pub(super) fn check_base_types(cx: &Ctx, base: &Value) -> Result<(), StudyError>
         err = err.allowed(a);
     }
     Err(err)
+}
+
+fn value_text_json(v: &serde_json::Value) -> String {
+    v.as_str().map_or_else(|| v.to_string(), str::to_string)
 }
