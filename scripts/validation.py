@@ -24,33 +24,33 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-import h5py
 import numpy as np
 import xarray as xr
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+import batstudy  # noqa: E402  (the package's analysis, from the sources: no native module needed)
+
 STUDIES = ("validation_certification", "validation_wall", "validation_game")
 # The protocol's speed and Nathan et al. (2011)'s corked-bat test speed, m/s.
 BBCOR_SPEED, CORK_TEST_SPEED = 60.8, 49.2
 
 
 class Files:
-    """The three results files, opened as xarray groups."""
+    """The three results files, opened with batstudy.open_results."""
 
     def __init__(self, paths):
-        self.groups = {}
+        self.trees = {}
         for p in paths:
-            with h5py.File(p, "r") as f:
-                name = f.attrs["study_name"]
-                name = name.decode() if isinstance(name, bytes) else str(name)
-            if name in STUDIES:
-                self.groups[name] = p
-        missing = [s for s in STUDIES if s not in self.groups]
+            tree = batstudy.open_results(p)
+            if tree.attrs.get("study_name") in STUDIES:
+                self.trees[tree.attrs["study_name"]] = tree
+        missing = [s for s in STUDIES if s not in self.trees]
         if missing:
             raise SystemExit(f"validation.py: no results of {', '.join(missing)} among {', '.join(map(str, paths))}")
 
     def open(self, study: str, group: str) -> xr.Dataset:
-        return xr.open_dataset(self.groups[study], engine="h5netcdf", group=group).load()
+        return self.trees[study][group].to_dataset().load()
 
 
 def bat_index(summary: xr.Dataset, label: str) -> int:

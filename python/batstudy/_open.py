@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 import threading
 from typing import Any, Mapping, Union
@@ -213,3 +214,32 @@ def history_grid_index(tree: xr.DataTree) -> dict[str, np.ndarray]:
         else:  # the row holds the index itself
             out[dim] = np.asarray(history[dim].values, dtype=np.int64)
     return out
+
+
+def text_of(v) -> str:
+    """A text value of a file as str (h5py may give bytes)."""
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def value_text(v) -> str:
+    """A coordinate value as short text: numbers as ``%g``."""
+    return f"{v:g}" if isinstance(v, (float, np.floating)) else text_of(v)
+
+
+def dim_labels(summary: xr.Dataset, dim: str) -> list[str]:
+    """A label per index of `dim`: its label coordinate (``case_label``), else what differs
+    from the first entry among the coordinates along it, else its own values."""
+    if f"{dim}_label" in summary.coords:
+        return [text_of(v) for v in summary[f"{dim}_label"].values]
+    along = [n for n, c in summary.coords.items() if c.dims == (dim,) and n != dim]
+    if not along:
+        values = summary[dim].values if dim in summary.coords else range(summary.sizes[dim])
+        return [value_text(v) for v in values]
+    parts: list[list[str]] = [[] for _ in range(summary.sizes[dim])]
+    for name in along:
+        texts = ["" if isinstance(v, float) and not math.isfinite(v) else value_text(v)
+                 for v in summary[name].values.tolist()]  # fmt: skip
+        for i, t in enumerate(texts):
+            if t and t != texts[0]:  # what differs from the first (the base) entry
+                parts[i].append(f"{name}={t}")
+    return [f"{i}: " + (", ".join(p) if p else ("base" if i == 0 else "as the base")) for i, p in enumerate(parts)]

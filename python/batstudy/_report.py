@@ -29,43 +29,16 @@ import numpy as np
 import xarray as xr
 
 from . import _html
-from ._open import history_grid_index, open_results
+from ._open import dim_labels, history_grid_index, open_results, text_of
 
 IMPACT = "impact_z"
 MAX_DISPLACEMENT_HISTORIES = 8  # bending animations embedded (each time × z values)
 MAX_FRAMES = 80  # time samples of an animation
 
 
-def _text(v) -> str:
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
 def _numbers(a) -> list:
     """Floats for JSON: NaN → null; full precision (repr round-trips)."""
     return [None if not math.isfinite(x) else float(x) for x in np.asarray(a, dtype=float).ravel()]
-
-
-def _value_text(v) -> str:
-    return f"{v:g}" if isinstance(v, (float, np.floating)) else _text(v)
-
-
-def dim_labels(summary: xr.Dataset, dim: str) -> list[str]:
-    """A label per index of `dim`: its label coordinate (``case_label``), else what differs
-    from the first entry among the coordinates along it, else its own values."""
-    if f"{dim}_label" in summary.coords:
-        return [_text(v) for v in summary[f"{dim}_label"].values]
-    along = [n for n, c in summary.coords.items() if c.dims == (dim,) and n != dim]
-    if not along:
-        values = summary[dim].values if dim in summary.coords else range(summary.sizes[dim])
-        return [_value_text(v) for v in values]
-    parts: list[list[str]] = [[] for _ in range(summary.sizes[dim])]
-    for name in along:
-        texts = ["" if isinstance(v, float) and not math.isfinite(v) else _value_text(v)
-                 for v in summary[name].values.tolist()]  # fmt: skip
-        for i, t in enumerate(texts):
-            if t and t != texts[0]:  # what differs from the first (the base) entry
-                parts[i].append(f"{name}={t}")
-    return [f"{i}: " + (", ".join(p) if p else ("base" if i == 0 else "as the base")) for i, p in enumerate(parts)]
 
 
 def collect(tree: xr.DataTree) -> dict:
@@ -79,13 +52,13 @@ def collect(tree: xr.DataTree) -> dict:
         raise ValueError(f"the summary has no {IMPACT} dimension; nothing to plot against")
     controls = [{"name": d, "labels": dim_labels(summary, d)} for d in dims if d != IMPACT]
     data = {
-        "study": _text(tree.attrs.get("study_name", "study")),
+        "study": text_of(tree.attrs.get("study_name", "study")),
         "dims": dims,
         "shape": list(exit_speed.shape),
         "controls": controls,
         "impact_z": _numbers(summary[IMPACT].values),
         "exit_speed": _numbers(exit_speed.values),
-        "units": _text(exit_speed.attrs.get("units", "m/s")),
+        "units": text_of(exit_speed.attrs.get("units", "m/s")),
     }
     if "sweet_spot" in tree.children:
         sweet = tree["sweet_spot"].to_dataset()
@@ -103,14 +76,13 @@ def histories(tree: xr.DataTree, dims: list[str], controls: list[dict]) -> list[
     h = tree["history"].to_dataset()
     where = history_grid_index(tree)
     labels = {c["name"]: c["labels"] for c in controls}
-    t_ms = h["time"].values * 1e3
+    t_ms, force, impact_z = h["time"].values * 1e3, h["force"].values, h[IMPACT].values
     out = []
     for row in range(h.sizes["history"]):
         index = [int(where[d][row]) for d in dims]
-        label = ", ".join(f"{d}={h[IMPACT].values[row]:g}" if d == IMPACT else f"{d}={labels[d][i]}"
+        label = ", ".join(f"{d}={impact_z[row]:g}" if d == IMPACT else f"{d}={labels[d][i]}"
                           for d, i in zip(dims, index))  # fmt: skip
-        entry = {"label": label, "index": index, "time_ms": _numbers(t_ms),
-                 "force": _numbers(h["force"].isel(history=row).values)}  # fmt: skip
+        entry = {"label": label, "index": index, "time_ms": _numbers(t_ms), "force": _numbers(force[row])}
         if "displacement" in h and row < MAX_DISPLACEMENT_HISTORIES:
             entry["bending"] = bending(h["displacement"].isel(history=row).values, h["z"].values, t_ms)
         out.append(entry)

@@ -1,15 +1,14 @@
 """Every image the docs embed exists and is a real image (the figures are committed under
 docs/figures/ by scripts/docs_figures.sh), and docs/results.md shows every figure of the
-paper that scripts/figures.py draws."""
+paper that batstudy.plot draws."""
 import re
-import sys
 from pathlib import Path
 
 from PIL import Image
 
+from batstudy import plot
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "scripts"))
-import figures  # noqa: E402
 
 IMAGE = re.compile(r"!\[[^\]]*\]\(([^)\s]+)\)")
 
@@ -33,5 +32,5 @@ def test_every_embedded_image_exists_and_opens():
 
 def test_results_shows_every_figure_of_the_paper():
     shown = {Path(t).name for md, t in embedded() if md.name == "results.md"}
-    missing = [figures.file_name(n) for n in figures.FIGURES if figures.file_name(n) not in shown]
+    missing = [plot.file_name(n) for n in plot.FIGURES if plot.file_name(n) not in shown]
     assert not missing, f"docs/results.md does not show {missing}"

@@ -257,3 +257,40 @@ def test_the_native_module_needs_no_system_hdf5(tmp_path, small_study):
         if "hdf5" in p.lower() and not pathlib.Path(p).resolve().is_relative_to(venv)
     }
     assert not outside, f"HDF5 loaded from outside the venv: {outside}"
+
+
+def test_the_command_draws_the_figures_and_writes_the_explorer(small_study, tmp_path):
+    from PIL import Image
+
+    out = batstudy.run(small_study, output=tmp_path / "small.h5", progress=False)
+    r = subprocess.run([BATSTUDY, "figures", str(out), "-o", str(tmp_path / "figures")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    written = {p.name for p in (tmp_path / "figures").iterdir()}
+    # the small study varies the swing, the bat (aluminum, a hoop, the density) and stores histories
+    assert {"fig06_exit_speed_vs_omega.png", "fig10_density.png", "fig13b_aluminum.png", "fig15_hoop_frequencies.png",
+            "fig04a_force.png", "bat_profiles.png", "anim_displacement.gif"} <= written, sorted(written)  # fmt: skip
+    assert "skip  fig05a_fixed_vs_free" in r.stdout
+    for name in written:
+        with Image.open(tmp_path / "figures" / name) as im:
+            im.verify()
+    r = subprocess.run([BATSTUDY, "report", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    page = (tmp_path / "small.html").read_text(encoding="utf-8")
+    assert "<title>batstudy explorer: small</title>" in page and "Plotly" in page
+    r = subprocess.run([BATSTUDY, "--help"], capture_output=True, text=True)
+    assert r.returncode == 0 and "figures   RESULTS [-o DIR]" in r.stdout and "report    RESULTS [-o FILE]" in r.stdout
+    r = subprocess.run([BATSTUDY, "report", str(tmp_path / "missing.h5")], capture_output=True, text=True)
+    assert r.returncode == 2 and "missing.h5" in r.stderr
+
+
+def test_the_package_draws_and_opens_under_both_names(small_study, tmp_path):
+    out = batstudy.run(small_study, output=tmp_path / "p.h5", progress=False)
+    assert batstudy.open is batstudy.open_results
+    written = batstudy.plot.figures(out, tmp_path / "figs", only="fig6,fig13b")
+    assert sorted(p.name for p in written) == ["fig06_exit_speed_vs_omega.png", "fig13b_aluminum.png"]
+    ax = batstudy.plot.exit_speed(out, by="case", swing_omega=-40.0)
+    assert len(ax.get_lines()) == 4 and "swing_omega=-40" in ax.get_title()
+    # `import *` gives open_results and leaves the builtin open alone
+    code = "from batstudy import *\nimport builtins\nassert open is builtins.open\nprint(open_results.__name__)\n"
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout.strip() == "open_results", r.stderr
