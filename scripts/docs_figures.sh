@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The figures shown in the docs: run the default study (studies/param_space.yaml) and the
 # ball tests, draw every figure into docs/figures/ (two processes), and shrink the PNGs to
-# a 256-colour palette. docs/results.md and README embed them; tests/python/test_docs_images.py
-# fails when an embedded image is missing.
+# a 256-colour palette (scripts/figures.py: batstudy.plot from python/). docs/results.md and
+# README embed them; tests/python/test_docs_images.py fails when an embedded image is missing.
 #   bash scripts/docs_figures.sh [BATSTUDY_BINARY]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The validation table: run the three studies of studies/validation/ and write
-# docs/validation.md with scripts/validation.py (about 10 s once built).
+# docs/validation.md with scripts/validation.py (about 10 s once built; it reads the files with
+# batstudy.open_results from python/).
 #   bash scripts/validation.sh [BATSTUDY_BINARY]
 set -euo pipefail
 cd "$(dirname "$0")/.."
