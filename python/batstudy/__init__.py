@@ -20,7 +20,7 @@ are imported on first use, so that the analysis (``open_results``, ``histories``
 import importlib
 import importlib.util
 
-from ._open import histories, open, open_results
+from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
 
 __all__ = ["simulate", "run", "open_results", "histories", "report", "StudyError", "RunError", "__version__"]

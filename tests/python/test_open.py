@@ -58,7 +58,8 @@ def test_without_chunk_iter_the_positions_are_the_same(tmp_path):
 def test_the_analysis_needs_neither_the_native_module_nor_the_plot_extra(tmp_path):
     """A copy of the package's Python sources (no native module), with matplotlib and plotly
     made unimportable: opening works, the rest says what is missing."""
-    shutil.copytree(ROOT / "python" / "batstudy", tmp_path / "batstudy", ignore=shutil.ignore_patterns("*.so", "__pycache__"))
+    sources = shutil.ignore_patterns("*.so", "__pycache__")
+    shutil.copytree(ROOT / "python" / "batstudy", tmp_path / "batstudy", ignore=sources)
     results = synthetic_results.write(tmp_path / "synthetic.h5")
     code = f"""
 import sys

@@ -21,7 +21,7 @@ flexible motion.
 """
 
 try:
-    import matplotlib  # noqa: F401
+    import matplotlib  # noqa: F401  (only: is it there?)
 except ImportError as err:  # the optional dependency: say how to get it
     raise ImportError("batstudy.plot needs matplotlib: pip install 'batstudy[plot]'") from err
 

@@ -56,7 +56,8 @@ def distinct_profiles(bat) -> list:
         z, outer = b["profile_z"].values, b["outer_radius"].values
         inner = b["inner_radius"].values if "inner_radius" in b else np.zeros_like(outer)
         for labels, z0, o0, i0 in out:
-            if z0.shape == z.shape and np.allclose(o0, outer, equal_nan=True) and np.allclose(i0, inner, equal_nan=True):
+            same_shape = z0.shape == z.shape
+            if same_shape and np.allclose(o0, outer, equal_nan=True) and np.allclose(i0, inner, equal_nan=True):
                 labels.append(str(b["bat"].item()))
                 break
         else:

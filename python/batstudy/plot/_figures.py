@@ -104,8 +104,9 @@ def figures(
 def main(argv=None, prog: str = "batstudy figures") -> int:
     """The command: one line per figure (written, skipped, FAIL); exit status 1 if one
     failed, 2 for a bad argument or a file that cannot be read."""
-    ap = argparse.ArgumentParser(prog=prog, description="Draw every figure a results file has data for: the "
-                                 "paper's Figs. 2, 4-8, 10-15, bat profiles, sweet-spot definitions, an animation.")  # fmt: skip
+    what = ("Draw every figure a results file has data for: the paper's Figs. 2, 4-8, 10-15, bat profiles, "
+            "sweet-spot definitions, an animation.")  # fmt: skip
+    ap = argparse.ArgumentParser(prog=prog, description=what)
     ap.add_argument("results", help="batstudy results file (HDF5)")
     ap.add_argument("-o", "--outdir", default="figures", help="output directory (default: figures)")
     ap.add_argument("--only", help="comma-separated figures, e.g. fig6,fig14,anim,bat_profiles")

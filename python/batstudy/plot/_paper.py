@@ -256,7 +256,6 @@ def fig15(res, path):
     first = require(hooped, "curves with a hoop mode (hoop_frequency > 0)")[0]
     chosen = select(res.curves, first, free={"hoop_frequency", "hoop_mass"})  # same bat, with and without hoop
     chosen.sort(key=lambda c: c.params.get("hoop_frequency") if c.params.get("hoop_frequency", 0) > 0 else -1.0)
-    no_hoop = [c for c in chosen if not c.params.get("hoop_frequency", 0) > 0]
     wood = res.base(model)
     curves = ([wood] if wood not in chosen else []) + chosen
     # Labelled against the wood base case, as in every other figure ("base case" = the wood bat);
