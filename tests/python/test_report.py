@@ -8,6 +8,7 @@ Playwright.
   synthetic_results.py): nothing of it runs, and the page shows it as written.
 
 Needs /usr/bin/chromium (scripts/test.sh installs Debian's chromium)."""
+import json
 import os
 import shutil
 from contextlib import contextmanager
@@ -114,3 +115,40 @@ def test_strings_of_the_file_never_run_and_show_as_written(tmp_path):
         assert page.evaluate("window.__pwned") is None
     assert not errors, errors
     assert not requests, f"the page reached the network: {requests}"
+
+
+def test_each_escape_gives_back_the_value_in_its_context():
+    """What the HTML parser (Python's, as a browser's in miniature) and JSON.parse read back
+    from each context is the value itself, and no markup of it survives."""
+    from html.parser import HTMLParser
+
+    from batstudy import _html
+
+    class Reader(HTMLParser):
+        def __init__(self):
+            super().__init__(convert_charrefs=True)
+            self.tags, self.attrs, self.text, self.script = [], [], "", ""
+
+        def handle_starttag(self, tag, attrs):
+            self.tags.append(tag)
+            self.attrs += attrs
+
+        def handle_data(self, data):
+            if self.tags and self.tags[-1] == "script":
+                self.script += data
+            else:
+                self.text += data
+
+    value = "study" + PAYLOAD
+    reader = Reader()
+    reader.feed(f"<p title={_html.attribute(value)}>{_html.text(value)}</p>"
+                f"<script>const DATA = {_html.script_json({'study': value})};</script>")  # fmt: skip
+    assert reader.tags == ["p", "script"]
+    assert reader.attrs == [("title", value)] and reader.text == value
+    data = reader.script.removeprefix("const DATA = ").removesuffix(";")
+    assert json.loads(data) == {"study": value}
+    assert not set("<>&\u2028\u2029") & set(data)
+    # trusted code keeps its meaning but cannot end its script or open a comment
+    code = _html.script_code('s = "</script>" + "<!--" + "</SCRIPT>";')
+    assert "</script" not in code.lower() and "<!--" not in code
+    assert code == 's = "<\\/script>" + "<\\!--" + "<\\/SCRIPT>";'
