@@ -17,8 +17,8 @@ are imported on first use, so that the analysis (``open_results``, ``histories``
 ``report``, ``batstudy.plot``) works from a source tree without it (docs/architecture.md).
 """
 
-import importlib
-import importlib.util
+from importlib import import_module as _import_module
+from importlib.util import find_spec as _find_spec
 
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
@@ -40,13 +40,17 @@ def __getattr__(name: str):
     module = _ON_FIRST_USE.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    if module != ".plot" and importlib.util.find_spec("._native", __name__) is None:
+    if module != ".plot" and _find_spec("._native", __name__) is None:
         raise ImportError(
             f"batstudy.{name} needs the native module batstudy._native, which this copy of batstudy "
             "does not have (a source tree: build and install the wheel with `pip install .`); "
             "open_results, histories, report and batstudy.plot work without it"
         )
-    imported = importlib.import_module(module, __name__)
+    imported = _import_module(module, __name__)
     value = imported if module == ".plot" else getattr(imported, name)
     globals()[name] = value
     return value
+
+
+def __dir__():  # what completion offers: the names imported on first use too
+    return sorted(set(globals()) | set(_ON_FIRST_USE))
