@@ -604,11 +604,13 @@ fn merge_shards_equals_single_run_and_refuses_bad_sets() {
         shards.push(p);
     }
     let out = dir.path().join("merged.h5");
-    let sum = store::merge(&out, &info, &shards, &opts(false, false)).unwrap();
+    // the ids `record` gives, as a study would recompute them
+    let ids = |i: usize| 1_000_003 * i as u64 + 17;
+    let sum = store::merge(&out, &info, &shards, &opts(false, false), &ids).unwrap();
     assert_eq!(sum.n_done, 27);
     assert_eq!(dump(&out), dump(&clean));
     let bad = dir.path().join("bad.h5");
-    let e = store::merge(&bad, &info, &shards[..2], &opts(false, false))
+    let e = store::merge(&bad, &info, &shards[..2], &opts(false, false), &ids)
         .err()
         .unwrap();
     assert!(e.to_string().contains("lack 9"), "{e}");
@@ -618,15 +620,27 @@ fn merge_shards_equals_single_run_and_refuses_bad_sets() {
         shards[2].clone(),
         shards[1].clone(),
     ];
-    let e = store::merge(&bad, &info, &twice, &opts(false, false))
+    let e = store::merge(&bad, &info, &twice, &opts(false, false), &ids)
         .err()
         .unwrap();
     assert!(e.to_string().contains("also in"), "{e}");
-    let e = store::merge(&bad, &small_study(vec![]), &shards, &opts(false, false))
-        .err()
-        .unwrap();
+    let e = store::merge(
+        &bad,
+        &small_study(vec![]),
+        &shards,
+        &opts(false, false),
+        &ids,
+    )
+    .err()
+    .unwrap();
     // issue 8: merge refuses another study with its own error kind
     assert!(matches!(e, StoreError::CannotMerge { .. }), "{e}");
+    // issue 31: a point whose id is not the study's is refused, before anything is written
+    let altered = |i: usize| ids(i) + u64::from(i == 13);
+    let e = store::merge(&bad, &info, &shards, &opts(false, false), &altered)
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("flat index 13"), "{e}");
     assert!(!bad.exists() && !store::journal_path(&bad).exists());
 }
 

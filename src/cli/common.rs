@@ -19,7 +19,22 @@ pub(super) fn check_output_of(
     from_cli: bool,
     existing: Existing,
 ) -> Result<(), StudyError> {
-    check_output(output, existing).map_err(|(msg, allowed)| {
+    let replaced_foreign = || {
+        let exists = std::fs::symlink_metadata(output).is_ok();
+        let theirs = exists && existing == Existing::Overwrite;
+        let what = theirs.then(|| store::file_info(output).err()).flatten()?;
+        Some((
+            format!(
+                "--force replaces only batstudy's own results files, and this is not one ({what})"
+            ),
+            "a batstudy results file, or a new path (remove other files yourself)".to_string(),
+        ))
+    };
+    match replaced_foreign() {
+        Some(e) => Err(e),
+        None => check_output(output, existing),
+    }
+    .map_err(|(msg, allowed)| {
         let e = StudyError::new(&study.path, msg)
             .value(output.display().to_string())
             .allowed(allowed);

@@ -156,7 +156,9 @@ pub(super) fn cmd_merge(a: &MergeArgs) -> i32 {
         }
         e => bad(e.to_string()),
     };
-    if let Err(e) = store::merge_check(&a.output, &info, &a.shards) {
+    let plan = &study.plan;
+    let point_id = |i: usize| plan.point(i).map_or(0, |p| p.id);
+    if let Err(e) = store::merge_check(&a.output, &info, &a.shards, &point_id) {
         return store_err(e);
     }
     if let Some(dir) = a.output.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -173,7 +175,7 @@ pub(super) fn cmd_merge(a: &MergeArgs) -> i32 {
         },
         ..Default::default()
     };
-    match store::merge(&a.output, &info, &a.shards, &opts) {
+    match store::merge(&a.output, &info, &a.shards, &opts, &point_id) {
         Err(e) => store_err(e),
         Ok(sum) => {
             if !a.quiet {

@@ -211,8 +211,10 @@ pub fn run_study(
         &settings,
         &ModelSimulator,
         || {
-            if settings.existing == Existing::Overwrite {
-                store::discard_output(output)?;
+            match settings.existing {
+                Existing::Overwrite => store::discard_output(output)?,
+                Existing::Resume => store::check_resumable(output, &settings.study.sha256)?,
+                Existing::Refuse => {}
             }
             store::begin(output, shape)
         },
@@ -225,7 +227,13 @@ pub fn run_study(
             begun
                 .and_then(|b| store::open_begun(path, info, &o, Some(b)))
                 .map(StoreSink::new)
-                .map_err(|e| e.to_string())
+                .map_err(|e| {
+                    let code = match e.is_bad_input() {
+                        true => EXIT_BAD_INPUT,
+                        false => EXIT_RUN_FAILED,
+                    };
+                    RunFailure::new(code, format!("error: {}: {e}", path.display()))
+                })
         },
         stop,
     )?;
@@ -251,7 +259,7 @@ where
     K: Sink,
     E: Send,
     B: FnOnce() -> E + Send,
-    F: FnOnce(&Path, &StudyInfo, Existing, E) -> Result<K, String>,
+    F: FnOnce(&Path, &StudyInfo, Existing, E) -> Result<K, RunFailure>,
 {
     let plan = &settings.study.plan;
     let pool = crate::run::build_pool(settings.options.jobs)
@@ -281,12 +289,7 @@ where
     preparing.finish_and_clear();
     let history = settings.study.history_request(bats.max_length());
     let info = settings.study.info(bats.variants.clone(), history.clone());
-    let sink = open(&settings.output, &info, settings.existing, begun).map_err(|e| {
-        RunFailure::new(
-            EXIT_BAD_INPUT,
-            format!("error: {}: {e}", settings.output.display()),
-        )
-    })?;
+    let sink = open(&settings.output, &info, settings.existing, begun)?;
     let (report, _sink) = crate::run::run_plan(
         plan,
         sim,

@@ -59,6 +59,9 @@ pub enum ModelError {
     /// A feature not available (yet).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
+    /// Memory for the point could not be reserved.
+    #[error("cannot reserve {bytes:.0} bytes for {what}: not enough memory")]
+    OutOfMemory { what: &'static str, bytes: f64 },
 }
 
 impl ModelError {
@@ -120,6 +123,11 @@ impl ModelError {
                 format!(
                     "at most {budget} steps (numerics.max_steps) for {steps:.0} steps of {dt:.3e} s: a softer ball.law, a larger numerics.dt, or a larger numerics.max_steps"
                 ),
+            ),
+            ModelError::OutOfMemory { bytes, .. } => (
+                "history".into(),
+                format!("{bytes:.0} bytes"),
+                "a smaller history (fewer samples, positions or fields)".into(),
             ),
             ModelError::NoSeparation { .. } | ModelError::Unsupported(_) => {
                 (none(), none(), self.to_string())

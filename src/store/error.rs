@@ -35,6 +35,20 @@ pub enum StoreError {
 }
 
 impl StoreError {
+    /// Whether the error is the input's (an output that exists, a journal or file of
+    /// another study, a damaged journal: exit status 2, nothing written) rather than the
+    /// run's (I/O, HDF5: exit status 3).
+    pub fn is_bad_input(&self) -> bool {
+        matches!(
+            self,
+            StoreError::Exists { .. }
+                | StoreError::WrongStudy { .. }
+                | StoreError::CannotMerge { .. }
+                | StoreError::BadJournal { .. }
+                | StoreError::BadFile { .. }
+        )
+    }
+
     pub fn io(path: &Path, what: &str, source: std::io::Error) -> Self {
         StoreError::Io {
             path: path.to_path_buf(),

@@ -228,6 +228,12 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
     Ok((header, (8 + 4 + n + 4) as u64))
 }
 
+/// A journal's header alone (what a resume checks before it touches anything).
+pub fn header(path: &Path) -> Result<JournalHeader, StoreError> {
+    let file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+    read_header(&mut BufReader::new(file), path).map(|(h, _)| h)
+}
+
 /// Read a journal's header and check every record, handing each valid one to `visit` in file
 /// order. Memory: one record (the payloads are checksummed, not kept).
 pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, StoreError> {
@@ -458,8 +464,13 @@ impl JournalWriter {
         b.extend_from_slice(&(json.len() as u32).to_le_bytes());
         b.extend_from_slice(&json);
         b.extend_from_slice(&checksum(&json).to_le_bytes());
-        file.write_all(&b)
-            .map_err(|e| StoreError::io(path, "write the journal header", e))?;
+        if let Err(e) = file.write_all(&b) {
+            // a journal without its header could never be resumed: leave none behind
+            // (issue 31: a full disk left a 0-byte journal that only --force got past)
+            drop(file);
+            let _ = std::fs::remove_file(path);
+            return Err(StoreError::io(path, "write the journal header", e));
+        }
         let n = b.len() as u64;
         Ok(JournalWriter::over(file, path, n, n, false))
     }

@@ -20,8 +20,9 @@ pub fn merge(
     info: &StudyInfo,
     shards: &[PathBuf],
     opts: &StoreOptions,
+    point_id: &PointIdOf<'_>,
 ) -> Result<Summary, StoreError> {
-    merge_check(out, info, shards)?;
+    merge_check(out, info, shards, point_id)?;
     let mut s = open(
         out,
         info,
@@ -36,9 +37,18 @@ pub fn merge(
     s.finish()
 }
 
+/// The id a point of the study at this flat index has (the study's own, recomputed).
+pub type PointIdOf<'a> = dyn Fn(usize) -> u64 + Sync + 'a;
+
 /// The checks of [`merge`], without writing anything: every shard of this study and layout
-/// version, every point present exactly once.
-pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(), StoreError> {
+/// version, every point present exactly once and with its own point id (issue 31: a shard
+/// whose ids were altered merged with exit 0).
+pub fn merge_check(
+    out: &Path,
+    info: &StudyInfo,
+    shards: &[PathBuf],
+    point_id: &PointIdOf<'_>,
+) -> Result<(), StoreError> {
     let want = JournalHeader::of(info);
     let n = info.shape.n_points();
     // one bit per point (issue 7); the earlier owner of a duplicate is looked up only then
@@ -65,6 +75,7 @@ pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(
                 what: "it is also the merge's output file".into(),
             });
         }
+        check_point_ids(p, point_id)?;
         let present = read::present_points(p)?;
         if let Some(i) = present.iter().find(|&i| seen.contains(i)) {
             let mut other = None;
@@ -121,6 +132,24 @@ pub fn merge_check(out: &Path, info: &StudyInfo, shards: &[PathBuf]) -> Result<(
         return Err(StoreError::CannotMerge { path, what });
     }
     Ok(())
+}
+
+/// Every stored point of shard `p` has the id the study gives its flat index (checked on
+/// all cores: recomputing an id resolves the point and hashes it).
+fn check_point_ids(p: &Path, point_id: &PointIdOf<'_>) -> Result<(), StoreError> {
+    use rayon::prelude::*;
+    read::for_each_present_slab(p, |_, slab| {
+        match slab.par_iter().find_first(|&&(i, id)| point_id(i) != id) {
+            None => Ok(()),
+            Some(&(i, id)) => Err(StoreError::CannotMerge {
+                path: p.to_path_buf(),
+                what: format!(
+                    "the point at flat index {i} has point_id {id}, but the study's point there has {}: the file was altered or is of another study",
+                    point_id(i)
+                ),
+            }),
+        }
+    })
 }
 
 fn same_file(a: &Path, b: &Path) -> bool {

@@ -42,4 +42,4 @@ pub use paths::{discard_output, journal_path, partial_path};
 pub use read::{
     file_info, for_each_record, inspect, present_points, read_results, FileInfo, ReadBack,
 };
-pub use session::{begin, open, open_begun, BegunFile, Session};
+pub use session::{begin, check_resumable, open, open_begun, BegunFile, Session};

@@ -331,28 +331,59 @@ pub fn file_info(path: &Path) -> Result<FileInfo, StoreError> {
 /// The points present in a results file (status ok or failed). Memory: one bit per point
 /// and one slab of `status`.
 pub fn present_points(path: &Path) -> Result<PointSet, StoreError> {
+    let mut present = None;
+    for_each_present_slab(path, |n, slab| {
+        let set = present.get_or_insert_with(|| PointSet::new(n));
+        for &(i, _) in slab {
+            set.insert(i);
+        }
+        Ok(())
+    })?;
+    Ok(present.unwrap_or_else(|| PointSet::new(0)))
+}
+
+/// The (flat index, point id) of every stored point (ok or failed) of a results file, a
+/// slab at a time in flat order, with the study's number of points. A file without its
+/// `status` or `point_id` arrays, or with arrays of another shape, is not a results file
+/// (exit status 2 for a merge, not a failure of the run: issue 31).
+pub fn for_each_present_slab(
+    path: &Path,
+    mut visit: impl FnMut(usize, &[(usize, u64)]) -> Result<(), StoreError>,
+) -> Result<(), StoreError> {
     let (f, header, _) = open_checked(path)?;
     let shape: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
     let n: usize = shape.iter().product();
-    let status = f
+    let summary = f
         .group(l::GROUP_SUMMARY)
-        .and_then(|g| g.dataset(l::STATUS.name))
-        .ctx(path, "read summary/status")?;
-    if status.size() != n {
-        return Err(bad(path, "summary arrays do not match the study's shape"));
-    }
-    let mut present = PointSet::new(n);
+        .map_err(|_| bad(path, "it has no group summary"))?;
+    let array = |name: &str| {
+        summary
+            .dataset(name)
+            .ok()
+            .filter(|d| d.size() == n)
+            .ok_or_else(|| {
+                bad(
+                    path,
+                    format!("summary/{name} is missing or not of the study's shape"),
+                )
+            })
+    };
+    let (status, ids) = (array(l::STATUS.name)?, array(l::POINT_ID.name)?);
+    let mut slab = Vec::new();
     for (start, count, flat0) in flat_slabs(&shape, READ_SLAB_POINTS) {
-        for (j, s) in read_slab::<i8>(&status, &start, &count, path)?
-            .into_iter()
-            .enumerate()
-        {
-            if s == l::STATUS_OK || s == l::STATUS_FAILED {
-                present.insert(flat0 + j);
-            }
-        }
+        let st = read_slab::<i8>(&status, &start, &count, path)?;
+        let id = read_slab::<u64>(&ids, &start, &count, path)?;
+        slab.clear();
+        slab.extend(
+            st.iter()
+                .zip(&id)
+                .enumerate()
+                .filter(|(_, (&s, _))| s == l::STATUS_OK || s == l::STATUS_FAILED)
+                .map(|(j, (_, &id))| (flat0 + j, id)),
+        );
+        visit(n, &slab)?;
     }
-    Ok(present)
+    Ok(())
 }
 
 /// A human-readable description of a results file: study, layout version, dims, counts by

@@ -103,6 +103,28 @@ pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> 
     })
 }
 
+/// Whether `--resume` of output `path` can go on for the study of this sha256: its journal
+/// (or, without one, its finished file) is readable and of the same study and layout. A
+/// run checks this before it touches anything (issue 31: a refused resume had already
+/// replaced `OUT.h5.partial`). Nothing to resume is not an error.
+pub fn check_resumable(path: &Path, study_sha256: &str) -> Result<(), StoreError> {
+    let jpath = journal_path(path);
+    let (found, from) = if jpath.exists() {
+        (journal::header(&jpath)?, jpath)
+    } else if path.exists() {
+        (read::file_info(path)?.header, path.to_path_buf())
+    } else {
+        return Ok(());
+    };
+    let mut want = found.clone();
+    want.layout_version = super::layout::LAYOUT_VERSION;
+    want.study_sha256 = study_sha256.to_string();
+    match found.mismatch(&want, &from) {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
 /// Open the output `path` for a study: a new run, or (`opts.resume`) the continuation of an
 /// interrupted one. Never overwrites an existing output unless `opts.force`.
 pub fn open(path: &Path, info: &StudyInfo, opts: &StoreOptions) -> Result<Session, StoreError> {

@@ -33,10 +33,14 @@ pub struct Study {
 
 /// Read and validate a study file.
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Study, StudyError> {
-    let text = std::fs::read_to_string(path)
+    let text = super::profile::read_bounded_regular(path, MAX_STUDY_BYTES)
         .map_err(|e| StudyError::new(path, format!("cannot read the study file: {e}")))?;
     load_str(&text, path, opts)
 }
+
+/// Largest study file read, bytes (the biggest bundled one is under 4 kB; a `points` list
+/// of 100,000 sets is about 4 MB).
+pub const MAX_STUDY_BYTES: u64 = 16 << 20;
 
 /// Validate study text (`path` names it in messages and anchors relative profile paths).
 pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, StudyError> {
@@ -44,7 +48,18 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         file: path,
         src: SourceMap::build(text),
     };
-    // 1. YAML syntax.
+    // 1. YAML syntax (nesting bounded first: the parsers' cost grows with the depth).
+    if let Some(at) = cx.src.too_deep {
+        let mut err = StudyError::new(path, "malformed YAML: nested too deep")
+            .value(format!("more than {} levels", super::source::MAX_DEPTH))
+            .allowed(format!(
+                "at most {} levels of mappings and lists",
+                super::source::MAX_DEPTH
+            ));
+        err.line = Some(at.line);
+        err.column = Some(at.column);
+        return Err(err);
+    }
     let root: Value = serde_yaml_ng::from_str(text).map_err(|e| {
         let mut err = StudyError::new(path, format!("malformed YAML: {e}"));
         // serde_yaml_ng gives no location for some errors (a second document): the

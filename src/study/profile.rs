@@ -108,7 +108,7 @@ pub fn load_profile_csv(path: &Path) -> Result<Vec<[f64; 2]>, String> {
 /// The text of a regular file of at most `limit` bytes. Opened without blocking (a FIFO
 /// would wait for a writer), checked on the open descriptor (no race with a swap of the
 /// path), and read through a bound (files in /proc report size 0).
-fn read_bounded_regular(path: &Path, limit: u64) -> Result<String, String> {
+pub(super) fn read_bounded_regular(path: &Path, limit: u64) -> Result<String, String> {
     use std::io::Read;
     use std::os::unix::fs::OpenOptionsExt;
     let file = std::fs::OpenOptions::new()

@@ -23,7 +23,15 @@ pub struct Pos {
 #[derive(Debug, Clone, Default)]
 pub struct SourceMap {
     pos: HashMap<Vec<Seg>, Pos>,
+    /// Where the document first nests deeper than [`MAX_DEPTH`], if it does: the scan
+    /// stops there.
+    pub too_deep: Option<Pos>,
 }
+
+/// Deepest nesting of mappings and sequences a study file may have (a real one nests
+/// about 6 deep). Each level costs the scan its path: a document nested 100,000 deep took
+/// 21 s to refuse (issue 31); past this depth the scan stops at once.
+pub const MAX_DEPTH: usize = 64;
 
 enum Frame {
     Map { want_key: bool, key: Option<String> },
@@ -37,7 +45,22 @@ impl SourceMap {
         let mut frames: Vec<(Frame, bool)> = Vec::new(); // (frame, pushed a path segment)
         let mut path: Vec<Seg> = Vec::new();
         for item in Parser::new_from_str(text) {
-            let Ok((ev, span)) = item else { break };
+            let (ev, span) = match item {
+                Ok(x) => x,
+                Err(e) => {
+                    // the parser's own bound on nesting (deeper than ours: a flow level
+                    // costs it two): the document is too deep all the same
+                    let deep = e.info().contains("recursion limit");
+                    let at = Pos {
+                        line: e.marker().line(),
+                        column: e.marker().col() + 1,
+                    };
+                    return SourceMap {
+                        pos: map,
+                        too_deep: deep.then_some(at),
+                    };
+                }
+            };
             let here = Pos {
                 line: span.start.line(),
                 column: span.start.col() + 1,
@@ -65,6 +88,12 @@ impl SourceMap {
                 }
                 Event::Alias(_) => complete(&mut frames),
                 Event::MappingStart(..) | Event::SequenceStart(..) => {
+                    if frames.len() >= MAX_DEPTH {
+                        return SourceMap {
+                            pos: map,
+                            too_deep: Some(here),
+                        };
+                    }
                     let seg = match frames.last() {
                         Some((Frame::Map { want_key: true, .. }, _)) => Some(Seg::Key("?".into())),
                         _ => value_seg(&frames),
@@ -97,7 +126,10 @@ impl SourceMap {
                 _ => {}
             }
         }
-        SourceMap { pos: map }
+        SourceMap {
+            pos: map,
+            too_deep: None,
+        }
     }
 
     /// Position of exactly this path.
@@ -161,5 +193,30 @@ mod tests {
         p.push(Seg::Index(2));
         assert_eq!(m.get(&p), Some(Pos { line: 8, column: 5 }));
         assert_eq!(m.nearest(&keys(&["base", "impact", "q"])).unwrap().line, 4);
+    }
+
+    // issue 31: a document nested 100,000 deep took 21 s to refuse (the YAML parser behind
+    // serde is quadratic in the depth); the scan now stops at MAX_DEPTH, in microseconds
+    #[test]
+    fn deep_nesting_is_found_at_once() {
+        for text in [
+            format!(
+                "name: t\nbase: {}{}\n",
+                "[".repeat(100_000),
+                "]".repeat(100_000)
+            ),
+            format!("name: t\nbase:\n  {}1\n", "- ".repeat(100_000)),
+            (1..2000).fold("name: t\nbase:\n".to_string(), |s, i| {
+                s + &" ".repeat(i) + "a:\n"
+            }),
+        ] {
+            let m = SourceMap::build(&text);
+            let at = m
+                .too_deep
+                .unwrap_or_else(|| panic!("not too deep: {:?}", &text[..40]));
+            assert!(at.line >= 2, "{at:?}");
+        }
+        let shallow = SourceMap::build("a: {b: [1, [2, [3]]]}\n");
+        assert!(shallow.too_deep.is_none());
     }
 }

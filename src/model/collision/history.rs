@@ -1,6 +1,7 @@
 //! Sampling time histories on the request's grid t = k·interval from integrator steps,
 //! by linear interpolation between the states at the ends of each step.
 
+use crate::model::error::ModelError;
 use crate::model::outcome::{History, HistoryField, HistoryRequest};
 
 /// The recordable quantities at one instant.
@@ -39,27 +40,36 @@ pub(crate) struct Recorder<'r> {
 }
 
 impl<'r> Recorder<'r> {
-    pub fn new(request: &'r HistoryRequest) -> Self {
+    /// A recorder with every requested series reserved at its final length (grown by
+    /// doubling, the displacement was copied about twice over). The memory is reserved
+    /// fallibly: a request the machine cannot hold is an error of the point, not an abort
+    /// of the process (issue 31; the study layer bounds a point's history beforehand).
+    pub fn new(request: &'r HistoryRequest) -> Result<Self, ModelError> {
         let has = |f: HistoryField| request.fields.contains(&f);
-        // every requested series at its final length at once: grown by doubling, the
-        // displacement (n_samples × z) was copied about twice over
-        let room = |f: HistoryField, per_sample: usize| {
-            Vec::with_capacity(if has(f) {
-                request.n_samples * per_sample
+        let room = |f: HistoryField, per_sample: usize| -> Result<Vec<f64>, ModelError> {
+            let n = if has(f) {
+                request.n_samples.saturating_mul(per_sample)
             } else {
                 0
-            })
+            };
+            let mut v = Vec::new();
+            v.try_reserve_exact(n)
+                .map_err(|_| ModelError::OutOfMemory {
+                    what: "the time histories",
+                    bytes: n as f64 * 8.0,
+                })?;
+            Ok(v)
         };
         let history = History {
-            force: room(HistoryField::Force, 1),
-            compression: room(HistoryField::Compression, 1),
-            ball_velocity: room(HistoryField::BallVelocity, 1),
-            displacement: room(HistoryField::Displacement, request.z.len()),
-            rigid_translation: room(HistoryField::RigidMotion, 1),
-            rigid_rotation: room(HistoryField::RigidMotion, 1),
-            hoop_displacement: room(HistoryField::HoopDisplacement, 1),
+            force: room(HistoryField::Force, 1)?,
+            compression: room(HistoryField::Compression, 1)?,
+            ball_velocity: room(HistoryField::BallVelocity, 1)?,
+            displacement: room(HistoryField::Displacement, request.z.len())?,
+            rigid_translation: room(HistoryField::RigidMotion, 1)?,
+            rigid_rotation: room(HistoryField::RigidMotion, 1)?,
+            hoop_displacement: room(HistoryField::HoopDisplacement, 1)?,
         };
-        Self {
+        Ok(Self {
             request,
             next: 0,
             previous: None,
@@ -67,7 +77,7 @@ impl<'r> Recorder<'r> {
             wants_displacement: has(HistoryField::Displacement),
             wants_rigid: has(HistoryField::RigidMotion),
             projector: None,
-        }
+        })
     }
 
     /// Samples carry modal coordinates ([`Sample::modal`]); `p` turns each emitted one

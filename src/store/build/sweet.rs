@@ -17,10 +17,16 @@ pub(super) fn block_sweet_spots(
     let nz = count[iz];
     let stride: usize = count[iz + 1..].iter().product();
     let outer = m / nz;
+    // A study may list impact_z in any order (a descending range is documented; issue 31:
+    // it gave no sweet spot at all): the finders read each curve in ascending z.
+    let mut order: Vec<usize> = (0..nz).collect();
+    order.sort_by(|&a, &b| z[a].total_cmp(&z[b]));
+    let z: Vec<f64> = order.iter().map(|&q| z[q]).collect();
     let curve = |slot: usize| -> ([f64; 6], i8) {
         let (hi, lo) = (slot / stride, slot % stride);
         let base = hi * nz * stride + lo;
-        let along = |k: usize| -> Vec<f64> { (0..nz).map(|q| fv[k][base + q * stride]).collect() };
+        let along =
+            |k: usize| -> Vec<f64> { order.iter().map(|&q| fv[k][base + q * stride]).collect() };
         let exit = along(0);
         let (zz, vv): (Vec<f64>, Vec<f64>) = z
             .iter()
@@ -30,7 +36,7 @@ pub(super) fn block_sweet_spots(
             .unzip();
         let s = find_sweet_spot(&zz, &vv);
         let v = vibration_sweet_spot(
-            z,
+            &z,
             &along(l::GRIP_VIBRATION_INDEX),
             &along(l::VIBRATION_ENERGY_INDEX),
         );

@@ -174,7 +174,7 @@ pub fn simulate_wave(
         budget,
         mode_cutoff: MODE_CUTOFF_FACTOR * contact_omega(spec, hoop, &law, approach),
     };
-    let mut recorder = history.map(Recorder::new);
+    let mut recorder = history.map(Recorder::new).transpose()?;
     let mut contact = Contact::started();
     let fin = match spec.numerics.integrator {
         Integrator::Modal => run_modal(&collision, bat, &mut contact, &mut recorder)?,

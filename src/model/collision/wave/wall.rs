@@ -41,7 +41,7 @@ pub fn simulate_wall(
     };
     let budget = super::checked_step_budget(spec, h, "numerics.max_steps")?;
     let h2_over_6m = h * h / (6.0 * m);
-    let mut recorder = history.map(Recorder::new);
+    let mut recorder = history.map(Recorder::new).transpose()?;
     let sample = |rec: &Recorder, force: f64, s: f64, v: f64| Sample {
         force,
         compression: s.max(0.0),
