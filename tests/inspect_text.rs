@@ -54,3 +54,40 @@ fn inspect_names_sweet_spots_by_coordinates_and_lists_the_bats() {
         "{text}"
     );
 }
+
+// issue 31: `inspect` printed terminal escape sequences from the file's strings raw
+#[test]
+fn inspect_prints_no_terminal_control_sequences() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("s.yaml");
+    std::fs::write(
+        &study,
+        "name: s\nmodel: rigid\nbase: {ball: {speed: 40}}\ngrid:\n  impact.z: [0.6, 0.7]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("s.h5");
+    batstudy_ok(&[
+        "run",
+        study.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    {
+        let f = hdf5::File::open_rw(&out).unwrap();
+        let name: hdf5::types::VarLenUnicode =
+            "s\u{1b}]0;pwned\u{7}\u{1b}[2J\r\u{202e}x".parse().unwrap();
+        f.attr("study_name").unwrap().write_scalar(&name).unwrap();
+    }
+    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
+        .args(["inspect", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(o.status.success(), "{text}");
+    assert!(
+        !text.contains('\u{1b}') && !text.contains('\r') && !text.contains('\u{202e}'),
+        "{text:?}"
+    );
+    assert!(text.contains("\\u{1b}]0;pwned"), "{text}");
+}

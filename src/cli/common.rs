@@ -19,31 +19,38 @@ pub(super) fn check_output_of(
     from_cli: bool,
     existing: Existing,
 ) -> Result<(), StudyError> {
-    let replaced_foreign = || {
-        let exists = std::fs::symlink_metadata(output).is_ok();
-        let theirs = exists && existing == Existing::Overwrite;
-        let what = theirs.then(|| store::file_info(output).err()).flatten()?;
-        Some((
+    check_output(output, existing)
+        .and_then(|()| match existing {
+            Existing::Overwrite => check_replaceable(output),
+            _ => Ok(()),
+        })
+        .map_err(|(msg, allowed)| {
+            let e = StudyError::new(&study.path, msg)
+                .value(output.display().to_string())
+                .allowed(allowed);
+            if from_cli {
+                e.field("--output")
+            } else {
+                e.field("output").at(study.position_of("output"))
+            }
+        })
+}
+
+/// `--force` replaces only batstudy's own results files (issue 31: it replaced any file).
+/// Nothing at the path, or a results file of any study, may be replaced.
+pub(super) fn check_replaceable(output: &Path) -> Result<(), (String, String)> {
+    if std::fs::symlink_metadata(output).is_err() {
+        return Ok(());
+    }
+    match store::file_info(output) {
+        Ok(_) => Ok(()),
+        Err(e) => Err((
             format!(
-                "--force replaces only batstudy's own results files, and this is not one ({what})"
+                "--force replaces only batstudy's own results files, and this is not one ({e})"
             ),
             "a batstudy results file, or a new path (remove other files yourself)".to_string(),
-        ))
-    };
-    match replaced_foreign() {
-        Some(e) => Err(e),
-        None => check_output(output, existing),
+        )),
     }
-    .map_err(|(msg, allowed)| {
-        let e = StudyError::new(&study.path, msg)
-            .value(output.display().to_string())
-            .allowed(allowed);
-        if from_cli {
-            e.field("--output")
-        } else {
-            e.field("output").at(study.position_of("output"))
-        }
-    })
 }
 
 /// Load a study; on bad input print the located error and give the exit code.

@@ -2,7 +2,7 @@
 
 #![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
 
-use super::common::{jobs_or_all, lock_output};
+use super::common::{check_replaceable, jobs_or_all, lock_output};
 use super::{EXIT_BAD_INPUT, EXIT_OK, EXIT_POINTS_FAILED, EXIT_RUN_FAILED};
 use crate::run::ModelSimulator;
 use crate::store;
@@ -87,7 +87,13 @@ pub(super) fn cmd_merge(a: &MergeArgs) -> i32 {
     } else {
         Existing::Refuse
     };
-    if let Err((msg, allowed)) = check_output(&a.output, existing) {
+    let check = || {
+        check_output(&a.output, existing).and_then(|()| match a.force {
+            true => check_replaceable(&a.output),
+            false => Ok(()),
+        })
+    };
+    if let Err((msg, allowed)) = check() {
         return bad(format!("--output: {msg} (allowed: {allowed})"));
     }
     let _lock = match lock_output(&a.output) {
@@ -97,7 +103,7 @@ pub(super) fn cmd_merge(a: &MergeArgs) -> i32 {
             return code;
         }
     };
-    if let Err((msg, allowed)) = check_output(&a.output, existing) {
+    if let Err((msg, allowed)) = check() {
         return bad(format!("--output: {msg} (allowed: {allowed})"));
     }
     let jobs = match jobs_or_all(a.jobs, &a.output) {

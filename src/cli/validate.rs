@@ -14,7 +14,7 @@ pub(super) fn cmd_validate(files: &[PathBuf], max_points: usize) -> i32 {
     for f in files {
         let res = study::load(f, &LoadOptions { max_points }).and_then(|s| {
             let out = s.output_path(None);
-            check_output_of(&s, &out, false, Existing::Overwrite)?;
+            check_output_of(&s, &out, false, Existing::Resume)?;
             Ok(s)
         });
         match res {
