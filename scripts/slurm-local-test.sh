@@ -8,9 +8,11 @@
 #   logs, sockets all there; nothing in /etc is changed) for one node `localhost` at 127.0.0.1
 #   with this machine's CPU count, no accounting, proctrack/linuxproc, task/none;
 # - starts munged, slurmctld and slurmd (listening on 127.0.0.1 only: NoInAddrAny);
-# - `batstudy slurm studies/smoke.yaml --shards 4`, then the generated submit.sh;
-# - waits (bounded) for the array and the merge job, runs the study in one process, compares
-#   every dataset with scripts/compare_results.py;
+# - `batstudy slurm studies/smoke.yaml --shards 4`, then the generated submit.sh with one
+#   task that cannot finish: the merge must run after the array and refuse; then
+#   `batstudy slurm --resubmit` submits that shard alone and the merge again;
+# - waits (bounded) for the jobs, runs the study in one process, compares every dataset with
+#   scripts/compare_results.py;
 # - always stops its daemons (trap), and prints one PASS/FAIL line.
 #
 # Environment: BATSTUDY_BIN (default: cargo build, target/debug/batstudy),
@@ -157,35 +159,54 @@ if command -v ss >/dev/null; then
     '$4 ~ ":"a"$" || $4 ~ ":"b"$" {print "slurm-local-test: listening " $4}'
 fi
 
-# ---- the array and the merge
+# ---- the array and the merge, with one task that cannot finish (issue 32): a folder where
+# shard 3's lock file goes makes its run fail (exit 3); the merge must run after the array
+# anyway (afterany) and refuse the incomplete set; `batstudy slurm --resubmit` must then
+# submit shard 3 alone, and the merge again.
 study=$repo/studies/smoke.yaml
 "$bin" slurm "$study" --shards 4 --cpus-per-task 1 --time 00:10:00 \
   --dir "$work/jobs" -o "$work/merged.h5" >"$work/log/slurm-cmd.out" ||
   fail "batstudy slurm failed: $(cat "$work/log/slurm-cmd.out")"
-bash "$work/jobs/submit.sh" || fail "submit.sh failed"
+mkdir -p "$work/jobs/smoke.shard-3-of-4.h5.lock"
+bash "$work/jobs/submit.sh" >"$work/log/submit-1.out" || fail "submit.sh failed"
 # shellcheck disable=SC1091
 . "$work/jobs/jobs.env"
-say "array job $ARRAY_JOB_ID, merge job $MERGE_JOB_ID"
+say "array job $ARRAY_JOB_ID, merge job $MERGE_JOB_ID (shard 3 cannot finish)"
 
 job_state() { scontrol show job "$1" 2>/dev/null | grep -o 'JobState=[A-Z_]*' | cut -d= -f2 | sort -u | tr '\n' ' '; }
-deadline=$(($(date +%s) + timeout_s))
-while :; do
-  ms=$(job_state "$MERGE_JOB_ID")
-  case "$ms" in
-    "COMPLETED ") break ;;
-    *FAILED* | *CANCELLED* | *TIMEOUT* | *NODE_FAIL* | *OUT_OF_MEMORY*)
-      cat "$work/jobs/logs/"*.out 2>/dev/null | tail -20
-      fail "merge job $MERGE_JOB_ID ended $ms(array: $(job_state "$ARRAY_JOB_ID"))" ;;
-  esac
-  if [ "$(date +%s)" -ge "$deadline" ]; then
-    squeue 2>/dev/null
-    fail "timeout after ${timeout_s}s: array $(job_state "$ARRAY_JOB_ID"), merge $ms"
-  fi
-  sleep 1
-done
-as=$(job_state "$ARRAY_JOB_ID")
-[ "$as" = "COMPLETED " ] || fail "array tasks ended $as"
-say "array and merge jobs completed in $(($(date +%s) - t0)) s"
+# wait_ended JOB: until the job has ended; prints its states
+wait_ended() {
+  local deadline=$(($(date +%s) + timeout_s)) st
+  while :; do
+    st=$(job_state "$1")
+    case "$st" in
+      *PENDING* | *RUNNING* | *CONFIGURING* | *COMPLETING* | "") ;;
+      *) echo "$st"; return 0 ;;
+    esac
+    if [ "$(date +%s)" -ge "$deadline" ]; then
+      squeue 2>/dev/null
+      fail "timeout after ${timeout_s}s waiting for job $1 ($st)"
+    fi
+    sleep 1
+  done
+}
+ms=$(wait_ended "$MERGE_JOB_ID")
+[ "$ms" = "FAILED " ] || fail "the first merge ended '$ms', expected FAILED (an incomplete set)"
+grep -q "shards 3" "$work/jobs/logs/merge.out" && grep -q -- "--resubmit" "$work/jobs/logs/merge.out" ||
+  fail "the merge did not name the unfinished shard and the command: $(cat "$work/jobs/logs/merge.out")"
+[ ! -e "$work/merged.h5" ] || fail "an incomplete set was merged"
+say "first round: shard 3 failed, the merge ran after the array and refused ($(($(date +%s) - t0)) s)"
+
+rmdir "$work/jobs/smoke.shard-3-of-4.h5.lock"
+"$bin" slurm --resubmit "$work/jobs" >"$work/log/submit-2.out" || fail "slurm --resubmit failed: $(cat "$work/log/submit-2.out")"
+grep -q "shards 3 of 4" "$work/log/submit-2.out" || fail "--resubmit did not submit shard 3 alone: $(cat "$work/log/submit-2.out")"
+# shellcheck disable=SC1091
+. "$work/jobs/jobs.env"
+ms=$(wait_ended "$MERGE_JOB_ID")
+[ "$ms" = "COMPLETED " ] || { tail -20 "$work/jobs/logs/"*.out; fail "the second merge ended '$ms'"; }
+as=$(wait_ended "$ARRAY_JOB_ID")
+[ "$as" = "COMPLETED " ] || fail "the resubmitted task ended $as"
+say "second round: shard 3 resubmitted alone, merged in $(($(date +%s) - t0)) s"
 for i in 1 2 3 4; do
   [ -f "$work/jobs/smoke.shard-$i-of-4.h5" ] || fail "shard file $i missing"
 done
@@ -194,4 +215,4 @@ done
 "$bin" run "$study" -o "$work/single.h5" --jobs "$cpus" --quiet || fail "single-process run failed"
 "$py" "$repo/scripts/compare_results.py" "$work/single.h5" "$work/merged.h5" ||
   fail "merged file differs from the single-process run"
-echo "PASS: slurm-local-test: 4-shard Slurm array + merge == single-process run, bit for bit ($(($(date +%s) - t0)) s)"
+echo "PASS: slurm-local-test: 4-shard Slurm array, a failed task resubmitted, merge == single-process run, bit for bit ($(($(date +%s) - t0)) s)"

@@ -2,7 +2,9 @@
 
 - :func:`simulate` runs one collision and returns every summary value (and, on request,
   the time histories as NumPy arrays).
-- :func:`run` runs a whole study file into one HDF5 results file, on all cores.
+- :func:`run` runs a whole study (a file, YAML text or a dict) into one HDF5 results file,
+  on all cores, or one shard of it (``shard=(i, n)``); :func:`merge` joins the shards;
+  :func:`plan` and :func:`validate` check a study without running it.
 - :func:`open_results` (also ``batstudy.open``) opens a results file as an
   :class:`xarray.DataTree`, with the grid as named dimensions, resolved parameter values
   and case labels as coordinates, and the stored histories only (see :func:`histories`).
@@ -23,12 +25,27 @@ from importlib.util import find_spec as _find_spec
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
 
-__all__ = ["simulate", "run", "open_results", "histories", "report", "StudyError", "RunError", "__version__"]
+__all__ = [
+    "simulate",
+    "run",
+    "merge",
+    "plan",
+    "validate",
+    "open_results",
+    "histories",
+    "report",
+    "StudyError",
+    "RunError",
+    "__version__",
+]
 
 # name -> the module that defines it, imported when the name is first used
 _ON_FIRST_USE = {
     "simulate": "._api",
     "run": "._api",
+    "merge": "._api",
+    "plan": "._api",
+    "validate": "._api",
     "StudyError": "._api",
     "RunError": "._api",
     "__version__": "._native",

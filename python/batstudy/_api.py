@@ -7,7 +7,7 @@ import os
 import pathlib
 import sys
 import warnings
-from typing import Any, Callable, Mapping, Optional, Union
+from typing import Any, Callable, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -121,18 +121,47 @@ def _progress_bar(enabled: bool) -> Optional[Callable[[int, int], None]]:
     return update
 
 
+StudyLike = Union[str, os.PathLike, Mapping[str, Any]]
+
+
+def _study_source(study: StudyLike) -> tuple:
+    """(path, text) for the native module: a path (str or os.PathLike), or YAML text (a str
+    with a line break, or a dict given as JSON, which is YAML)."""
+    if isinstance(study, Mapping):
+        return None, json.dumps(study, allow_nan=True)
+    if isinstance(study, os.PathLike):
+        return os.fspath(study), None
+    if isinstance(study, str):
+        return (None, study) if ("\n" in study or "\r" in study) else (study, None)
+    raise TypeError(f"study must be a path, YAML text or a dict, not {type(study).__name__}")
+
+
+def _shard(shard: Optional[Tuple[int, int]]) -> Optional[Tuple[int, int]]:
+    if shard is None:
+        return None
+    if not (isinstance(shard, tuple) and len(shard) == 2 and all(isinstance(x, int) for x in shard)):
+        raise TypeError(f"shard must be a pair of whole numbers (i, n) with 1 <= i <= n, not {shard!r}")
+    return shard
+
+
 def run(
-    study: Union[str, os.PathLike],
+    study: StudyLike,
     output: Union[str, os.PathLike, None] = None,
     jobs: Optional[int] = None,
     resume: bool = False,
     progress: bool = True,
     force: bool = False,
+    shard: Optional[Tuple[int, int]] = None,
 ) -> pathlib.Path:
-    """Run a study file as ``batstudy run`` does; returns the results file's path.
+    """Run a study as ``batstudy run`` does; returns the results file's path.
 
-    ``output`` defaults to the study's ``output`` (else ``results/<name>.h5``); ``jobs`` to
-    every core. ``resume=True`` continues an interrupted run in the same file, and
+    ``study`` is a study file's path, its YAML text (a string with a line break), or a
+    dict of the same content (relative profile paths of text and dicts are taken from the
+    working folder). ``output`` defaults to the study's ``output`` (else
+    ``results/<name>.h5``, for a shard ``results/<name>.shard-I-of-N.h5``); ``jobs`` to every
+    core. ``shard=(i, n)`` runs the i-th of n disjoint blocks of the points (1 <= i <= n),
+    as ``--shard i/n``: a unit of work to hand out (submitit, dask, Ray), merged afterwards
+    with :func:`merge`. ``resume=True`` continues an interrupted run in the same file, and
     ``force=True`` replaces an existing one. The progress bar is tqdm's (a widget in
     Jupyter).
 
@@ -142,15 +171,18 @@ def run(
     (``/errors``) and reported with a warning. Raises :class:`StudyError` for a bad study or
     output (exit status 2), :class:`RunError` when the run itself fails (3).
     """
+    path, text = _study_source(study)
     bar = _progress_bar(progress)
     try:
         code, message, out, report, interrupted = _native.run_study(
-            os.fspath(study),
+            path,
+            text,
             None if output is None else os.fspath(output),
             jobs,
             resume,
             force,
             bar,
+            _shard(shard),
         )
     finally:
         if bar is not None:
@@ -159,14 +191,66 @@ def run(
         raise StudyError(message)
     if out is None:
         raise RunError(message, code)
-    path = pathlib.Path(out)
+    result = pathlib.Path(out)
     if interrupted:
+        again = f"{path!r}" if path is not None else "<the same study>"
         raise KeyboardInterrupt(
-            f"{report.strip()}\n(in Python: batstudy.run({os.fspath(study)!r}, "
-            f"output={os.fspath(path)!r}, resume=True))"
+            f"{report.strip()}\n(in Python: batstudy.run({again}, output={os.fspath(result)!r}, resume=True))"
         )
     if code == EXIT_POINTS_FAILED:
         warnings.warn(report.strip(), RuntimeWarning, stacklevel=2)
     elif progress and report:
         print(report.strip(), file=sys.stderr)
-    return path
+    return result
+
+
+def merge(
+    output: Union[str, os.PathLike],
+    shards: Sequence[Union[str, os.PathLike]],
+    force: bool = False,
+    jobs: Optional[int] = None,
+    study: Union[str, os.PathLike, None] = None,
+) -> pathlib.Path:
+    """Merge shard files (from ``run(..., shard=(i, n))`` or ``batstudy run --shard``) into
+    one results file, as ``batstudy merge`` does; returns its path. The data equal a
+    single-process run's bit for bit. ``study`` is needed only when the study names profile
+    CSV files by relative paths and its folder moved.
+
+    Raises :class:`StudyError` (nothing written) for shards of different studies, a point
+    missing or present twice (naming the shard and the call that finishes it), or an
+    existing output without ``force``; :class:`RunError` when writing fails. A warning
+    reports failed points (their messages are stored in the file)."""
+    code, message, _done, failed = _native.merge(
+        os.fspath(output),
+        [os.fspath(s) for s in shards],
+        force,
+        jobs,
+        None if study is None else os.fspath(study),
+    )
+    if code == EXIT_BAD_INPUT:
+        raise StudyError(message)
+    if code not in (EXIT_OK, EXIT_POINTS_FAILED):
+        raise RunError(message, code)
+    if failed:
+        warnings.warn(f"{output}: {failed} points failed (their messages are in /errors)", RuntimeWarning, stacklevel=2)
+    return pathlib.Path(output)
+
+
+def plan(study: StudyLike) -> dict:
+    """What a study expands to, without running it: a dict with ``name``, ``points`` (the
+    number of points), ``dims`` (``[(name, size), …]`` in row-major order), ``bats`` (the
+    distinct bats' labels), ``histories`` (the number of points that record histories;
+    None for studies over 20,000 points, whose points are not all checked) and ``output``
+    (the study's default results file). Hand out ``run(study, shard=(i, n))`` for
+    ``i in 1..n`` to scale out. Raises :class:`StudyError` for a bad study."""
+    path, text = _study_source(study)
+    try:
+        return dict(_native.describe(path, text))
+    except ValueError as e:
+        raise StudyError(str(e)) from None
+
+
+def validate(study: StudyLike) -> None:
+    """Check a study as ``batstudy validate`` does; returns None or raises
+    :class:`StudyError` naming the file, line, field, value and what is allowed."""
+    plan(study)

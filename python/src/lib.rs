@@ -153,23 +153,57 @@ fn summary_dict<'py>(py: Python<'py>, o: &Outcome) -> PyResult<Bound<'py, PyDict
     Ok(d)
 }
 
-/// Run a study as `batstudy run` does, with the GIL released. Calls `progress(done,
+/// The study a Python call names: a path, or YAML text (a dict arrives as JSON text) named
+/// `<study text>` in messages, its relative profile paths taken from the working folder.
+fn load_study(path: Option<PathBuf>, text: Option<&str>) -> Result<study::Study, (i32, String)> {
+    let opts = LoadOptions {
+        max_points: DEFAULT_MAX_POINTS,
+    };
+    match (path, text) {
+        (_, Some(t)) => study::load_str(t, Path::new("<study text>"), &opts),
+        (Some(p), None) => study::load(&p, &opts),
+        (None, None) => unreachable!("the Python side gives a path or text"),
+    }
+    .map_err(|e| (cli::EXIT_BAD_INPUT, e.to_string()))
+}
+
+/// Run a study as `batstudy run` does, with the GIL released: from a file (`study`) or
+/// from YAML text (`text`), optionally one shard `(i, n)`. Calls `progress(done,
 /// total)` about ten times a second; a KeyboardInterrupt (Ctrl-C) stops the run as the
 /// CLI's first Ctrl-C does: the points in flight finish and are written, the file can be
 /// resumed. Returns (exit code, message, output path or None, report text, interrupted).
 #[pyfunction]
-#[pyo3(signature = (study, output=None, jobs=None, resume=false, force=false, progress=None))]
+#[pyo3(signature = (study=None, text=None, output=None, jobs=None, resume=false, force=false, progress=None, shard=None))]
+#[allow(clippy::too_many_arguments)]
 fn run_study(
     py: Python<'_>,
-    study: PathBuf,
+    study: Option<PathBuf>,
+    text: Option<String>,
     output: Option<PathBuf>,
     jobs: Option<usize>,
     resume: bool,
     force: bool,
     progress: Option<Bound<'_, PyAny>>,
+    shard: Option<(usize, usize)>,
 ) -> PyResult<(i32, String, Option<PathBuf>, String, bool)> {
+    let shard = match shard.map(|(i, n)| format!("{i}/{n}").parse::<run::Shard>()) {
+        None => None,
+        Some(Ok(s)) => Some(s),
+        Some(Err(e)) => {
+            return Ok((
+                cli::EXIT_BAD_INPUT,
+                format!("bad shard: {e}"),
+                None,
+                String::new(),
+                false,
+            ))
+        }
+    };
+    let output_given = output.is_some();
     let args = RunArgs {
-        study,
+        study: study
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("<study text>")),
         output,
         jobs,
         resume,
@@ -177,7 +211,15 @@ fn run_study(
         fail_fast: false,
         quiet: true,
         max_points: DEFAULT_MAX_POINTS,
-        shard: None,
+        shard,
+    };
+    let settings = match py.detach(|| {
+        let loaded = load_study(study, text.as_deref())?;
+        cli::RunSettings::from_study(loaded, &args)
+            .map_err(|e| (cli::EXIT_BAD_INPUT, e.to_string()))
+    }) {
+        Ok(s) => s,
+        Err((code, message)) => return Ok((code, message, None, String::new(), false)),
     };
     let stop = Arc::new(AtomicBool::new(false));
     let counter = Arc::new(PointCounter::default());
@@ -185,7 +227,7 @@ fn run_study(
         let (stop, counter) = (Arc::clone(&stop), Arc::clone(&counter));
         std::thread::Builder::new()
             .name("batstudy-run".into())
-            .spawn(move || cli::run_study(&args, &stop, Some(counter)))
+            .spawn(move || cli::run_settings(settings, output_given, &stop, Some(counter)))
             .map_err(|e| PyValueError::new_err(format!("cannot start the run: {e}")))?
     };
     let mut callback_error: Option<PyErr> = None;
@@ -243,8 +285,76 @@ fn run_study(
     })
 }
 
+/// Merge shard files into `output` as `batstudy merge` does. Returns (exit code, message,
+/// points stored, points failed); the message is empty on success.
+#[pyfunction]
+#[pyo3(signature = (output, shards, force=false, jobs=None, study=None))]
+fn merge(
+    py: Python<'_>,
+    output: PathBuf,
+    shards: Vec<PathBuf>,
+    force: bool,
+    jobs: Option<usize>,
+    study: Option<PathBuf>,
+) -> (i32, String, usize, usize) {
+    if shards.is_empty() {
+        return (cli::EXIT_BAD_INPUT, "no shard files given".into(), 0, 0);
+    }
+    let args = cli::MergeArgs {
+        output,
+        shards,
+        study,
+        force,
+        jobs,
+        quiet: true,
+    };
+    match py.detach(|| cli::merge_shards(&args)) {
+        Ok(sum) => (
+            cli::exit_code_of_failed(sum.n_failed),
+            String::new(),
+            sum.n_done,
+            sum.n_failed,
+        ),
+        Err(f) => (f.code, f.message, 0, 0),
+    }
+}
+
+/// What a study expands to (validating it as `batstudy validate` does): a dict with the
+/// name, the number of points, the dimensions `[(name, size), …]`, the bats' labels and
+/// the number of histories it records (None when not counted: over 20,000 points).
+/// Raises ValueError (the Python side: StudyError) for a bad study.
+#[pyfunction]
+#[pyo3(signature = (study=None, text=None))]
+fn describe<'py>(
+    py: Python<'py>,
+    study: Option<PathBuf>,
+    text: Option<String>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let loaded = py
+        .detach(|| load_study(study, text.as_deref()))
+        .map_err(|(_, m)| PyValueError::new_err(m))?;
+    let plan = &loaded.plan;
+    let d = PyDict::new(py);
+    d.set_item("name", &loaded.file.name)?;
+    d.set_item("points", plan.n_points())?;
+    let dims: Vec<(String, usize)> = plan
+        .shape()
+        .dims
+        .iter()
+        .map(|x| (x.name.clone(), x.size))
+        .collect();
+    d.set_item("dims", dims)?;
+    let bats: Vec<String> = plan.bats().iter().map(|b| b.label.clone()).collect();
+    d.set_item("bats", bats)?;
+    d.set_item("histories", plan.history_count())?;
+    d.set_item("output", loaded.output_path(None))?;
+    Ok(d)
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(merge, m)?)?;
+    m.add_function(wrap_pyfunction!(describe, m)?)?;
     m.add_function(wrap_pyfunction!(cli_main, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(run_study, m)?)?;

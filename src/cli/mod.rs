@@ -20,10 +20,11 @@ pub mod run;
 pub mod slurm;
 pub mod validate;
 
-pub use merge::MergeArgs;
+pub use merge::{merge_shards, MergeArgs};
 pub use plan::PlanArgs;
 pub use run::{
-    exit_code, run_study, run_with, shard_output, FinishedRun, RunArgs, RunFailure, RunSettings,
+    exit_code, exit_code_of_failed, run_settings, run_study, run_with, shard_output, FinishedRun,
+    RunArgs, RunFailure, RunSettings,
 };
 pub use slurm::SlurmArgs;
 

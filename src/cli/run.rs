@@ -75,7 +75,13 @@ impl RunSettings {
                 max_points: a.max_points,
             },
         )?;
-        let jobs = jobs_or_all(a.jobs, &a.study)?;
+        Self::from_study(study, a)
+    }
+
+    /// Validate raw flags for a study already loaded (from a file or from text: the
+    /// Python API's `run` takes a dict or YAML text too); touches nothing.
+    pub fn from_study(study: Study, a: &RunArgs) -> Result<RunSettings, StudyError> {
+        let jobs = jobs_or_all(a.jobs, &study.path)?;
         let existing = match (a.resume, a.force) {
             (true, _) => Existing::Resume,
             (_, true) => Existing::Overwrite,
@@ -99,6 +105,14 @@ impl RunSettings {
             quiet: a.quiet,
             study,
         })
+    }
+}
+
+/// The exit code of a finished run or merge with `n_failed` failed points (0 or 1).
+pub fn exit_code_of_failed(n_failed: usize) -> i32 {
+    match n_failed {
+        0 => EXIT_OK,
+        _ => EXIT_POINTS_FAILED,
     }
 }
 
@@ -180,15 +194,26 @@ pub fn run_study(
     stop: &AtomicBool,
     counter: Option<Arc<crate::run::PointCounter>>,
 ) -> Result<FinishedRun, RunFailure> {
-    let mut settings =
+    let settings =
         RunSettings::from_args(a).map_err(|e| RunFailure::new(EXIT_BAD_INPUT, e.to_string()))?;
+    run_settings(settings, a.output.is_some(), stop, counter)
+}
+
+/// [`run_study`] with validated settings (`output_given`: the output came from the caller,
+/// not from the study file, for the located messages).
+pub fn run_settings(
+    mut settings: RunSettings,
+    output_given: bool,
+    stop: &AtomicBool,
+    counter: Option<Arc<crate::run::PointCounter>>,
+) -> Result<FinishedRun, RunFailure> {
     settings.options.counter = counter;
     let _lock = lock_output(&settings.output).map_err(|(code, m)| RunFailure::new(code, m))?;
     // Checked again under the lock: another run may have finished the file meanwhile.
     check_output_of(
         &settings.study,
         &settings.output,
-        a.output.is_some(),
+        output_given,
         settings.existing,
     )
     .map_err(|e| RunFailure::new(EXIT_BAD_INPUT, e.to_string()))?;

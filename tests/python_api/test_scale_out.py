@@ -1,0 +1,107 @@
+"""Issues 31 and 32: the Python API and the wheel's command as cluster and Python users use
+them to scale out, and what a study given to them cannot do. Runs against the installed
+wheel (scripts/test_wheel.sh)."""
+
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+import batstudy
+
+BATSTUDY = shutil.which("batstudy", path=os.path.dirname(sys.executable)) or "batstudy"
+
+STUDY = {
+    "name": "scaleout",
+    "model": "rigid",
+    "base": {"ball": {"speed": 40}},
+    "grid": {"swing.omega": [0, -40], "impact.z": {"range": [0.45, 0.80, 0.05]}},
+}
+STUDY_YAML = """name: scaleout
+model: rigid
+base: {ball: {speed: 40}}
+grid:
+  swing.omega: [0, -40]
+  impact.z: {range: [0.45, 0.80, 0.05]}
+"""
+
+
+def exit_speeds(path) -> np.ndarray:
+    with h5py.File(path, "r") as f:
+        return f["summary/exit_speed"][()]
+
+
+def test_run_takes_a_path_yaml_text_or_a_dict_and_shards_merge_to_the_whole(tmp_path):
+    study_file = tmp_path / "s.yaml"
+    study_file.write_text(STUDY_YAML)
+    whole = batstudy.run(study_file, output=tmp_path / "whole.h5", progress=False)
+    from_text = batstudy.run(STUDY_YAML, output=tmp_path / "text.h5", progress=False)
+    shards = [
+        batstudy.run(STUDY, output=tmp_path / f"part{i}.h5", shard=(i, 3), progress=False)
+        for i in (1, 2, 3)
+    ]
+    merged = batstudy.merge(tmp_path / "merged.h5", shards)
+    for other in (from_text, merged):
+        np.testing.assert_array_equal(exit_speeds(other), exit_speeds(whole))
+    # an incomplete set is refused, naming the shard, and nothing is written
+    with pytest.raises(batstudy.StudyError, match="lack"):
+        batstudy.merge(tmp_path / "partial.h5", shards[:2])
+    assert not (tmp_path / "partial.h5").exists()
+    with pytest.raises(TypeError):
+        batstudy.run(STUDY, shard=(0,), progress=False)
+    with pytest.raises(batstudy.StudyError, match="shard"):
+        batstudy.run(STUDY, output=tmp_path / "x.h5", shard=(4, 3), progress=False)
+
+
+def test_plan_and_validate_say_what_a_study_is_without_running_it(tmp_path):
+    p = batstudy.plan(STUDY)
+    assert p["name"] == "scaleout" and p["points"] == 16
+    assert p["dims"] == [("swing_omega", 2), ("impact_z", 8)]
+    assert batstudy.validate(STUDY_YAML) is None
+    with pytest.raises(batstudy.StudyError, match="speedd"):
+        batstudy.validate({"name": "bad", "base": {"ball": {"speedd": 3}}})
+
+
+def test_slurm_from_the_wheel_runs_the_installed_command(tmp_path):
+    """The array script's command line is the installed `batstudy` (not the Python
+    interpreter, which the native module sees as its executable), and it runs a shard."""
+    study_file = tmp_path / "s.yaml"
+    study_file.write_text(STUDY_YAML)
+    for command, words in (
+        ([BATSTUDY], [os.path.abspath(BATSTUDY)]),
+        ([sys.executable, "-m", "batstudy"], [sys.executable, "-m", "batstudy"]),
+    ):
+        jobs = tmp_path / f"jobs{len(words)}"
+        r = subprocess.run([*command, "slurm", str(study_file), "--shards", "2", "--dir", str(jobs)],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        array = (jobs / "array.sbatch").read_text()
+        assert f"BATSTUDY=({' '.join(words)})" in array, array
+        env = {**os.environ, "SLURM_ARRAY_TASK_ID": "2", "SLURM_CPUS_PER_TASK": "1"}
+        r = subprocess.run(["bash", str(jobs / "array.sbatch")], cwd=jobs, env=env, capture_output=True, text=True)
+        assert r.returncode == 0, r.stdout + r.stderr
+        shard = jobs / "scaleout.shard-2-of-2.h5"
+        with h5py.File(shard, "r") as f:
+            assert f.attrs["shard"] == "2/2"
+
+
+def test_a_bare_carriage_return_cannot_lift_keys_out_of_the_spec():
+    """A bare \\r is a line break to YAML: it let top-level keys (allow_implausible) escape
+    the `base:` wrapper that simulate() puts around the spec."""
+    spec = "ball: {speed: 40}\rallow_implausible: true\rbat: {material: {density: 50000}}"
+    for sep in ("\r", "\u2028", "\x85"):
+        with pytest.raises(batstudy.StudyError):
+            batstudy.simulate(spec.replace("\r", sep))
+
+
+def test_a_history_too_big_for_memory_raises_instead_of_killing_the_process():
+    big = {"fields": ["force", "displacement"], "interval": 1e-9, "duration": 3e-3, "z_step": 0.001}
+    with pytest.raises(batstudy.StudyError, match="MiB per point"):
+        batstudy.simulate({"impact": {"z": 0.7}}, history=big)
+    with pytest.raises(batstudy.StudyError, match="twice"):
+        batstudy.simulate({"impact": {"z": 0.7}}, history={"fields": ["force", "force"]})
