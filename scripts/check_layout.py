@@ -91,8 +91,8 @@ HISTORY = {"force": ("N", False), "compression": ("m", False), "ball_velocity": 
 
 # name: (dims, units); "str" units mark text variables
 BAT = {
-    "mass": (("bat",), "kg"), "z_cm": (("bat",), "m"), "moment_of_inertia": (("bat",), "kg m2"),
-    "moment_of_inertia_knob6": (("bat",), "kg m2"), "length": (("bat",), "m"),
+    "mass": (("bat",), "kg"), "z_cm": (("bat",), "m"), "moment_of_inertia": (("bat",), "kg m^2"),
+    "moment_of_inertia_knob6": (("bat",), "kg m^2"), "length": (("bat",), "m"),
     "mode_frequency": (("bat", "mode"), "Hz"), "mode_nodes": (("bat", "mode", "node"), "m"),
     "profile_z": (("bat", "profile_point"), "m"), "outer_radius": (("bat", "profile_point"), "m"),
     "inner_radius": (("bat", "profile_point"), "m"), "spec_json": (("bat",), ""),
@@ -105,7 +105,7 @@ BAT = {
 BAT_DIMS = ["bat", "mode", "node", "profile_point", "bbcor_point"]
 
 # UDUNITS-style: "1", or unit symbols with optional integer powers, joined by space, '.', '*'
-# or '/': "m/s", "kg m2", "kg/m^3", "N s", "rad/s".
+# or '/': "m/s", "kg m^2", "kg/m^3", "N s", "rad/s".
 _UNIT = r"[A-Za-z]+(?:\^?-?\d+)?"
 UNITS_RE = re.compile(rf"^(?:1|{_UNIT}(?:[ .*/]{_UNIT})*)$")
 CREATED_RE = re.compile(r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d(?:\.\d+)?Z$")

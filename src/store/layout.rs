@@ -462,13 +462,13 @@ pub const BAT_MASS: VarDef = v("mass", "kg", "bat mass", "bat mass");
 pub const BAT_Z_CM: VarDef = v("z_cm", "m", "CM z", "centre of mass, from the knob");
 pub const BAT_MOI: VarDef = v(
     "moment_of_inertia",
-    "kg m2",
+    "kg m^2",
     "MOI (CM)",
     "moment of inertia about the centre of mass",
 );
 pub const BAT_MOI6: VarDef = v(
     "moment_of_inertia_knob6",
-    "kg m2",
+    "kg m^2",
     "MOI (6 in)",
     "moment of inertia about the point 0.1524 m (6 in) from the knob",
 );

@@ -579,7 +579,7 @@ fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
         let f1 = if per > 0 { modes[i * per] } else { f64::NAN };
         let _ = writeln!(
             s,
-            "  {label}: mass {:.3} kg, CM {:.3} m, MOI(6 in) {:.4} kg m2, mode 1 {:.0} Hz, max BBCOR {:.3}",
+            "  {label}: mass {:.3} kg, CM {:.3} m, MOI(6 in) {:.4} kg m^2, mode 1 {:.0} Hz, max BBCOR {:.3}",
             get(&mass),
             get(&zcm),
             get(&moi6),

@@ -292,7 +292,7 @@ def write_bats(g, bat_list):
     _scale(g, "mode", np.arange(1, 4), "1", "mode number")
     _scale(g, "node", np.arange(4), "1", "node index")
     _scale(g, "profile_point", np.arange(40), "1", "profile point index")
-    for name, u in (("mass", "kg"), ("z_cm", "m"), ("moment_of_inertia", "kg m2"), ("length", "m")):
+    for name, u in (("mass", "kg"), ("z_cm", "m"), ("moment_of_inertia", "kg m^2"), ("length", "m")):
         _var(g, name, np.array([b[name] for b in props]), ["bat"], u, name)
     _var(g, "mode_frequency", np.array([b["mode_frequency"] for b in props]), ["bat", "mode"], "Hz", "modes")
     _var(g, "mode_nodes", np.array([b["mode_nodes"] for b in props]), ["bat", "mode", "node"], "m", "nodes")
