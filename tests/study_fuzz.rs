@@ -79,6 +79,22 @@ const TOKENS: &[&str] = &[
     "allow_implausible: true",
     "numerics.max_steps",
     "1e20",
+    // issue 31: the history block, names and grids a hostile study may hold
+    "fields: [force, force]",
+    "fields: [displacement]",
+    "z_step: 1.0e-9",
+    "interval: 1.0e-12",
+    "name: exit_speed",
+    "name: \"a/b\"",
+    "name: \"\"",
+    "name: point_id",
+    "{range: [0.84, 0.40, -0.04]}",
+    "[0.7, 0.5, 0.6]",
+    "csv: /dev/zero",
+    "csv: /etc/passwd",
+    "\r",
+    "\u{2028}",
+    "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[",
 ];
 
 fn mutate(text: &str, rng: &mut Rng) -> String {
@@ -134,6 +150,57 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
     s.into_iter().collect()
 }
 
+/// Run an accepted study into `out` through the library call behind `batstudy run` (2
+/// threads), if it is small enough to be cheap (at most 64 points, estimated under 50 ms of
+/// work). The oracle: no panic; a refusal or failure carries its exit code (2 or 3) and a
+/// message; a finished run left its file and nothing beside it.
+fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
+    use batstudy::cli::{run_settings, RunArgs, RunSettings};
+    let plan = &study.plan;
+    let history = study.history_request(1.2);
+    let cost: f64 = (0..plan.n_points().min(65))
+        .filter_map(|i| plan.point(i).ok())
+        .map(|p| batstudy::run::estimate_cost(&p.spec, history.as_ref()))
+        .sum();
+    if plan.n_points() > 64 || cost > 0.05 {
+        return false;
+    }
+    let args = RunArgs {
+        study: study.path.clone(),
+        output: Some(out.to_path_buf()),
+        jobs: Some(2),
+        resume: false,
+        force: false,
+        fail_fast: false,
+        quiet: true,
+        max_points: 64,
+        shard: None,
+    };
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let result = RunSettings::from_study(study, &args)
+        .map_err(|e| (2, e.to_string()))
+        .and_then(|s| run_settings(s, true, &stop, None).map_err(|f| (f.code, f.message)));
+    match result {
+        Ok(done) => {
+            let code = batstudy::cli::exit_code(&done.report);
+            assert!(code == 0 || code == 1, "exit {code}");
+            assert!(out.is_file(), "no output");
+            for side in [".journal", ".partial", ".lock"] {
+                let p = format!("{}{side}", out.display());
+                assert!(!Path::new(&p).exists(), "{p} left beside a finished run");
+            }
+        }
+        Err((code, message)) => {
+            assert!(code == 2 || code == 3, "exit {code}: {message}");
+            assert!(!message.is_empty());
+        }
+    }
+    true
+}
+
+/// Accepted studies run per fuzz pass (each a real run into an HDF5 file; bounded time).
+const MAX_RUNS: usize = 150;
+
 #[test]
 fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -157,7 +224,8 @@ fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
     let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
     let mut rng = Rng(env("BATSTUDY_FUZZ_SEED").unwrap_or(0x5EED_BA75));
     let rounds = env("BATSTUDY_FUZZ_ROUNDS").unwrap_or(1) as usize;
-    let (mut runs, mut refused) = (0usize, 0usize);
+    let (mut runs, mut refused, mut ran) = (0usize, 0usize, 0usize);
+    let out_dir = tempfile::tempdir().unwrap();
     for (path, text) in &seeds {
         let tries = rounds * if text.len() > 1500 { 40 } else { 80 };
         for k in 0..tries {
@@ -168,16 +236,32 @@ fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
                 panic!("load_str panicked on {case}");
             };
             runs += 1;
-            if let Err(e) = result {
-                refused += 1;
-                assert!(
-                    e.line.is_some() && e.column.is_some(),
-                    "no position: {e}\n{case}"
-                );
-                assert!(!e.message.is_empty(), "no message: {e}\n{case}");
+            match result {
+                Err(e) => {
+                    refused += 1;
+                    assert!(
+                        e.line.is_some() && e.column.is_some(),
+                        "no position: {e}\n{case}"
+                    );
+                    assert!(!e.message.is_empty(), "no message: {e}\n{case}");
+                }
+                // what validate accepts, run (issue 31: accepted studies failed after
+                // computing everything, or wrote broken files)
+                Ok(study) if ran < MAX_RUNS => {
+                    let out = out_dir.path().join(format!("run{runs}.h5"));
+                    let run = catch_unwind(AssertUnwindSafe(|| run_if_small(study, &out)));
+                    match run {
+                        Ok(true) => ran += 1,
+                        Ok(false) => {}
+                        Err(_) => panic!("run panicked on {case}"),
+                    }
+                }
+                Ok(_) => {}
             }
         }
     }
+    eprintln!("{runs} mutated studies, {refused} refused, {ran} accepted ones run");
+    assert!(ran >= 20, "only {ran} accepted studies were run");
     assert!(runs >= 1500, "{runs} mutated studies");
     assert!(
         refused * 4 >= runs,

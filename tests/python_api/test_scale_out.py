@@ -105,3 +105,36 @@ def test_a_history_too_big_for_memory_raises_instead_of_killing_the_process():
         batstudy.simulate({"impact": {"z": 0.7}}, history=big)
     with pytest.raises(batstudy.StudyError, match="twice"):
         batstudy.simulate({"impact": {"z": 0.7}}, history={"fields": ["force", "force"]})
+
+
+def test_mutated_spec_texts_raise_study_errors_and_never_crash():
+    """A bounded, seeded mutation fuzz of simulate()'s text (issue 31): whatever the text,
+    the call returns a result or raises StudyError; it never aborts the interpreter (a
+    crash would end this test run) or raises anything else."""
+    import random
+
+    rng = random.Random(0x5EED)
+    seeds = [
+        "bat: {preset: aluminum}\nball: {speed: 40}\nimpact: {z: 0.7}\nmodel: rigid\n",
+        "impact: {z: 0.65}\nswing: {omega: -30}\nmodel: rigid\nball: {law: {kind: elastic}}\n",
+    ]
+    tokens = ["\r", "\u2028", "\x85", "\n", ": ", "- ", "{", "}", "[", "]", "'", '"', "#", ".nan", "-1",
+              "1e400", "allow_implausible: true", "base:", "history:", "name: x", "\t", "\x00", "&a", "*a"]
+    outcomes = {"ok": 0, "refused": 0}
+    for k in range(300):
+        text = list(rng.choice(seeds))
+        for _ in range(rng.randint(1, 3)):
+            at = rng.randrange(len(text) + 1)
+            if rng.random() < 0.7:
+                text[at:at] = list(rng.choice(tokens))
+            elif text:
+                del text[at:at + rng.randint(1, 6)]
+        spec = "".join(text)
+        try:
+            r = batstudy.simulate(spec)
+            assert np.isfinite(r["exit_speed"]), (k, spec)
+            outcomes["ok"] += 1
+        except batstudy.StudyError as e:
+            assert str(e), (k, spec)
+            outcomes["refused"] += 1
+    assert outcomes["ok"] >= 10 and outcomes["refused"] >= 100, outcomes
