@@ -10,7 +10,7 @@ use super::plan::{is_unset, value_text, DimOrigin, Plan};
 use crate::model::resolved::{resolved_tree, resolved_value};
 use crate::results::{Coord, CoordValues};
 use serde_json::Value as Json;
-use serde_yaml_ng::Value;
+use yaml_serde::Value;
 
 /// Suffix of a `points`/`zip` dim's label coordinate (`case` → `case_label`).
 pub const LABEL_SUFFIX: &str = "_label";

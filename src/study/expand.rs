@@ -14,7 +14,7 @@ use super::syntax::{check_base_types, check_param_keys, check_path};
 use super::types::{AxisValues, StudyFile};
 use crate::results::ResultShape;
 use crate::results::RESERVED_NAMES;
-use serde_yaml_ng::{Mapping, Value};
+use yaml_serde::{Mapping, Value};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -113,7 +113,7 @@ fn base_value(cx: &Ctx, file: &StudyFile) -> Result<Value, StudyError> {
     if let Some(m) = file.model {
         if let Some(bm) = base.get("model") {
             let bm: Option<crate::model::spec::ModelKind> =
-                serde_yaml_ng::from_value(bm.clone()).ok();
+                yaml_serde::from_value(bm.clone()).ok();
             if bm.is_some() && bm != Some(m) {
                 return Err(cx
                     .err(&keys(&["model"]), "`model` and `base.model` disagree")
@@ -122,7 +122,7 @@ fn base_value(cx: &Ctx, file: &StudyFile) -> Result<Value, StudyError> {
                     .allowed("one of them, or both the same"));
             }
         }
-        let _ = set_path(&mut base, "model", serde_yaml_ng::to_value(m).unwrap());
+        let _ = set_path(&mut base, "model", yaml_serde::to_value(m).unwrap());
     }
     Ok(base)
 }

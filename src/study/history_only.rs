@@ -7,7 +7,7 @@ use super::paths::with_defaults;
 use super::plan::{related, value_text, Plan};
 use super::source::{keys, Seg};
 use super::types::StudyFile;
-use serde_yaml_ng::Value;
+use yaml_serde::Value;
 
 /// Every value listed in `history.only` must be one that some point takes: a value off
 /// the grid (a typo, or 0.703 for 0.70) would silently record nothing. For a plan small

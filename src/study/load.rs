@@ -14,7 +14,7 @@ use super::syntax::{
 use super::types::StudyFile;
 use crate::model::outcome::HistoryRequest;
 use crate::results::{BatVariant, StudyInfo};
-use serde_yaml_ng::Value;
+use yaml_serde::Value;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
@@ -60,9 +60,9 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         err.column = Some(at.column);
         return Err(err);
     }
-    let root: Value = serde_yaml_ng::from_str(text).map_err(|e| {
+    let root: Value = yaml_serde::from_str(text).map_err(|e| {
         let mut err = StudyError::new(path, format!("malformed YAML: {e}"));
-        // serde_yaml_ng gives no location for some errors (a second document): the
+        // yaml_serde gives no location for some errors (a second document): the
         // document's start then.
         let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
         err.line = Some(line);

@@ -7,7 +7,7 @@ use super::paths::set_path;
 use super::plan::{related, DimOrigin, Plan, PlanDim, ResolveError};
 use super::source::{dotted, keys, Seg, SourceMap};
 use super::types::StudyFile;
-use serde_yaml_ng::{Mapping, Value};
+use yaml_serde::{Mapping, Value};
 use std::path::Path;
 
 pub(super) struct Ctx<'a> {

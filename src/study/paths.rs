@@ -3,7 +3,7 @@
 
 use crate::model::spec::CollisionSpec;
 use serde_json::Value as J;
-use serde_yaml_ng::{Mapping, Value};
+use yaml_serde::{Mapping, Value};
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
@@ -243,7 +243,7 @@ pub fn with_defaults(base: &Value) -> Value {
     serde_json::to_value(&v)
         .ok()
         .and_then(|j| serde_json::from_value::<crate::model::spec::CollisionSpec>(j).ok())
-        .and_then(|spec| serde_yaml_ng::to_value(spec).ok())
+        .and_then(|spec| yaml_serde::to_value(spec).ok())
         .unwrap_or_else(|| base.clone())
 }
 
@@ -296,7 +296,7 @@ mod tests {
     #[test]
     fn set_path_creates_records() {
         let mut v: Value =
-            serde_yaml_ng::from_str("hoop: null\nbat: {profile: {knots: []}}").unwrap();
+            yaml_serde::from_str("hoop: null\nbat: {profile: {knots: []}}").unwrap();
         set_path(&mut v, "hoop.frequency", Value::from(1000.0)).unwrap();
         set_path(&mut v, "impact.z", Value::from(0.7)).unwrap();
         set_path(&mut v, "bat.profile.csv", Value::from("x.csv")).unwrap();

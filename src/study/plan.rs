@@ -4,7 +4,7 @@
 use super::checks::{check_spec, Violation};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::results::{Coord, CoordValues, Dim, PointId, ResultShape};
-use serde_yaml_ng::Value;
+use yaml_serde::Value;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
 
@@ -158,8 +158,8 @@ pub(crate) fn same_value(a: &Value, b: &Value) -> bool {
 /// A value as short text (flow YAML-ish JSON).
 /// The value a `points` set gives a parameter it leaves out: "keep the base value".
 pub fn unset() -> Value {
-    Value::Tagged(Box::new(serde_yaml_ng::value::TaggedValue {
-        tag: serde_yaml_ng::value::Tag::new("unset"),
+    Value::Tagged(Box::new(yaml_serde::value::TaggedValue {
+        tag: yaml_serde::value::Tag::new("unset"),
         value: Value::Null,
     }))
 }
@@ -233,7 +233,7 @@ impl Plan {
                 .collect();
             let _ = super::paths::set_path(v, "bat.profile.knots", Value::Sequence(k));
         }
-        // Through JSON: serde_yaml_ng's Value reads enums only from YAML tags, while a
+        // Through JSON: yaml_serde's Value reads enums only from YAML tags, while a
         // study writes `profile: {knots: …}`.
         let json = serde_json::to_value(&*v).map_err(|e| ResolveError::Shape {
             path: String::new(),
@@ -290,7 +290,7 @@ impl Plan {
         if self.history_only.is_empty() {
             return true;
         }
-        let Ok(tree) = serde_yaml_ng::to_value(spec) else {
+        let Ok(tree) = yaml_serde::to_value(spec) else {
             return false;
         };
         self.history_only.iter().all(|(path, wanted)| {

@@ -8,7 +8,7 @@ use super::paths::{children, known_paths, set_path, PathKind};
 use super::plan::{path_string, value_text};
 use super::source::{dotted, keys, Seg};
 use super::types::StudyFile;
-use serde_yaml_ng::{Mapping, Value};
+use yaml_serde::{Mapping, Value};
 
 pub(super) const TOP_KEYS: &[&str] = &[
     "name",

@@ -6,7 +6,7 @@ use crate::model::spec::{CollisionSpec, ModelKind};
 use indexmap::IndexMap;
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::Deserialize;
-use serde_yaml_ng::Value;
+use yaml_serde::Value;
 use std::borrow::Cow;
 
 /// A parameter study: a base collision and the parameters varied around it.

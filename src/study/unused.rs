@@ -7,7 +7,7 @@
 //! that sweeps `ball.law.kind` may well set `stiffness` for its linear points.
 
 use super::paths::get_path;
-use serde_yaml_ng::Value;
+use yaml_serde::Value;
 
 /// A field that only some options use.
 pub struct Rule {
