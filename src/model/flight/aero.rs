@@ -132,7 +132,8 @@ impl NathanAero {
             100.0,
             "(0, 100]",
         )?;
-        if !(self.spin_decay_tau_s > 0.0) || self.spin_decay_tau_s.is_nan() {
+        // NaN fails the comparison, so it is rejected too.
+        if self.spin_decay_tau_s.is_nan() || self.spin_decay_tau_s <= 0.0 {
             return Err(FlightError::OutOfRange {
                 name: "aero.spin_decay_tau_s",
                 value: self.spin_decay_tau_s,

@@ -271,7 +271,7 @@ fn validate_options(opts: &FlightOptions) -> Result<(), FlightError> {
 fn first_step(forces: &Forces, start: &State, step: f64) -> Option<f64> {
     let (z0, vz0) = (start.p[2], start.v[2]);
     let vacuum_hang = (vz0 + (vz0 * vz0 + 2.0 * GRAVITY * z0).sqrt()) / GRAVITY;
-    if !(vacuum_hang > 0.0) {
+    if vacuum_hang.is_nan() || vacuum_hang <= 0.0 {
         return None;
     }
     let mut h = step.min(vacuum_hang / MIN_STEPS_PER_FLIGHT);
