@@ -17,9 +17,10 @@
 //! - Distance per mph: about 5 ft per mph at the best angle; HitTrax's algorithm gives
 //!   5 ft 7 in per mph (Bat Digest, "How does exit speed affect distance", 3 July 2020).
 //! - Coors Field: "most estimates [cite] an increase of 5 to 10% in distance"
-//!   (P. Hamlington, CU Boulder, quoted by KDVR Denver); Chambers, Page & Zaidins, "How much
-//!   farther do baseballs really fly at Denver's Coors Field?", Professional Geographer 55
-//!   (2003): about 6 % over the other National League parks, measured; R. K. Adair (quoted by
+//!   (P. Hamlington, CU Boulder, quoted by KDVR Denver); Chambers, Page & Zaidins,
+//!   "Atmosphere, weather, and baseball: how much farther do baseballs really fly at Denver's
+//!   Coors Field?", The Professional Geographer 55 (2003): about 6 % over the other National
+//!   League parks, measured; R. K. Adair (quoted by
 //!   the Hartford Courant, 15 Nov 1992): "about 10 percent farther".
 //!
 //! Each band was set from its source before the model's number was looked at.
