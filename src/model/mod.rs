@@ -17,6 +17,7 @@ pub mod ball;
 pub mod bat;
 pub mod collision;
 pub mod error;
+pub mod flight;
 pub mod measures;
 pub mod outcome;
 pub mod plausible;
