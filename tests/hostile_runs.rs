@@ -192,6 +192,17 @@ fn merge_refuses_altered_and_incomplete_shards_and_writes_nothing() {
     let o = run(&["merge", "-o", &merged, &a, &b]);
     assert_eq!(code(&o), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("point_id"), "{}", stderr(&o));
+    // the study text a shard stores must be the one its sha256 names
+    let a2 = d.p("a2.h5");
+    std::fs::copy(&a, &a2).unwrap();
+    {
+        let f = hdf5::File::open_rw(&a2).unwrap();
+        let text: hdf5::types::VarLenUnicode = RIGID.replace("speed: 40", "speed: 41").parse().unwrap();
+        f.attr("study_yaml").unwrap().write_scalar(&text).unwrap();
+    }
+    let o = run(&["merge", "-o", &merged, &a2, &b]);
+    assert_eq!(code(&o), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("sha256"), "{}", stderr(&o));
     {
         let f = hdf5::File::open_rw(&b).unwrap();
         f.group("summary").unwrap().unlink("point_id").unwrap();
