@@ -133,23 +133,50 @@ pub fn simulate_wave(
             approach_speed: approach,
         });
     }
-    if spec.numerics.integrator == Integrator::Verlet {
-        if bat.beam.pin.is_some() {
-            return Err(ModelError::Unsupported(
-                "a pinned grip needs the modal integrator",
-            ));
-        }
-        if bat.damping_ratio > 0.0 || bat.grip_damping > 0.0 {
-            return Err(ModelError::Unsupported(
-                "material damping needs the modal integrator",
-            ));
-        }
-        if spec.bat.beam == BeamTheory::Timoshenko {
-            return Err(ModelError::Unsupported(
-                "the Timoshenko beam needs the modal integrator",
-            ));
-        }
+    check_integrator(spec, bat)?;
+    let collision = collision_of(spec, bat, approach)?;
+    let mut recorder = history.map(Recorder::new).transpose()?;
+    let mut contact = Contact::started();
+    let fin = match spec.numerics.integrator {
+        Integrator::Modal => run_modal(&collision, bat, &mut contact, &mut recorder)?,
+        Integrator::Verlet => run_verlet(&collision, bat, &mut contact, &mut recorder)?,
+    };
+    let energy = energy_partition(&collision, bat, &contact, &fin);
+    let diagnostics = diagnostics_of(spec, bat, &collision, &fin, &energy);
+    let mut outcome = outcome_of(spec, bat, &collision, &contact, &fin, energy, approach);
+    outcome.history = recorder.map(|r| r.finish());
+    Ok((outcome, diagnostics))
+}
+
+/// The explicit baseline steps the plain Euler–Bernoulli beam only.
+fn check_integrator(spec: &CollisionSpec, bat: &PreparedBat) -> Result<(), ModelError> {
+    if spec.numerics.integrator != Integrator::Verlet {
+        return Ok(());
     }
+    if bat.beam.pin.is_some() {
+        return Err(ModelError::Unsupported(
+            "a pinned grip needs the modal integrator",
+        ));
+    }
+    if bat.damping_ratio > 0.0 || bat.grip_damping > 0.0 {
+        return Err(ModelError::Unsupported(
+            "material damping needs the modal integrator",
+        ));
+    }
+    if spec.bat.beam == BeamTheory::Timoshenko {
+        return Err(ModelError::Unsupported(
+            "the Timoshenko beam needs the modal integrator",
+        ));
+    }
+    Ok(())
+}
+
+/// The collision as the integrators see it: ball, frame, hoop, impact point, step, budget.
+fn collision_of(
+    spec: &CollisionSpec,
+    bat: &PreparedBat,
+    approach: f64,
+) -> Result<Collision, ModelError> {
     let hoop = resolve_hoop(spec, bat)?;
     let dt = time_step(spec, bat)?;
     // The run lasts at least the re-contact watch after the ball has left.
@@ -160,7 +187,7 @@ pub fn simulate_wave(
         .grip_z
         .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
     let law = ContactLaw::new(&spec.ball.law, approach);
-    let collision = Collision {
+    Ok(Collision {
         law,
         ball_mass: spec.ball.mass,
         ball_speed: spec.ball.speed - frame_velocity,
@@ -173,18 +200,26 @@ pub fn simulate_wave(
         dt,
         budget,
         mode_cutoff: MODE_CUTOFF_FACTOR * contact_omega(spec, hoop, &law, approach),
-    };
-    let mut recorder = history.map(Recorder::new).transpose()?;
-    let mut contact = Contact::started();
-    let fin = match spec.numerics.integrator {
-        Integrator::Modal => run_modal(&collision, bat, &mut contact, &mut recorder)?,
-        Integrator::Verlet => run_verlet(&collision, bat, &mut contact, &mut recorder)?,
-    };
+    })
+}
 
-    let m = collision.ball_mass;
-    let u = collision.frame_velocity;
-    // back to the bat-CM frame
-    let exit_speed = -(fin.ball_velocity + u);
+/// The hoop mass and its velocity at first contact (that of the contact point).
+fn hoop_start(c: &Collision) -> (f64, f64) {
+    (
+        c.hoop.map_or(0.0, |h| h.mass),
+        c.omega * c.lever - c.frame_velocity,
+    )
+}
+
+/// Where the energy went: ball, ball's hysteresis, bat's rigid motion and vibration, hoop,
+/// damping.
+fn energy_partition(
+    c: &Collision,
+    bat: &PreparedBat,
+    contact: &Contact,
+    fin: &FinalState,
+) -> EnergyPartition {
+    let (m, u) = (c.ball_mass, c.frame_velocity);
     let total_mass = bat.beam.total_mass();
     let bat_rigid = if bat.beam.grip_z.is_some() {
         fin.bat_rigid_energy
@@ -192,11 +227,10 @@ pub fn simulate_wave(
         0.5 * fin.bat_momentum.powi(2) / total_mass
             + 0.5 * fin.bat_angular_momentum.powi(2) / bat.inertia_cm
     };
-    let hoop_initial_velocity = collision.omega * collision.lever - u;
-    let hoop_mass = collision.hoop.map_or(0.0, |h| h.mass);
-    let energy = EnergyPartition {
-        initial: 0.5 * m * collision.ball_speed.powi(2)
-            + 0.5 * collision.omega.powi(2) * bat.inertia_cm
+    let (hoop_mass, hoop_initial_velocity) = hoop_start(c);
+    EnergyPartition {
+        initial: 0.5 * m * c.ball_speed.powi(2)
+            + 0.5 * c.omega.powi(2) * bat.inertia_cm
             + 0.5 * total_mass * u * u
             + 0.5 * hoop_mass * hoop_initial_velocity.powi(2),
         ball_final: 0.5 * m * fin.ball_velocity.powi(2),
@@ -206,51 +240,77 @@ pub fn simulate_wave(
         hoop: fin.hoop_energy,
         bat_damping: fin.bat_damping,
         grip_damping: fin.grip_loss,
-    };
-    let outcome = Outcome {
+    }
+}
+
+/// The point's summary (histories are added by the caller).
+fn outcome_of(
+    spec: &CollisionSpec,
+    bat: &PreparedBat,
+    c: &Collision,
+    contact: &Contact,
+    fin: &FinalState,
+    energy: EnergyPartition,
+    approach: f64,
+) -> Outcome {
+    // back to the bat-CM frame
+    let exit_speed = -(fin.ball_velocity + c.frame_velocity);
+    Outcome {
         exit_speed,
         exit_speed_lab: exit_speed + spec.swing.cm_speed,
         // v_exit = e_A v_pitch + (1 + e_A) v_bat with v_pitch = ball.speed and the bat's
         // impact-point speed toward the pitcher v_bat = −ω l: e_A = (exit + ω l)/approach.
-        collision_efficiency: (exit_speed + collision.omega * collision.lever) / approach,
+        collision_efficiency: (exit_speed + c.omega * c.lever) / approach,
         approach_speed: approach,
         contact_time: contact.first_duration,
         impulse_time_99: contact.impulse_time(0.99),
-        hoop_frequency: collision.hoop.map_or(f64::NAN, |h| h.frequency()),
-        hoop_mass: collision.hoop.map_or(f64::NAN, |h| h.mass),
+        hoop_frequency: c.hoop.map_or(f64::NAN, |h| h.frequency()),
+        hoop_mass: c.hoop.map_or(f64::NAN, |h| h.mass),
         // filled for a bat at rest by `collision::simulate`
         bbcor: f64::NAN,
         besr: f64::NAN,
         bpf: f64::NAN,
         peak_force: contact.peak_force,
         max_compression: contact.max_compression,
-        impulse: m * (collision.ball_speed - fin.ball_velocity),
+        impulse: c.ball_mass * (c.ball_speed - fin.ball_velocity),
         energy,
         recontact: contact.recontact,
         grip_vibration_amplitude: fin.grip_amplitude,
         grip_recoil_speed: grip_recoil_speed(
             fin.bat_momentum,
-            fin.bat_angular_momentum - collision.omega * bat.inertia_cm,
+            fin.bat_angular_momentum - c.omega * bat.inertia_cm,
             bat.beam.total_mass(),
             bat.inertia_cm,
             bat.z_cm,
             KNOB6,
         ),
-        history: recorder.map(|r| r.finish()),
-    };
+        history: None,
+    }
+}
+
+/// The conservation checks: momentum and angular momentum before and after (about the grip
+/// with one, else the CM), and the energy's final sum.
+fn diagnostics_of(
+    spec: &CollisionSpec,
+    bat: &PreparedBat,
+    c: &Collision,
+    fin: &FinalState,
+    energy: &EnergyPartition,
+) -> Diagnostics {
+    let m = c.ball_mass;
+    let (hoop_mass, hoop_initial_velocity) = hoop_start(c);
     // about the grip (with one) or the CM; bat angular momentum about the CM → about centre
     let centre = bat.beam.grip_z.unwrap_or(bat.z_cm);
     let lever = spec.impact.z - centre;
     let shift = bat.z_cm - centre;
-    let bat_momentum_initial = -total_mass * u;
-    let diagnostics = Diagnostics {
-        momentum_initial: m * collision.ball_speed
+    let bat_momentum_initial = -bat.beam.total_mass() * c.frame_velocity;
+    Diagnostics {
+        momentum_initial: m * c.ball_speed
             + hoop_mass * hoop_initial_velocity
             + bat_momentum_initial,
         momentum_final: m * fin.ball_velocity + fin.bat_momentum + hoop_mass * fin.hoop_velocity,
-        angular_momentum_initial: (m * collision.ball_speed + hoop_mass * hoop_initial_velocity)
-            * lever
-            + collision.omega * bat.inertia_cm
+        angular_momentum_initial: (m * c.ball_speed + hoop_mass * hoop_initial_velocity) * lever
+            + c.omega * bat.inertia_cm
             + shift * bat_momentum_initial,
         angular_momentum_final: (m * fin.ball_velocity + hoop_mass * fin.hoop_velocity) * lever
             + fin.bat_angular_momentum
@@ -262,12 +322,11 @@ pub fn simulate_wave(
             + energy.hoop
             + energy.bat_damping
             + energy.grip_damping,
-        dt,
+        dt: c.dt,
         steps: fin.steps,
         segments: bat.beam.len(),
         modes: fin.modes,
-    };
-    Ok((outcome, diagnostics))
+    }
 }
 
 /// Interpolation weights of the requested z (NaN marks points beyond the bat).

@@ -1,0 +1,142 @@
+//! The default integrator: the beam advanced exactly in its modal basis under a contact
+//! force linear over each step; the end force found implicitly (one scalar equation).
+//!
+//! One step, as the functions below take it: the contact point's free motion
+//! ([`state::free_contact_point`]), the end forces from the ball's law
+//! ([`state::solve_contact`]), the damping losses over the step, the modes' exact update
+//! ([`state::advance_modes`]), the ball's update and the contact's bookkeeping
+//! ([`ball_and_contact`]), then the sample ([`record`]) and the stop test.
+
+mod propagator;
+mod record;
+mod setup;
+mod state;
+
+use super::contact::Contact;
+use super::{displacement_points, spec_history, Collision, FinalState};
+use crate::model::bat::motion::grip_vibration_amplitude;
+use crate::model::bat::PreparedBat;
+use crate::model::collision::history::Recorder;
+use crate::model::error::ModelError;
+use crate::model::protocol::KNOB6;
+use setup::Setup;
+use state::State;
+
+pub(super) fn run_modal(
+    c: &Collision,
+    bat: &PreparedBat,
+    contact: &mut Contact,
+    recorder: &mut Option<Recorder>,
+) -> Result<FinalState, ModelError> {
+    let setup = Setup::new(c, bat);
+    let mut state = State::first_contact(c, bat, setup.n);
+    let points = displacement_points(bat, spec_history(recorder));
+    if let Some(rec) = recorder
+        .as_mut()
+        .filter(|r| r.wants_displacement && !points.is_empty())
+    {
+        record::install_projector(rec, &setup, bat, &points);
+    }
+    if let Some(rec) = recorder.as_mut() {
+        let first = record::sample(rec, bat, &state, 0.0, 0.0, 0.0, points.len());
+        rec.push(0.0, first);
+    }
+    loop {
+        step(c, &setup, &mut state, contact);
+        if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, setup.h)) {
+            let p_bat = state.bat_force(c);
+            let hoop_rel = state.xh - state.y_c;
+            let smp = record::sample(rec, bat, &state, state.force, p_bat, hoop_rel, points.len());
+            rec.push(state.t, smp);
+        }
+        if contact.stop_after(state.t, state.steps, setup.h, c.budget, recorder)? {
+            break;
+        }
+    }
+    Ok(final_state(c, bat, &setup, &state))
+}
+
+/// One step of length h.
+fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
+    let (y_free, g_end, alpha_d) = state::free_contact_point(c, s, state);
+    let h2 = s.h * s.h;
+    let w_free = state.w + s.h * state.v - h2 * state.force / (3.0 * c.ball_mass);
+    let (new_force, new_hoop_force, new_s) =
+        state::solve_contact(c, state, contact, w_free, y_free, s.g_start, g_end);
+    // the bat is pushed by the ball (no hoop) or by the hoop spring
+    let (p0, p1) = match c.hoop {
+        Some(_) => (state.hoop_force, new_hoop_force),
+        None => (state.force, new_force),
+    };
+    state::material_losses_before(s, state, p0, p1);
+    let d = match &s.grip {
+        Some(g) => (state.d_force, alpha_d + g.beta * p1),
+        None => (0.0, 0.0),
+    };
+    if let Some(g) = &s.grip {
+        state::grip_losses_before(s, g, state, (p0, p1), d);
+    }
+    state::advance_modes(s, state, (p0, p1), d);
+    state::losses_after(s, state, d.1);
+    state.y_c = y_free + s.g_start * p0 + g_end * p1;
+    state.w = w_free - h2 * new_force / (6.0 * c.ball_mass);
+    ball_and_contact(c, s, state, contact, (new_force, new_hoop_force, new_s));
+}
+
+/// The ball's velocity, the compression, the forces and the clock after the step, and the
+/// contact's bookkeeping (first contact, separation, impulse).
+fn ball_and_contact(
+    c: &Collision,
+    s: &Setup,
+    state: &mut State,
+    contact: &mut Contact,
+    (new_force, new_hoop_force, new_s): (f64, f64, f64),
+) {
+    state.v -= s.h * (state.force + new_force) / (2.0 * c.ball_mass);
+    let s_prev = state.s;
+    state.s_before = state.s;
+    let s_states = match c.hoop {
+        Some(_) => state.w - state.xh,
+        None => state.w - state.y_c,
+    };
+    // s from the solve and from the states agree to round-off; use the solve's in-contact
+    let s_track = if new_force > 0.0 { new_s } else { s_states };
+    state.force = new_force;
+    state.hoop_force = new_hoop_force;
+    let t_prev = state.t;
+    state.steps += 1;
+    state.t = state.steps as f64 * s.h;
+    contact.update(&c.law, t_prev, s_prev, state.t, s_track, state.force);
+    state.s = s_track;
+}
+
+/// What the run hands back: the ball's velocity, the bat's energies and momenta, the losses.
+fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> FinalState {
+    let (q, qd) = (&state.q, &state.qd);
+    let mut bat_energy = 0.0;
+    for j in 0..s.n {
+        bat_energy += 0.5 * (qd[j] * qd[j] + (s.omega[j] * q[j]).powi(2));
+    }
+    // strain energy of the dropped modes under the final contact load (zero once separated)
+    let p_final = state.bat_force(c);
+    bat_energy += 0.5 * s.g_static * p_final * p_final;
+    let dot = |x: &[f64]| x.iter().zip(qd).map(|(a, b)| a * b).sum::<f64>();
+    let hoop_energy = c.hoop.map_or(0.0, |hp| {
+        0.5 * hp.mass * state.vh * state.vh + 0.5 * hp.stiffness * (state.xh - state.y_c).powi(2)
+    });
+    let bat_rigid_energy = qd[..bat.modes.n_rigid].iter().map(|x| 0.5 * x * x).sum();
+    FinalState {
+        ball_velocity: state.v,
+        bat_energy,
+        bat_rigid_energy,
+        bat_damping: state.bat_damping,
+        grip_loss: state.grip_loss,
+        bat_momentum: dot(&bat.momentum_weight),
+        bat_angular_momentum: dot(&bat.angular_weight),
+        hoop_energy,
+        hoop_velocity: if c.hoop.is_some() { state.vh } else { 0.0 },
+        grip_amplitude: grip_vibration_amplitude(bat, q, qd, KNOB6),
+        steps: state.steps,
+        modes: s.n,
+    }
+}

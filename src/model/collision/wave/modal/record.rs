@@ -1,0 +1,87 @@
+//! What the modal integrator hands the history recorder: a projector from the modal
+//! coordinates to the bat's displacement at every requested z, and one sample per step.
+
+use super::super::project::project;
+use super::setup::{shapes_at, Setup};
+use super::state::State;
+use crate::model::bat::PreparedBat;
+use crate::model::collision::history::{Recorder, Sample};
+
+/// Give the recorder the displacement of the bat at its requested positions (`points`:
+/// node pair, weight, inside the bat) as a function of the modal coordinates and the force
+/// on the bat: the stepped modes' sum plus the dropped modes' static response.
+pub(super) fn install_projector(
+    rec: &mut Recorder,
+    setup: &Setup,
+    bat: &PreparedBat,
+    points: &[(usize, f64, bool)],
+) {
+    let (n, n_all, nz) = (setup.n, bat.modes.omega.len(), points.len());
+    // The mode shapes at the requested z, mode by mode (`shape_by_mode[j * nz + i]`): a
+    // sample's displacements are summed over the modes for every z at once (`project`).
+    let mut shape_by_mode = vec![0.0; n * nz];
+    for (i, &(k, a, _)) in points.iter().enumerate() {
+        for (j, s) in shapes_at(bat, k, a, 0..n).into_iter().enumerate() {
+            shape_by_mode[j * nz + i] = s;
+        }
+    }
+    // where `Iterator::sum` starts (-0.0 or 0.0, by toolchain): the same bits as a sum
+    let sum_start: f64 = std::iter::empty::<f64>().sum();
+    // static displacement of the dropped modes at each requested z per unit contact force
+    let static_at: Vec<f64> = points
+        .iter()
+        .map(|&(k, a, _)| {
+            shapes_at(bat, k, a, n..n_all)
+                .iter()
+                .zip(&setup.static_weight)
+                .map(|(s, w)| s * w)
+                .sum()
+        })
+        .collect();
+    let inside: Vec<bool> = points.iter().map(|&(_, _, inside)| inside).collect();
+    rec.project_with(Box::new(
+        move |q: &[f64], p_bat: f64, out: &mut Vec<f64>| {
+            let start = out.len();
+            out.resize(start + nz, sum_start);
+            let y = &mut out[start..];
+            project(q, &shape_by_mode, y, sum_start);
+            for (yi, (&inside, st)) in y.iter_mut().zip(inside.iter().zip(&static_at)) {
+                *yi = if inside { *yi + st * p_bat } else { f64::NAN };
+            }
+        },
+    ));
+}
+
+/// The sample of the state now: contact force, compression, ball velocity, the hoop's
+/// displacement, the rigid motion and the modal coordinates (projected by the recorder).
+pub(super) fn sample(
+    rec: &Recorder,
+    bat: &PreparedBat,
+    state: &State,
+    force: f64,
+    p_bat: f64,
+    hoop_rel: f64,
+    n_positions: usize,
+) -> Sample {
+    let q = &state.q;
+    let dot = |x: &[f64]| x.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
+    let rigid = |weight: &[f64], over: f64| match rec.wants_rigid {
+        true => dot(weight) / over,
+        false => 0.0,
+    };
+    Sample {
+        force,
+        compression: state.s.max(0.0),
+        ball_velocity: state.v,
+        hoop_displacement: hoop_rel,
+        rigid_translation: rigid(&bat.momentum_weight, bat.beam.total_mass()),
+        rigid_rotation: rigid(&bat.angular_weight, bat.inertia_cm),
+        modal: if rec.wants_displacement && n_positions > 0 {
+            q[..q.len()].to_vec()
+        } else {
+            Vec::new()
+        },
+        modal_force: p_bat,
+        displacement: Vec::new(),
+    }
+}
