@@ -197,7 +197,8 @@ fn merge_refuses_altered_and_incomplete_shards_and_writes_nothing() {
     std::fs::copy(&a, &a2).unwrap();
     {
         let f = hdf5::File::open_rw(&a2).unwrap();
-        let text: hdf5::types::VarLenUnicode = RIGID.replace("speed: 40", "speed: 41").parse().unwrap();
+        let text: hdf5::types::VarLenUnicode =
+            RIGID.replace("speed: 40", "speed: 41").parse().unwrap();
         f.attr("study_yaml").unwrap().write_scalar(&text).unwrap();
     }
     let o = run(&["merge", "-o", &merged, &a2, &b]);

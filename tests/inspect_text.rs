@@ -6,35 +6,44 @@ mod common;
 use common::batstudy_ok;
 use std::process::Command;
 
-#[test]
-fn inspect_names_sweet_spots_by_coordinates_and_lists_the_bats() {
+/// Run `study` (YAML text) into a results file in a new folder; returns both.
+fn results_of(study: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("s.yaml");
-    // The R161 base case's sweet spot lies near 0.65 m on the still bat and moves toward the
-    // barrel with the swing (the paper's Fig. 6: about 0.71 m at -60 rad/s); a range that
-    // starts at 0.66 m cuts off the still bat's at its edge.
-    std::fs::write(
-        &study,
-        "name: s\nmodel: wave\nbase: {bat: {preset: r161}, ball: {speed: 40}}\n\
-         grid:\n  impact.z: {range: [0.66, 0.80, 0.02]}\n\
-         points:\n  name: case\n  sets:\n    - {}\n    - {swing.omega: -60}\n",
-    )
-    .unwrap();
+    let path = dir.path().join("s.yaml");
+    std::fs::write(&path, study).unwrap();
     let out = dir.path().join("s.h5");
-    let bin = env!("CARGO_BIN_EXE_batstudy");
     batstudy_ok(&[
         "run",
-        study.to_str().unwrap(),
+        path.to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
         "-q",
     ]);
-    let o = Command::new(bin)
+    (dir, out)
+}
+
+/// `batstudy inspect FILE`'s standard output (it must succeed).
+fn inspect(out: &std::path::Path) -> String {
+    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
         .args(["inspect", out.to_str().unwrap()])
         .output()
         .unwrap();
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(o.status.success(), "{text}");
+    text
+}
+
+#[test]
+fn inspect_names_sweet_spots_by_coordinates_and_lists_the_bats() {
+    // The R161 base case's sweet spot lies near 0.65 m on the still bat and moves toward the
+    // barrel with the swing (the paper's Fig. 6: about 0.71 m at -60 rad/s); a range that
+    // starts at 0.66 m cuts off the still bat's at its edge.
+    let (_dir, out) = results_of(
+        "name: s\nmodel: wave\nbase: {bat: {preset: r161}, ball: {speed: 40}}\n\
+         grid:\n  impact.z: {range: [0.66, 0.80, 0.02]}\n\
+         points:\n  name: case\n  sets:\n    - {}\n    - {swing.omega: -60}\n",
+    );
+    let text = inspect(&out);
     let line = |prefix: &str| {
         text.lines()
             .find(|l| l.starts_with(prefix))
@@ -58,33 +67,16 @@ fn inspect_names_sweet_spots_by_coordinates_and_lists_the_bats() {
 // issue 31: `inspect` printed terminal escape sequences from the file's strings raw
 #[test]
 fn inspect_prints_no_terminal_control_sequences() {
-    let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("s.yaml");
-    std::fs::write(
-        &study,
+    let (_dir, out) = results_of(
         "name: s\nmodel: rigid\nbase: {ball: {speed: 40}}\ngrid:\n  impact.z: [0.6, 0.7]\n",
-    )
-    .unwrap();
-    let out = dir.path().join("s.h5");
-    batstudy_ok(&[
-        "run",
-        study.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "-q",
-    ]);
+    );
     {
         let f = hdf5::File::open_rw(&out).unwrap();
         let name: hdf5::types::VarLenUnicode =
             "s\u{1b}]0;pwned\u{7}\u{1b}[2J\r\u{202e}x".parse().unwrap();
         f.attr("study_name").unwrap().write_scalar(&name).unwrap();
     }
-    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
-        .args(["inspect", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    let text = String::from_utf8(o.stdout).unwrap();
-    assert!(o.status.success(), "{text}");
+    let text = inspect(&out);
     assert!(
         !text.contains('\u{1b}') && !text.contains('\r') && !text.contains('\u{202e}'),
         "{text:?}"

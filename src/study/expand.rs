@@ -14,9 +14,9 @@ use super::syntax::{check_base_types, check_param_keys, check_path};
 use super::types::{AxisValues, StudyFile};
 use crate::results::ResultShape;
 use crate::results::RESERVED_NAMES;
-use yaml_serde::{Mapping, Value};
 use std::collections::HashMap;
 use std::path::Path;
+use yaml_serde::{Mapping, Value};
 
 /// Default limit on the number of points (`--max-points`).
 pub const DEFAULT_MAX_POINTS: usize = 10_000_000;
@@ -112,8 +112,7 @@ fn base_value(cx: &Ctx, file: &StudyFile) -> Result<Value, StudyError> {
     check_base_types(cx, &base)?;
     if let Some(m) = file.model {
         if let Some(bm) = base.get("model") {
-            let bm: Option<crate::model::spec::ModelKind> =
-                yaml_serde::from_value(bm.clone()).ok();
+            let bm: Option<crate::model::spec::ModelKind> = yaml_serde::from_value(bm.clone()).ok();
             if bm.is_some() && bm != Some(m) {
                 return Err(cx
                     .err(&keys(&["model"]), "`model` and `base.model` disagree")

@@ -14,9 +14,9 @@ use super::syntax::{
 use super::types::StudyFile;
 use crate::model::outcome::HistoryRequest;
 use crate::results::{BatVariant, StudyInfo};
-use yaml_serde::Value;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
+use yaml_serde::Value;
 
 /// A loaded, validated study.
 #[derive(Debug, Clone)]

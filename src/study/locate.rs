@@ -7,8 +7,8 @@ use super::paths::set_path;
 use super::plan::{related, DimOrigin, Plan, PlanDim, ResolveError};
 use super::source::{dotted, keys, Seg, SourceMap};
 use super::types::StudyFile;
-use yaml_serde::{Mapping, Value};
 use std::path::Path;
+use yaml_serde::{Mapping, Value};
 
 pub(super) struct Ctx<'a> {
     pub(super) file: &'a Path,

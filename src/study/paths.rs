@@ -3,9 +3,9 @@
 
 use crate::model::spec::CollisionSpec;
 use serde_json::Value as J;
-use yaml_serde::{Mapping, Value};
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
+use yaml_serde::{Mapping, Value};
 
 /// Kind of node a path names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -295,8 +295,7 @@ mod tests {
 
     #[test]
     fn set_path_creates_records() {
-        let mut v: Value =
-            yaml_serde::from_str("hoop: null\nbat: {profile: {knots: []}}").unwrap();
+        let mut v: Value = yaml_serde::from_str("hoop: null\nbat: {profile: {knots: []}}").unwrap();
         set_path(&mut v, "hoop.frequency", Value::from(1000.0)).unwrap();
         set_path(&mut v, "impact.z", Value::from(0.7)).unwrap();
         set_path(&mut v, "bat.profile.csv", Value::from("x.csv")).unwrap();

@@ -4,9 +4,9 @@
 use super::checks::{check_spec, Violation};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::results::{Coord, CoordValues, Dim, PointId, ResultShape};
-use yaml_serde::Value;
 use sha2::{Digest, Sha256};
 use std::collections::HashMap;
+use yaml_serde::Value;
 
 /// Where a dimension comes from in the study file.
 #[derive(Debug, Clone, PartialEq)]

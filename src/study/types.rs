@@ -6,8 +6,8 @@ use crate::model::spec::{CollisionSpec, ModelKind};
 use indexmap::IndexMap;
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::Deserialize;
-use yaml_serde::Value;
 use std::borrow::Cow;
+use yaml_serde::Value;
 
 /// A parameter study: a base collision and the parameters varied around it.
 ///

@@ -51,50 +51,43 @@ pub(crate) fn rk4(forces: &Forces, s: &State, h: f64) -> State {
 }
 
 /// The state where z = 0 inside the step `from` → `to` (z(from) > 0 ≥ z(to)): Newton on the
-/// partial step length, dz/ds = v_z, kept inside the bracket by bisection.
+/// partial step length, dz/ds = v_z, from the Hermite interpolant's root.
 pub(crate) fn landing_in_step(forces: &Forces, from: &State, to: &State) -> State {
-    let h = to.t - from.t;
-    let (mut lo, mut hi) = (0.0, h);
-    let mut s = hermite_root(from, to);
-    let mut state = *to;
-    for _ in 0..EVENT_ITERATIONS {
-        state = rk4(forces, from, s);
-        let z = state.p[2];
-        if z > 0.0 {
-            lo = s;
-        } else {
-            hi = s;
-        }
-        let correction = -z / state.v[2];
-        let mut next = s + correction;
-        if !(next > lo && next < hi) {
-            next = 0.5 * (lo + hi);
-        }
-        if (next - s).abs() <= EVENT_TOLERANCE_S {
-            break;
-        }
-        s = next;
-    }
-    state
+    let first = hermite_root(from, to);
+    root_in_step(forces, from, to, first, |st| st.p[2], |st| st.v[2])
 }
 
 /// The state where v_z = 0 inside the step `from` → `to` (v_z(from) > 0 ≥ v_z(to)): Newton
-/// with dv_z/ds = a_z, kept inside the bracket by bisection.
+/// with dv_z/ds = a_z, from the straight line's root.
 pub(crate) fn apex_in_step(forces: &Forces, from: &State, to: &State) -> State {
-    let h = to.t - from.t;
-    let (mut lo, mut hi) = (0.0, h);
-    let mut s = h * from.v[2] / (from.v[2] - to.v[2]);
+    let first = (to.t - from.t) * from.v[2] / (from.v[2] - to.v[2]);
+    let slope = |st: &State| forces.acceleration(st.t, st.v)[2];
+    root_in_step(forces, from, to, first, |st| st.v[2], slope)
+}
+
+/// The state inside the step `from` → `to` where `value` (positive at `from`, not at `to`)
+/// crosses zero: Newton on the partial step length s with d value/ds = `slope`, from
+/// `first`, kept inside the bracket by bisection.
+fn root_in_step(
+    forces: &Forces,
+    from: &State,
+    to: &State,
+    first: f64,
+    value: impl Fn(&State) -> f64,
+    slope: impl Fn(&State) -> f64,
+) -> State {
+    let (mut lo, mut hi) = (0.0, to.t - from.t);
+    let mut s = first;
     let mut state = *to;
     for _ in 0..EVENT_ITERATIONS {
         state = rk4(forces, from, s);
-        let vz = state.v[2];
-        if vz > 0.0 {
+        let y = value(&state);
+        if y > 0.0 {
             lo = s;
         } else {
             hi = s;
         }
-        let az = forces.acceleration(state.t, state.v)[2];
-        let mut next = s - vz / az;
+        let mut next = s - y / slope(&state);
         if !(next > lo && next < hi) {
             next = 0.5 * (lo + hi);
         }
