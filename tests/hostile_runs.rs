@@ -3,10 +3,39 @@
 
 mod common;
 
-use common::{batstudy_command, batstudy_ok};
 use std::path::{Path, PathBuf};
 use std::process::Output;
+use std::sync::RwLock;
 use std::time::Duration;
+
+/// HDF5 opens files without close-on-exec, with a lock: a child forked while this process
+/// holds one open keeps the lock for its life, and a merge in another test then cannot read
+/// the file. Files are opened here under [`no_spawns`], children are forked under
+/// [`spawn_guard`] (as in tests/shards_merge_slurm.rs).
+static FORK: RwLock<()> = RwLock::new(());
+
+fn spawn_guard() -> std::sync::RwLockReadGuard<'static, ()> {
+    FORK.read().unwrap_or_else(|e| e.into_inner())
+}
+
+fn no_spawns() -> std::sync::RwLockWriteGuard<'static, ()> {
+    FORK.write().unwrap_or_else(|e| e.into_inner())
+}
+
+fn batstudy_command(args: &[&str]) -> std::process::Command {
+    common::batstudy_command(args)
+}
+
+fn batstudy_ok(args: &[&str]) {
+    let _g = spawn_guard();
+    common::batstudy_ok(args)
+}
+
+/// Every stored record of a results file (under [`no_spawns`]).
+fn stored_records(path: &Path) -> Vec<String> {
+    let _g = no_spawns();
+    common::stored_records(path)
+}
 
 const RIGID: &str = "name: hostile
 model: rigid
@@ -17,6 +46,7 @@ grid:
 ";
 
 fn run(args: &[&str]) -> Output {
+    let _g = spawn_guard();
     batstudy_command(args).output().unwrap()
 }
 
@@ -59,6 +89,7 @@ fn a_symlink_at_the_partial_file_is_replaced_not_followed() {
 }
 
 fn sweet_positions(path: &Path) -> Vec<f64> {
+    let _g = no_spawns();
     let f = hdf5::File::open(path).unwrap();
     f.dataset("sweet_spot/position")
         .unwrap()
@@ -101,6 +132,7 @@ fn run_with_file_limit(args: &[&str], max_bytes: u64) -> Output {
             }
         });
     }
+    let _g = spawn_guard();
     c.output().unwrap()
 }
 
@@ -181,6 +213,7 @@ fn merge_refuses_altered_and_incomplete_shards_and_writes_nothing() {
     let d = Dir::with_study(RIGID);
     let [a, b] = two_shards(&d);
     {
+        let _g = no_spawns();
         let f = hdf5::File::open_rw(&b).unwrap();
         let ds = f.dataset("summary/point_id").unwrap();
         let mut ids: ndarray::ArrayD<u64> = ds.read_dyn().unwrap();
@@ -196,6 +229,7 @@ fn merge_refuses_altered_and_incomplete_shards_and_writes_nothing() {
     let a2 = d.p("a2.h5");
     std::fs::copy(&a, &a2).unwrap();
     {
+        let _g = no_spawns();
         let f = hdf5::File::open_rw(&a2).unwrap();
         let text: hdf5::types::VarLenUnicode =
             RIGID.replace("speed: 40", "speed: 41").parse().unwrap();
@@ -205,6 +239,7 @@ fn merge_refuses_altered_and_incomplete_shards_and_writes_nothing() {
     assert_eq!(code(&o), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("sha256"), "{}", stderr(&o));
     {
+        let _g = no_spawns();
         let f = hdf5::File::open_rw(&b).unwrap();
         f.group("summary").unwrap().unlink("point_id").unwrap();
     }
@@ -256,9 +291,12 @@ grid:
     let d = Dir::with_study(study);
     let (s, out, reference) = (d.p("s.yaml"), d.p("out.h5"), d.p("ref.h5"));
     batstudy_ok(&["run", &s, "-o", &reference, "-q", "-j", "2"]);
-    let child = batstudy_command(&["run", &s, "-o", &out, "-q", "-j", "1"])
-        .spawn()
-        .unwrap();
+    let child = {
+        let _g = spawn_guard();
+        batstudy_command(&["run", &s, "-o", &out, "-q", "-j", "1"])
+            .spawn()
+            .unwrap()
+    };
     let journal = format!("{out}.journal");
     while !Path::new(&journal).exists() {
         std::thread::sleep(Duration::from_millis(1));
@@ -270,7 +308,7 @@ grid:
     assert_eq!(code(&o), Some(130), "{}", stderr(&o));
     batstudy_ok(&["run", &s, "-o", &out, "-q", "--resume"]);
     assert_eq!(
-        common::stored_records(Path::new(&out)),
-        common::stored_records(Path::new(&reference))
+        stored_records(Path::new(&out)),
+        stored_records(Path::new(&reference))
     );
 }

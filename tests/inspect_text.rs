@@ -6,12 +6,26 @@ mod common;
 use common::batstudy_ok;
 use std::process::Command;
 
+/// HDF5 opens files without close-on-exec, with a lock: a child forked while a test holds
+/// one open would keep it locked. The file is edited under [`no_spawns`], children run under
+/// [`spawn_guard`] (as in tests/shards_merge_slurm.rs).
+static FORK: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
+fn spawn_guard() -> std::sync::RwLockReadGuard<'static, ()> {
+    FORK.read().unwrap_or_else(|e| e.into_inner())
+}
+
+fn no_spawns() -> std::sync::RwLockWriteGuard<'static, ()> {
+    FORK.write().unwrap_or_else(|e| e.into_inner())
+}
+
 /// Run `study` (YAML text) into a results file in a new folder; returns both.
 fn results_of(study: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("s.yaml");
     std::fs::write(&path, study).unwrap();
     let out = dir.path().join("s.h5");
+    let _g = spawn_guard();
     batstudy_ok(&[
         "run",
         path.to_str().unwrap(),
@@ -24,6 +38,7 @@ fn results_of(study: &str) -> (tempfile::TempDir, std::path::PathBuf) {
 
 /// `batstudy inspect FILE`'s standard output (it must succeed).
 fn inspect(out: &std::path::Path) -> String {
+    let _g = spawn_guard();
     let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
         .args(["inspect", out.to_str().unwrap()])
         .output()
@@ -71,6 +86,7 @@ fn inspect_prints_no_terminal_control_sequences() {
         "name: s\nmodel: rigid\nbase: {ball: {speed: 40}}\ngrid:\n  impact.z: [0.6, 0.7]\n",
     );
     {
+        let _g = no_spawns();
         let f = hdf5::File::open_rw(&out).unwrap();
         let name: hdf5::types::VarLenUnicode =
             "s\u{1b}]0;pwned\u{7}\u{1b}[2J\r\u{202e}x".parse().unwrap();

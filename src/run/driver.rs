@@ -253,157 +253,44 @@ pub fn run_plan<S: Simulator, K: Sink>(
     opts: &RunOptions,
     stop: &AtomicBool,
 ) -> Result<(RunReport, K), RunError> {
-    let n = plan.n_points();
-    let range = opts
-        .shard
-        .map_or(0..n, |s| super::shard::shard_range(plan, history, s));
+    let range = opts.shard.map_or(0..plan.n_points(), |s| {
+        super::shard::shard_range(plan, history, s)
+    });
     let total = range.len();
     let pb = super::progress::points_bar(opts.progress, total as u64);
-    // The points to skip, asked of the sink once, before any worker starts: the workers then
-    // never wait for the sink's lock, which the writer holds while it writes (issue 7: the
-    // final file's skeleton, made on the writer's first record, stalled every worker).
-    let mut skip = PointSet::new(n);
-    for i in range.clone() {
-        if sink.is_done(i) {
-            skip.insert(i);
-        }
-    }
-    let skip = &skip;
-    // Asked before the workers start, like the skip set: encoding is the costly part of
-    // storing a point, and runs on the worker that computed it (issue 22).
-    let encoder = sink.encoder();
-    let encoder = &encoder;
-    let sink = Mutex::new(sink);
-    type Record<K> = <<K as Sink>::Encoder as Encode>::Record;
-    let (tx, rx) = crossbeam_channel::bounded::<Finished<Record<K>>>(opts.channel_capacity.max(1));
-    let abort = AtomicBool::new(false);
-    let skipped = AtomicUsize::new(0);
-
-    let writer_sink = &sink;
-    let writer_pb = pb.clone();
     if let Some(c) = &opts.counter {
         c.total.store(total, Ordering::Relaxed);
     }
-    let count_done = || {
-        if let Some(c) = &opts.counter {
-            c.done.fetch_add(1, Ordering::Relaxed);
-        }
+    let skip = skip_set(&sink, plan.n_points(), range.clone());
+    // Asked before the workers start, like the skip set: encoding is the costly part of
+    // storing a point, and runs on the worker that computed it (issue 22).
+    let encoder = sink.encoder();
+    let sink = Mutex::new(sink);
+    let (tx, rx) = crossbeam_channel::bounded(opts.channel_capacity.max(1));
+    let progress = Progress {
+        bar: &pb,
+        counter: opts.counter.as_deref(),
     };
-    let fail_fast = opts.fail_fast;
+    let dispatch = Dispatch {
+        plan,
+        sim,
+        bats,
+        history,
+        skip: &skip,
+        encoder: &encoder,
+        progress,
+        stop,
+        fail_fast: opts.fail_fast,
+        abort: AtomicBool::new(false),
+        skipped: AtomicUsize::new(0),
+    };
     let written = std::thread::scope(|scope| {
+        let sink = &sink;
         let writer = std::thread::Builder::new()
             .name("batstudy-writer".into())
-            .spawn_scoped(scope, move || -> Result<Tally, String> {
-                let (mut ok, mut failed, mut failures) = (0usize, 0usize, Vec::new());
-                loop {
-                    let rec = match rx.recv_timeout(IDLE_FLUSH) {
-                        Ok(rec) => rec,
-                        Err(crossbeam_channel::RecvTimeoutError::Timeout) => {
-                            writer_sink
-                                .lock()
-                                .unwrap_or_else(|p| p.into_inner())
-                                .idle()?;
-                            continue;
-                        }
-                        Err(crossbeam_channel::RecvTimeoutError::Disconnected) => break,
-                    };
-                    match rec.error {
-                        None => ok += 1,
-                        Some(e) => {
-                            failed += 1;
-                            if failures.len() < 20 {
-                                failures.push((rec.index, e));
-                            }
-                        }
-                    }
-                    let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
-                    s.write(rec.record)?;
-                    drop(s);
-                    writer_pb.inc(1);
-                    count_done();
-                }
-                // Every record is in: finish here, as soon as the last worker lets go of the
-                // channel, not after the main thread has woken and joined this one (issue 7:
-                // each wake-up between threads is on the critical path of a small study). In
-                // the run's pool, whose threads have just finished their last points: the
-                // final file's parallel parts (deflate) start on threads that are awake.
-                writer_pb.set_message("writing");
-                let mut s = writer_sink.lock().unwrap_or_else(|p| p.into_inner());
-                let sink = &mut *s;
-                pool.install(|| sink.finish())?;
-                Ok((ok, failed, failures))
-            })
+            .spawn_scoped(scope, move || write_records(rx, sink, progress, pool))
             .expect("spawn writer thread");
-
-        // One point: false once the run stops (Ctrl-C, --fail-fast, the writer gone).
-        let one = |tx: &crossbeam_channel::Sender<Finished<Record<K>>>, i: usize| -> bool {
-            if stop.load(Ordering::Relaxed) || abort.load(Ordering::Relaxed) {
-                return false;
-            }
-            if skip.contains(i) {
-                skipped.fetch_add(1, Ordering::Relaxed);
-                pb.inc(1);
-                count_done();
-                return true;
-            }
-            let rec = match plan.point(i) {
-                Err(e) => PointRecord {
-                    index: i,
-                    id: e.id,
-                    bat: 0,
-                    result: Err(e.message),
-                },
-                Ok(p) => {
-                    let result = match &bats.handles[p.bat as usize] {
-                        Err(e) => Err(e.clone()),
-                        Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
-                            sim.simulate(bat, &p.spec, history.filter(|_| p.record_history))
-                        })) {
-                            Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
-                            Ok(Err(e)) => Err(e),
-                            Err(payload) => Err(format!("panic: {}", panic_text(payload))),
-                        },
-                    };
-                    PointRecord {
-                        index: i,
-                        id: p.id,
-                        bat: p.bat,
-                        result,
-                    }
-                }
-            };
-            if rec.result.is_err() && fail_fast {
-                abort.store(true, Ordering::Relaxed);
-            }
-            let finished = Finished {
-                index: rec.index,
-                error: rec.result.as_ref().err().cloned(),
-                record: encoder.encode(rec),
-            };
-            if tx.send(finished).is_err() {
-                // The writer has stopped (a sink error): stop dispatching.
-                abort.store(true, Ordering::Relaxed);
-                return false;
-            }
-            true
-        };
-        // Points are handed out in index order, one at a time, to whichever worker is free:
-        // records then reach the writer nearly in order, and it places their histories in
-        // the final file as the run goes on (`store::placer`, issue 22). (Rayon's splitting
-        // of the range gave each worker its own far-apart part.)
-        let next = AtomicUsize::new(range.start);
-        let workers = pool.current_num_threads().max(1);
-        pool.install(|| {
-            (0..workers)
-                .into_par_iter()
-                .with_max_len(1)
-                .for_each_with(tx, |tx, _| loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    if i >= range.end || !one(tx, i) {
-                        break;
-                    }
-                });
-        });
+        dispatch.run(pool, range, tx);
         writer
             .join()
             .map_err(|p| RunError::Sink(format!("writer thread panicked: {}", panic_text(p))))
@@ -413,12 +300,184 @@ pub fn run_plan<S: Simulator, K: Sink>(
     let (ok, failed, failures) = written.map_err(RunError::Sink)?;
     let report = RunReport {
         total,
-        skipped: skipped.into_inner(),
+        skipped: dispatch.skipped.into_inner(),
         ok,
         failed,
         interrupted: stop.load(Ordering::Relaxed),
-        aborted: abort.into_inner(),
+        aborted: dispatch.abort.into_inner(),
         failures,
     };
     Ok((report, sink))
+}
+
+/// The points to skip, asked of the sink once, before any worker starts: the workers then
+/// never wait for the sink's lock, which the writer holds while it writes (issue 7: the
+/// final file's skeleton, made on the writer's first record, stalled every worker).
+fn skip_set<K: Sink>(sink: &K, n: usize, range: std::ops::Range<usize>) -> PointSet {
+    let mut skip = PointSet::new(n);
+    for i in range.filter(|&i| sink.is_done(i)) {
+        skip.insert(i);
+    }
+    skip
+}
+
+/// What a finished or skipped point advances: the bar and the outside observer's counter.
+#[derive(Clone, Copy)]
+struct Progress<'a> {
+    bar: &'a indicatif::ProgressBar,
+    counter: Option<&'a PointCounter>,
+}
+
+impl Progress<'_> {
+    fn one_done(&self) {
+        self.bar.inc(1);
+        if let Some(c) = self.counter {
+            c.done.fetch_add(1, Ordering::Relaxed);
+        }
+    }
+}
+
+/// The writer thread: every record into the sink as it arrives (letting the sink flush
+/// when none comes for a while), then the finish.
+fn write_records<K: Sink>(
+    rx: crossbeam_channel::Receiver<Finished<<K::Encoder as Encode>::Record>>,
+    sink: &Mutex<K>,
+    progress: Progress,
+    pool: &rayon::ThreadPool,
+) -> Result<Tally, String> {
+    let lock = || sink.lock().unwrap_or_else(|p| p.into_inner());
+    let (mut ok, mut failed, mut failures) = (0usize, 0usize, Vec::new());
+    loop {
+        let rec = match rx.recv_timeout(IDLE_FLUSH) {
+            Ok(rec) => rec,
+            Err(crossbeam_channel::RecvTimeoutError::Timeout) => {
+                lock().idle()?;
+                continue;
+            }
+            Err(crossbeam_channel::RecvTimeoutError::Disconnected) => break,
+        };
+        match rec.error {
+            None => ok += 1,
+            Some(e) => {
+                failed += 1;
+                if failures.len() < 20 {
+                    failures.push((rec.index, e));
+                }
+            }
+        }
+        lock().write(rec.record)?;
+        progress.one_done();
+    }
+    // Every record is in: finish here, as soon as the last worker lets go of the channel,
+    // not after the main thread has woken and joined this one (issue 7: each wake-up between
+    // threads is on the critical path of a small study). In the run's pool, whose threads
+    // have just finished their last points: the final file's parallel parts (deflate) start
+    // on threads that are awake.
+    progress.bar.set_message("writing");
+    let mut s = lock();
+    let sink = &mut *s;
+    pool.install(|| sink.finish())?;
+    Ok((ok, failed, failures))
+}
+
+/// The workers' side of a run: what they compute each point with, and how they stop.
+struct Dispatch<'a, S: Simulator, E> {
+    plan: &'a Plan,
+    sim: &'a S,
+    bats: &'a PreparedBats<S::Bat>,
+    history: Option<&'a HistoryRequest>,
+    skip: &'a PointSet,
+    encoder: &'a E,
+    progress: Progress<'a>,
+    stop: &'a AtomicBool,
+    fail_fast: bool,
+    abort: AtomicBool,
+    skipped: AtomicUsize,
+}
+
+impl<S: Simulator, E: Encode> Dispatch<'_, S, E> {
+    /// Points are handed out in index order, one at a time, to whichever worker is free:
+    /// records then reach the writer nearly in order, and it places their histories in the
+    /// final file as the run goes on (`store::placer`, issue 22). (Rayon's splitting of the
+    /// range gave each worker its own far-apart part.)
+    fn run(
+        &self,
+        pool: &rayon::ThreadPool,
+        range: std::ops::Range<usize>,
+        tx: crossbeam_channel::Sender<Finished<E::Record>>,
+    ) {
+        let next = AtomicUsize::new(range.start);
+        let workers = pool.current_num_threads().max(1);
+        pool.install(|| {
+            (0..workers)
+                .into_par_iter()
+                .with_max_len(1)
+                .for_each_with(tx, |tx, _| loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= range.end || !self.one(tx, i) {
+                        break;
+                    }
+                });
+        });
+    }
+
+    /// One point: false once the run stops (Ctrl-C, --fail-fast, the writer gone).
+    fn one(&self, tx: &crossbeam_channel::Sender<Finished<E::Record>>, i: usize) -> bool {
+        if self.stop.load(Ordering::Relaxed) || self.abort.load(Ordering::Relaxed) {
+            return false;
+        }
+        if self.skip.contains(i) {
+            self.skipped.fetch_add(1, Ordering::Relaxed);
+            self.progress.one_done();
+            return true;
+        }
+        let rec = self.compute(i);
+        if rec.result.is_err() && self.fail_fast {
+            self.abort.store(true, Ordering::Relaxed);
+        }
+        let finished = Finished {
+            index: rec.index,
+            error: rec.result.as_ref().err().cloned(),
+            record: self.encoder.encode(rec),
+        };
+        if tx.send(finished).is_err() {
+            // The writer has stopped (a sink error): stop dispatching.
+            self.abort.store(true, Ordering::Relaxed);
+            return false;
+        }
+        true
+    }
+
+    /// Point `i` computed, its failure (a bad point, a bat that could not be prepared, an
+    /// error or a panic of the model) kept as its result.
+    fn compute(&self, i: usize) -> PointRecord {
+        let p = match self.plan.point(i) {
+            Err(e) => {
+                return PointRecord {
+                    index: i,
+                    id: e.id,
+                    bat: 0,
+                    result: Err(e.message),
+                }
+            }
+            Ok(p) => p,
+        };
+        let history = self.history.filter(|_| p.record_history);
+        let result = match &self.bats.handles[p.bat as usize] {
+            Err(e) => Err(e.clone()),
+            Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
+                self.sim.simulate(bat, &p.spec, history)
+            })) {
+                Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
+                Ok(Err(e)) => Err(e),
+                Err(payload) => Err(format!("panic: {}", panic_text(payload))),
+            },
+        };
+        PointRecord {
+            index: i,
+            id: p.id,
+            bat: p.bat,
+            result,
+        }
+    }
 }
