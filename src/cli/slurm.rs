@@ -108,7 +108,8 @@ fn batstudy_command(invocation: &Invocation) -> Result<Vec<String>, String> {
         .map_err(|e| format!("cannot find the batstudy binary's path: {e}"))
 }
 
-/// `batstudy slurm`: write the job array, merge job and submit scripts.
+/// `batstudy slurm`: write the job array, merge job and submit scripts (or, with
+/// `--resubmit`, submit what is unfinished).
 pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
     if let Some(dir) = &a.resubmit {
         return resubmit(dir, &a.sbatch_args);
@@ -116,39 +117,61 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
     let (Some(study_file), Some(shards)) = (a.study.as_deref(), a.shards) else {
         unreachable!("clap requires STUDY and --shards without --resubmit")
     };
-    if !a.sbatch_args.is_empty() {
-        eprintln!(
-            "{}",
-            StudyError::new(study_file, "extra arguments")
-                .field("-- ARGS")
-                .value(a.sbatch_args.join(" "))
-                .allowed("sbatch options only with --resubmit (give them to submit.sh otherwise)")
-        );
-        return EXIT_BAD_INPUT;
-    }
     let study = match load_or_report(study_file, a.max_points) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let flag = |name: &str, value: String, allowed: &str| {
-        eprintln!(
-            "{}",
-            StudyError::new(study_file, format!("bad {name}"))
-                .field(name)
-                .value(value)
-                .allowed(allowed)
-        );
-        EXIT_BAD_INPUT
+    let job = check_flags(a, study_file, shards).and_then(|()| {
+        job_of(a, invocation, &study, shards).map_err(|e| match e {
+            JobError::Flag(e) => e,
+            JobError::Run(m) => StudyError::new(study_file, m),
+        })
+    });
+    let job = match job {
+        Ok(j) => j,
+        Err(e) if e.field.is_none() => {
+            eprintln!("error: {}", e.message);
+            return EXIT_RUN_FAILED;
+        }
+        Err(e) => {
+            eprintln!("{e}");
+            return EXIT_BAD_INPUT;
+        }
     };
+    warn_about(&job, study.plan.n_points());
+    write_job(&job)
+}
+
+/// Why the scripts cannot be written: a bad flag (exit 2) or the machine (exit 3).
+enum JobError {
+    Flag(StudyError),
+    Run(String),
+}
+
+fn bad_flag(study_file: &Path, name: &str, value: String, allowed: &str) -> StudyError {
+    StudyError::new(study_file, format!("bad {name}"))
+        .field(name)
+        .value(value)
+        .allowed(allowed)
+}
+
+/// The flags that go into the scripts, each in the form Slurm takes.
+fn check_flags(a: &SlurmArgs, study_file: &Path, shards: usize) -> Result<(), StudyError> {
+    let bad =
+        |name: &str, value: String, allowed: &str| Err(bad_flag(study_file, name, value, allowed));
+    if !a.sbatch_args.is_empty() {
+        let allowed = "sbatch options only with --resubmit (give them to submit.sh otherwise)";
+        return bad("-- ARGS", a.sbatch_args.join(" "), allowed);
+    }
     if !(1..=MAX_SHARDS).contains(&shards) {
-        return flag(
+        return bad(
             "--shards",
             shards.to_string(),
             &format!("a number of shards from 1 to {MAX_SHARDS}"),
         );
     }
     if !(1..=MAX_JOBS).contains(&a.cpus_per_task) {
-        return flag(
+        return bad(
             "--cpus-per-task",
             a.cpus_per_task.to_string(),
             &format!("a number of cores from 1 to {MAX_JOBS}"),
@@ -156,7 +179,7 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
     }
     for (name, v) in [("--time", &a.time), ("--merge-time", &a.merge_time)] {
         if let Some(t) = v.as_ref().filter(|t| !crate::slurm::valid_time(t)) {
-            return flag(
+            return bad(
                 name,
                 t.clone(),
                 "a Slurm time limit: MM, HH:MM:SS, D-HH or D-HH:MM:SS",
@@ -164,26 +187,33 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
         }
     }
     if let Some(m) = a.mem.as_ref().filter(|m| !crate::slurm::valid_mem(m)) {
-        return flag("--mem", m.clone(), "a size such as 4G or 500M");
+        return bad("--mem", m.clone(), "a size such as 4G or 500M");
     }
     if let Some(p) = a
         .partition
         .as_ref()
         .filter(|p| !crate::slurm::sbatch_safe(p))
     {
-        return flag("--partition", p.clone(), "a partition name");
+        return bad("--partition", p.clone(), "a partition name");
     }
-    let command = match batstudy_command(invocation) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_RUN_FAILED;
-        }
+    Ok(())
+}
+
+/// The job: the command, the study, the folder and the output as absolute paths, checked.
+fn job_of(
+    a: &SlurmArgs,
+    invocation: &Invocation,
+    study: &crate::study::Study,
+    shards: usize,
+) -> Result<crate::slurm::SlurmJob, JobError> {
+    let study_file = study.path.as_path();
+    let flag = |name: &str, value: String, allowed: &str| {
+        JobError::Flag(bad_flag(study_file, name, value, allowed))
     };
-    let study_path = match study_file.canonicalize() {
-        Ok(p) => p,
-        Err(e) => return flag("STUDY", format!("{} ({e})", study_file.display()), "a file"),
-    };
+    let command = batstudy_command(invocation).map_err(JobError::Run)?;
+    let study_path = study_file
+        .canonicalize()
+        .map_err(|e| flag("STUDY", format!("{} ({e})", study_file.display()), "a file"))?;
     let name = study.file.name.clone();
     let dir = absolute(
         &a.dir
@@ -191,28 +221,20 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
             .unwrap_or_else(|| PathBuf::from("slurm").join(&name)),
     );
     if !crate::slurm::sbatch_safe(&dir.display().to_string()) {
-        return flag(
+        return Err(flag(
             "--dir",
             dir.display().to_string(),
             "a folder path of printable ASCII without spaces, quotes, `\\`, `$`, backticks, `#`, `;` or `%` (it goes into #SBATCH lines)",
-        );
+        ));
     }
     let output = absolute(&study.output_path(a.output.as_deref()));
     if let Err((msg, allowed)) = check_output(&output, Existing::Refuse) {
-        if output.exists() {
-            eprintln!("warning: {msg}: the merge job will refuse to replace it; remove it or choose another -o before submitting");
-        } else {
-            return flag("--output", output.display().to_string(), &allowed);
+        if !output.exists() {
+            return Err(flag("--output", output.display().to_string(), &allowed));
         }
+        eprintln!("warning: {msg}: the merge job will refuse to replace it; remove it or choose another -o before submitting");
     }
-    let n = study.plan.n_points();
-    if shards > n {
-        eprintln!(
-            "warning: {shards} shards for {n} points: {} shards will be empty",
-            shards - n
-        );
-    }
-    let job = crate::slurm::SlurmJob {
+    Ok(crate::slurm::SlurmJob {
         command,
         study: study_path,
         name,
@@ -224,7 +246,21 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
         mem: a.mem.clone(),
         output,
         dir,
-    };
+    })
+}
+
+fn warn_about(job: &crate::slurm::SlurmJob, n: usize) {
+    if job.shards > n {
+        eprintln!(
+            "warning: {} shards for {n} points: {} shards will be empty",
+            job.shards,
+            job.shards - n
+        );
+    }
+}
+
+/// Write the scripts and say how to submit them.
+fn write_job(job: &crate::slurm::SlurmJob) -> i32 {
     match job.write() {
         Ok(paths) => {
             for p in &paths {
