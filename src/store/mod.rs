@@ -13,7 +13,7 @@
 //! identifies a study's journal and file), [`journal`] (the append-only record file),
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
 //! parallel), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
-//! to an output), [`read`] (reading back, inspect), [`build`] (journal → HDF5),
+//! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
 //! [`session`] (an open output), [`merge`](mod@merge) (shards → one file), [`lock`] (one
 //! process per output).
 
@@ -24,6 +24,7 @@ pub mod encode;
 pub mod error;
 pub mod fixed_deflate;
 pub mod header;
+pub mod inspect;
 pub mod journal;
 pub mod layout;
 pub mod lock;
@@ -36,10 +37,9 @@ pub mod session;
 
 pub use encode::{EncodedRecord, RecordEncoder};
 pub use error::StoreError;
+pub use inspect::{inspect, printable};
 pub use merge::{merge, merge_check};
 pub use options::{iso8601_now, RunMeta, StoreOptions, Summary};
 pub use paths::{discard_output, journal_path, partial_path};
-pub use read::{
-    file_info, for_each_record, inspect, present_points, read_results, FileInfo, ReadBack,
-};
+pub use read::{file_info, for_each_record, present_points, read_results, FileInfo, ReadBack};
 pub use session::{begin, check_resumable, open, open_begun, BegunFile, Session};

@@ -9,7 +9,6 @@ use crate::model::outcome::History;
 use crate::pointset::PointSet;
 use crate::results::PointRecord;
 use hdf5::types::VarLenUnicode;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// A results file read back.
@@ -37,7 +36,7 @@ fn bad(path: &Path, what: impl Into<String>) -> StoreError {
     }
 }
 
-fn str_attr(f: &hdf5::Location, name: &str, path: &Path) -> Result<String, StoreError> {
+pub(super) fn str_attr(f: &hdf5::Location, name: &str, path: &Path) -> Result<String, StoreError> {
     let a = f
         .attr(name)
         .map_err(|_| bad(path, format!("root attribute {name} missing")))?;
@@ -47,7 +46,7 @@ fn str_attr(f: &hdf5::Location, name: &str, path: &Path) -> Result<String, Store
     Ok(v.as_str().to_string())
 }
 
-fn open_checked(path: &Path) -> Result<(hdf5::File, JournalHeader, u32), StoreError> {
+pub(super) fn open_checked(path: &Path) -> Result<(hdf5::File, JournalHeader, u32), StoreError> {
     if !path.exists() {
         return Err(StoreError::io(
             path,
@@ -159,65 +158,9 @@ pub fn for_each_record(
         });
     }
     let shape: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
-    let n: usize = shape.iter().product();
-    let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
-    let get = |name: &str| g.dataset(name).ctx(path, &format!("open summary/{name}"));
-    // Variables added after a file was written read as NaN (layout.md: new variables may be
-    // added without a version bump).
-    let mut floats = Vec::new();
-    for def in &l::SUMMARY_FLOATS {
-        floats.push(if g.link_exists(def.name) {
-            Some(get(def.name)?)
-        } else {
-            None
-        });
-    }
-    let status = get(l::STATUS.name)?;
-    let recontact = get(l::RECONTACT.name)?;
-    let ids = get(l::POINT_ID.name)?;
-    let bats = get(l::BAT_INDEX.name)?;
-    if [&status, &recontact, &ids, &bats]
-        .iter()
-        .any(|d| d.size() != n)
-    {
-        return Err(bad(path, "summary arrays do not match the study's shape"));
-    }
-    let eg = f.group(l::GROUP_ERRORS).ctx(path, "open group errors")?;
-    let eidx = eg
-        .dataset(l::ERR_FLAT_INDEX.name)
-        .and_then(|d| d.read_raw::<u64>())
-        .ctx(path, "errors/flat_index")?;
-    let emsg = eg
-        .dataset(l::ERR_MESSAGE.name)
-        .and_then(|d| d.read_raw::<VarLenUnicode>())
-        .ctx(path, "errors/message")?;
-    let mut msgs = std::collections::HashMap::new();
-    for (i, m) in eidx.iter().zip(emsg) {
-        msgs.insert(*i as usize, m.as_str().to_string());
-    }
-    let hist = match &header.history {
-        Some((names, nt, nz)) => {
-            let hg = f.group(l::GROUP_HISTORY).ctx(path, "open group history")?;
-            let mut v = Vec::new();
-            for name in names {
-                let k = l::HISTORY_VARS
-                    .iter()
-                    .position(|h| h.0.name == name)
-                    .ok_or_else(|| bad(path, format!("unknown history variable {name}")))?;
-                let ds = hg
-                    .dataset(name)
-                    .ctx(path, &format!("open history/{name}"))?;
-                let tail = if l::HISTORY_VARS[k].2 {
-                    vec![*nt, *nz]
-                } else {
-                    vec![*nt]
-                };
-                v.push((k, ds, tail));
-            }
-            Some(v)
-        }
-        None => None,
-    };
+    let summary = SummaryArrays::open(&f, path, shape.iter().product())?;
+    let mut messages = error_messages(&f, path)?;
+    let histories = history_arrays(&f, path, &header)?;
     let result_shape = crate::results::ResultShape {
         dims: header
             .dims
@@ -230,51 +173,24 @@ pub fn for_each_record(
             .collect(),
     };
     for (start, count, flat0) in flat_slabs(&shape, READ_SLAB_POINTS) {
-        let st = read_slab::<i8>(&status, &start, &count, path)?;
-        let rc = read_slab::<i8>(&recontact, &start, &count, path)?;
-        let pid = read_slab::<u64>(&ids, &start, &count, path)?;
-        let bi = read_slab::<i32>(&bats, &start, &count, path)?;
-        let mut fv = Vec::with_capacity(N_SUMMARY_FLOATS);
-        for ds in &floats {
-            fv.push(match ds {
-                Some(ds) => read_slab::<f64>(ds, &start, &count, path)?,
-                None => vec![f64::NAN; st.len()],
-            });
-        }
-        for j in 0..st.len() {
+        let slab = summary.read(&start, &count, path)?;
+        for j in 0..slab.status.len() {
             let i = flat0 + j;
-            let result = match st[j] {
+            let result = match slab.status[j] {
                 l::STATUS_OK => {
-                    let mut x = [0.0; N_SUMMARY_FLOATS];
-                    for (k, v) in x.iter_mut().enumerate() {
-                        *v = fv[k][j];
-                    }
-                    let mut o = l::outcome_from_floats(&x);
-                    o.recontact = rc[j] == 1;
-                    if let Some(hv) = &hist {
-                        let idx = result_shape.unravel(i);
-                        let mut h = History::default();
-                        for (k, ds, tail) in hv {
-                            let mut start = idx.clone();
-                            let mut count = vec![1; idx.len()];
-                            for &t in tail {
-                                start.push(0);
-                                count.push(t);
-                            }
-                            *l::history_array_mut(&mut h, *k) =
-                                read_slab::<f64>(ds, &start, &count, path)?;
-                        }
-                        o.history = Some(h);
+                    let mut o = slab.outcome(j);
+                    if let Some(hv) = &histories {
+                        o.history = Some(read_history(hv, &result_shape.unravel(i), path)?);
                     }
                     Ok(o)
                 }
-                l::STATUS_FAILED => Err(msgs.remove(&i).unwrap_or_default()),
+                l::STATUS_FAILED => Err(messages.remove(&i).unwrap_or_default()),
                 _ => continue,
             };
             each(PointRecord {
                 index: i,
-                id: pid[j],
-                bat: bi[j].max(0) as u32,
+                id: slab.ids[j],
+                bat: slab.bats[j].max(0) as u32,
                 result,
             })?;
         }
@@ -287,6 +203,161 @@ pub fn for_each_record(
         header,
         records: Vec::new(),
     })
+}
+
+/// The `/summary` arrays a record is read from. Variables added after a file was written
+/// read as NaN (layout.md: new variables may be added without a version bump).
+struct SummaryArrays {
+    floats: Vec<Option<hdf5::Dataset>>,
+    status: hdf5::Dataset,
+    recontact: hdf5::Dataset,
+    ids: hdf5::Dataset,
+    bats: hdf5::Dataset,
+}
+
+/// One slab of the summary arrays.
+struct SummarySlab {
+    floats: Vec<Vec<f64>>,
+    status: Vec<i8>,
+    recontact: Vec<i8>,
+    ids: Vec<u64>,
+    bats: Vec<i32>,
+}
+
+impl SummaryArrays {
+    fn open(f: &hdf5::File, path: &Path, n: usize) -> Result<Self, StoreError> {
+        let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
+        let get = |name: &str| g.dataset(name).ctx(path, &format!("open summary/{name}"));
+        let mut floats = Vec::new();
+        for def in &l::SUMMARY_FLOATS {
+            floats.push(match g.link_exists(def.name) {
+                true => Some(get(def.name)?),
+                false => None,
+            });
+        }
+        let a = SummaryArrays {
+            floats,
+            status: get(l::STATUS.name)?,
+            recontact: get(l::RECONTACT.name)?,
+            ids: get(l::POINT_ID.name)?,
+            bats: get(l::BAT_INDEX.name)?,
+        };
+        if [&a.status, &a.recontact, &a.ids, &a.bats]
+            .iter()
+            .any(|d| d.size() != n)
+        {
+            return Err(bad(path, "summary arrays do not match the study's shape"));
+        }
+        Ok(a)
+    }
+
+    fn read(
+        &self,
+        start: &[usize],
+        count: &[usize],
+        path: &Path,
+    ) -> Result<SummarySlab, StoreError> {
+        let status = read_slab::<i8>(&self.status, start, count, path)?;
+        let mut floats = Vec::with_capacity(N_SUMMARY_FLOATS);
+        for ds in &self.floats {
+            floats.push(match ds {
+                Some(ds) => read_slab::<f64>(ds, start, count, path)?,
+                None => vec![f64::NAN; status.len()],
+            });
+        }
+        Ok(SummarySlab {
+            floats,
+            recontact: read_slab::<i8>(&self.recontact, start, count, path)?,
+            ids: read_slab::<u64>(&self.ids, start, count, path)?,
+            bats: read_slab::<i32>(&self.bats, start, count, path)?,
+            status,
+        })
+    }
+}
+
+impl SummarySlab {
+    /// The outcome of the slab's point `j` (without histories).
+    fn outcome(&self, j: usize) -> crate::model::outcome::Outcome {
+        let mut x = [0.0; N_SUMMARY_FLOATS];
+        for (k, v) in x.iter_mut().enumerate() {
+            *v = self.floats[k][j];
+        }
+        let mut o = l::outcome_from_floats(&x);
+        o.recontact = self.recontact[j] == 1;
+        o
+    }
+}
+
+/// The failed points' messages by flat index (`/errors`).
+fn error_messages(
+    f: &hdf5::File,
+    path: &Path,
+) -> Result<std::collections::HashMap<usize, String>, StoreError> {
+    let eg = f.group(l::GROUP_ERRORS).ctx(path, "open group errors")?;
+    let eidx = eg
+        .dataset(l::ERR_FLAT_INDEX.name)
+        .and_then(|d| d.read_raw::<u64>())
+        .ctx(path, "errors/flat_index")?;
+    let emsg = eg
+        .dataset(l::ERR_MESSAGE.name)
+        .and_then(|d| d.read_raw::<VarLenUnicode>())
+        .ctx(path, "errors/message")?;
+    Ok(eidx
+        .iter()
+        .zip(emsg)
+        .map(|(i, m)| (*i as usize, m.as_str().to_string()))
+        .collect())
+}
+
+/// A stored history variable: its index in `HISTORY_VARS`, its dataset and the shape of one
+/// point's history (time, and z for the displacement).
+type HistoryArray = (usize, hdf5::Dataset, Vec<usize>);
+
+/// The `/history` variables the header names, if the file has histories.
+fn history_arrays(
+    f: &hdf5::File,
+    path: &Path,
+    header: &JournalHeader,
+) -> Result<Option<Vec<HistoryArray>>, StoreError> {
+    let Some((names, nt, nz)) = &header.history else {
+        return Ok(None);
+    };
+    let hg = f.group(l::GROUP_HISTORY).ctx(path, "open group history")?;
+    let mut v = Vec::new();
+    for name in names {
+        let k = l::HISTORY_VARS
+            .iter()
+            .position(|h| h.0.name == name)
+            .ok_or_else(|| bad(path, format!("unknown history variable {name}")))?;
+        let ds = hg
+            .dataset(name)
+            .ctx(path, &format!("open history/{name}"))?;
+        let tail = match l::HISTORY_VARS[k].2 {
+            true => vec![*nt, *nz],
+            false => vec![*nt],
+        };
+        v.push((k, ds, tail));
+    }
+    Ok(Some(v))
+}
+
+/// The histories of the point at multi-index `idx`.
+fn read_history(
+    arrays: &[HistoryArray],
+    idx: &[usize],
+    path: &Path,
+) -> Result<History, StoreError> {
+    let mut h = History::default();
+    for (k, ds, tail) in arrays {
+        let mut start = idx.to_vec();
+        let mut count = vec![1; idx.len()];
+        for &t in tail {
+            start.push(0);
+            count.push(t);
+        }
+        *l::history_array_mut(&mut h, *k) = read_slab::<f64>(ds, &start, &count, path)?;
+    }
+    Ok(h)
 }
 
 /// What identifies a results file (root attributes only; cheap): for merge's checks.
@@ -384,212 +455,6 @@ pub fn for_each_present_slab(
         visit(n, &slab)?;
     }
     Ok(())
-}
-
-/// `text` safe to print on a terminal: control characters other than the newline (escape
-/// sequences, carriage returns) and the bidirectional overrides become `\u{…}`. A results
-/// file's strings (labels carry user-chosen profile paths; a file can be edited) are data,
-/// never commands to the terminal (issue 31).
-pub fn printable(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        let bidi = matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}');
-        if (c.is_control() && c != '\n') || bidi {
-            out.push_str(&format!("\\u{{{:x}}}", c as u32));
-        } else {
-            out.push(c);
-        }
-    }
-    out
-}
-
-/// A human-readable description of a results file: study, layout version, dims, counts by
-/// status, sweet spots.
-pub fn inspect(path: &Path) -> Result<String, StoreError> {
-    let (f, header, version) = open_checked(path)?;
-    let mut s = String::new();
-    let name = str_attr(&f, "study_name", path)?;
-    let _ = writeln!(
-        s,
-        "{}: batstudy results, layout version {version}",
-        path.display()
-    );
-    let _ = writeln!(
-        s,
-        "study: {name} (sha256 {})",
-        str_attr(&f, "study_sha256", path)?
-    );
-    if let Ok(c) = str_attr(&f, "created", path) {
-        let _ = writeln!(s, "created: {c}");
-    }
-    let dims: Vec<String> = header
-        .dims
-        .iter()
-        .map(|(n, k)| format!("{n}={k}"))
-        .collect();
-    let n: usize = header.dims.iter().map(|d| d.1).product();
-    let _ = writeln!(s, "dims: {} ({n} points)", dims.join(" × "));
-    let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
-    let status = g
-        .dataset(l::STATUS.name)
-        .and_then(|d| d.read_raw::<i8>())
-        .ctx(path, "read summary/status")?;
-    let count = |v: i8| status.iter().filter(|&&x| x == v).count();
-    let _ = writeln!(
-        s,
-        "points: {} ok, {} failed, {} not computed",
-        count(l::STATUS_OK),
-        count(l::STATUS_FAILED),
-        count(l::STATUS_NOT_COMPUTED)
-    );
-    if let Some((names, nt, nz)) = &header.history {
-        let _ = writeln!(
-            s,
-            "history: {} ({nt} samples, {nz} z positions)",
-            names.join(", ")
-        );
-    }
-    if let Ok(sg) = f.group(l::GROUP_SWEET_SPOT) {
-        let rd = |v: &str| {
-            sg.dataset(v)
-                .and_then(|d| d.read_raw::<f64>())
-                .ctx(path, "read sweet_spot")
-        };
-        let (p, e, w) = (rd("position")?, rd("exit_speed")?, rd("width")?);
-        let fin: Vec<usize> = (0..p.len()).filter(|&i| p[i].is_finite()).collect();
-        let edge = sg
-            .dataset(l::SWEET_AT_EDGE.name)
-            .and_then(|d| d.read_raw::<i8>())
-            .unwrap_or_default();
-        let n_edge = edge.iter().filter(|&&e| e == 1).count();
-        if fin.is_empty() {
-            let _ = writeln!(s, "sweet spot: none computed");
-        } else if fin.len() <= 10 {
-            let rest: Vec<&(String, usize)> = header
-                .dims
-                .iter()
-                .filter(|(n, _)| n != l::IMPACT_Z)
-                .collect();
-            let labels: Vec<Vec<String>> =
-                rest.iter().map(|(n, k)| dim_labels(&g, n, *k)).collect();
-            for i in fin {
-                // the curve's coordinates, last dim fastest
-                let mut r = i;
-                let mut at: Vec<String> = vec![String::new(); rest.len()];
-                for (k, (n, size)) in rest.iter().enumerate().rev() {
-                    at[k] = format!("{n}={}", labels[k][r % size]);
-                    r /= size;
-                }
-                let _ = writeln!(
-                    s,
-                    "sweet spot{}{}: z = {:.4} m, exit speed {:.3} m/s, width {:.4} m{}",
-                    if at.is_empty() { "" } else { " at " },
-                    at.join(", "),
-                    p[i],
-                    e[i],
-                    w[i],
-                    if edge.get(i) == Some(&1) {
-                        " (at the edge of the sampled impact_z)"
-                    } else {
-                        ""
-                    }
-                );
-            }
-        } else {
-            let mm = |v: &[f64]| {
-                let it = fin.iter().map(|&i| v[i]);
-                (
-                    it.clone().fold(f64::INFINITY, f64::min),
-                    it.fold(f64::NEG_INFINITY, f64::max),
-                )
-            };
-            let ((p0, p1), (e0, e1), (w0, w1)) = (mm(&p), mm(&e), mm(&w));
-            let _ = writeln!(
-                s,
-                "sweet spots ({} curves): z {p0:.4}..{p1:.4} m, exit speed {e0:.3}..{e1:.3} m/s, width {w0:.4}..{w1:.4} m",
-                fin.len()
-            );
-        }
-        if n_edge > 0 {
-            let _ = writeln!(
-                s,
-                "  {n_edge} of them at the edge of the sampled impact_z (the maximum may lie outside; see sweet_spot/position_at_edge)"
-            );
-        }
-    }
-    if let Ok(bg) = f.group(l::GROUP_BAT) {
-        inspect_bats(&bg, &mut s);
-    }
-    Ok(printable(&s))
-}
-
-/// Text labels of a dim's entries: its `<dim>_label` coordinate, else its coordinate values,
-/// else the index.
-fn dim_labels(g: &hdf5::Group, dim: &str, size: usize) -> Vec<String> {
-    let text = |name: &str| -> Option<Vec<String>> {
-        let ds = g.dataset(name).ok()?;
-        if let Ok(v) = ds.read_raw::<VarLenUnicode>() {
-            return Some(v.iter().map(|x| x.as_str().to_string()).collect());
-        }
-        let v = ds.read_raw::<f64>().ok()?;
-        Some(v.iter().map(|x| format!("{x}")).collect())
-    };
-    let label = format!("{dim}{}", crate::study::coords::LABEL_SUFFIX);
-    let mut out = text(&label)
-        .map(|l| {
-            let idx = text(dim).unwrap_or_default();
-            l.iter()
-                .enumerate()
-                .map(|(i, t)| format!("{} ({t})", idx.get(i).cloned().unwrap_or_default()))
-                .collect()
-        })
-        .or_else(|| text(dim))
-        .unwrap_or_default();
-    out.resize_with(size, String::new);
-    out
-}
-
-/// One line per bat (at most 10): mass, centre of mass, swing weight, first mode, BBCOR.
-fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
-    let f64s = |n: &str| {
-        bg.dataset(n)
-            .and_then(|d| d.read_raw::<f64>())
-            .unwrap_or_default()
-    };
-    let labels: Vec<String> = bg
-        .dataset(l::BAT_DIM.name)
-        .and_then(|d| d.read_raw::<VarLenUnicode>())
-        .map(|v| v.iter().map(|x| x.as_str().to_string()).collect())
-        .unwrap_or_default();
-    let (mass, zcm, moi6, bbcor) = (
-        f64s("mass"),
-        f64s("z_cm"),
-        f64s("moment_of_inertia_knob6"),
-        f64s("bbcor_max"),
-    );
-    let modes = f64s("mode_frequency");
-    let per = if labels.is_empty() {
-        0
-    } else {
-        modes.len() / labels.len()
-    };
-    let _ = writeln!(s, "bats: {}", labels.len());
-    for (i, label) in labels.iter().enumerate().take(10) {
-        let get = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
-        let f1 = if per > 0 { modes[i * per] } else { f64::NAN };
-        let _ = writeln!(
-            s,
-            "  {label}: mass {:.3} kg, CM {:.3} m, MOI(6 in) {:.4} kg m^2, mode 1 {:.0} Hz, max BBCOR {:.3}",
-            get(&mass),
-            get(&zcm),
-            get(&moi6),
-            f1,
-            get(&bbcor)
-        );
-    }
-    if labels.len() > 10 {
-        let _ = writeln!(s, "  … and {} more (group /bat)", labels.len() - 10);
-    }
 }
 
 #[cfg(test)]
