@@ -587,37 +587,3 @@ pub fn history_deflate_level(h: &HistoryRequest) -> u8 {
         HistoryCompression::None => 0,
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    // issue 31: every name the store gives a variable in a group that also holds the study's
-    // coordinates is reserved, so that no dimension or coordinate of a study can take it
-    #[test]
-    fn every_stored_name_beside_the_coordinates_is_reserved() {
-        let mut names: Vec<&str> = SUMMARY_FLOATS.iter().map(|d| d.name).collect();
-        names.extend([RECONTACT, STATUS, POINT_ID, BAT_INDEX].map(|d| d.name));
-        names.extend(
-            [
-                SWEET_POSITION,
-                SWEET_EXIT_SPEED,
-                SWEET_WIDTH,
-                SWEET_MIN_VIBRATION_POSITION,
-                SWEET_MIN_VIBRATION_AMPLITUDE,
-                SWEET_MIN_VIBRATION_ENERGY_POSITION,
-                SWEET_AT_EDGE,
-                TIME,
-                HIST_Z,
-            ]
-            .map(|d| d.name),
-        );
-        names.extend(HISTORY_VARS.iter().map(|(d, _, _)| d.name));
-        for n in names {
-            assert!(
-                crate::results::RESERVED_NAMES.contains(&n),
-                "`{n}` is stored beside the coordinates but not in RESERVED_NAMES"
-            );
-        }
-    }
-}
