@@ -29,7 +29,31 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     } else {
         BatGeometry::resolve(&spec.bat)?.length
     };
-    let ball = &spec.ball;
+    check_ball(&spec.ball)?;
+    check("swing.omega", spec.swing.omega, true, "finite rad/s")?;
+    check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
+    if let Some(hoop) = &spec.hoop {
+        check_hoop(hoop, spec.ball.mass)?;
+    }
+    if spec.model == crate::model::spec::ModelKind::Rigid && spec.bat.grip.is_some() {
+        return Err(ModelError::Unsupported(
+            "bat.grip with the rigid model (it is a free bat)",
+        ));
+    }
+    if !wall {
+        check(
+            "impact.z",
+            spec.impact.z,
+            spec.impact.z >= 0.0 && spec.impact.z <= length,
+            &format!("on the bat: 0 <= z <= {length} m"),
+        )?;
+    }
+    check_numerics(&spec.numerics)?;
+    check_step_budget(spec, length)
+}
+
+/// The ball and its force law.
+fn check_ball(ball: &crate::model::spec::BallSpec) -> Result<(), ModelError> {
     check(
         "ball.mass",
         ball.mass,
@@ -43,10 +67,11 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         "a finite number > 0 m/s",
     )?;
     let law = &ball.law;
+    let stiffness = law.stiffness;
     check(
         "ball.law.stiffness",
-        law.stiffness,
-        law.stiffness > 0.0,
+        stiffness,
+        stiffness > 0.0,
         "a finite number > 0 N/m",
     )?;
     check(
@@ -83,37 +108,12 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         law.alpha > 0.0,
         "a finite number > 0",
     )?;
-    check("swing.omega", spec.swing.omega, true, "finite rad/s")?;
-    check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
-    if let Some(hoop) = spec.hoop.as_ref().filter(|h| !h.from_geometry) {
-        for (path, v) in [("hoop.frequency", hoop.frequency), ("hoop.mass", hoop.mass)] {
-            if v.is_none() {
-                return Err(ModelError::Missing {
-                    path: path.into(),
-                    allowed: "this field is required (hoop.frequency and hoop.mass are both needed unless hoop.from_geometry: true)".into(),
-                });
-            }
-        }
-        let (lo, hi) = HOOP_FREQUENCY_RANGE;
-        let f = hoop.frequency.unwrap_or(f64::NAN);
-        check(
-            "hoop.frequency",
-            f,
-            f >= lo && f <= hi,
-            &format!("{lo} to {hi} Hz (required unless hoop.from_geometry)"),
-        )?;
-        let max_mass = HOOP_MASS_MAX_BALL_MASSES * ball.mass;
-        let m = hoop.mass.unwrap_or(f64::NAN);
-        check(
-            "hoop.mass",
-            m,
-            m > 0.0 && m < max_mass,
-            &format!(
-                "> 0 and < {max_mass} kg (10 ball masses; required unless hoop.from_geometry)"
-            ),
-        )?;
-    }
-    if let Some(hoop) = spec.hoop.as_ref().filter(|h| h.from_geometry) {
+    Ok(())
+}
+
+/// The hoop mode: given (frequency and mass), or derived from the geometry (neither).
+fn check_hoop(hoop: &crate::model::spec::HoopSpec, ball_mass: f64) -> Result<(), ModelError> {
+    if hoop.from_geometry {
         for (path, v) in [("hoop.frequency", hoop.frequency), ("hoop.mass", hoop.mass)] {
             if let Some(v) = v {
                 check(path, v, false, "unset (hoop.from_geometry derives it)")?;
@@ -122,21 +122,37 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         if let Some(l) = hoop.length {
             check("hoop.length", l, l > 0.0, "(0, ∞) m")?;
         }
+        return Ok(());
     }
-    if spec.model == crate::model::spec::ModelKind::Rigid && spec.bat.grip.is_some() {
-        return Err(ModelError::Unsupported(
-            "bat.grip with the rigid model (it is a free bat)",
-        ));
+    for (path, v) in [("hoop.frequency", hoop.frequency), ("hoop.mass", hoop.mass)] {
+        if v.is_none() {
+            return Err(ModelError::Missing {
+                path: path.into(),
+                allowed: "this field is required (hoop.frequency and hoop.mass are both needed unless hoop.from_geometry: true)".into(),
+            });
+        }
     }
-    if !wall {
-        check(
-            "impact.z",
-            spec.impact.z,
-            spec.impact.z >= 0.0 && spec.impact.z <= length,
-            &format!("on the bat: 0 <= z <= {length} m"),
-        )?;
-    }
-    if let Some(n) = spec.numerics.segments {
+    let (lo, hi) = HOOP_FREQUENCY_RANGE;
+    let f = hoop.frequency.unwrap_or(f64::NAN);
+    check(
+        "hoop.frequency",
+        f,
+        f >= lo && f <= hi,
+        &format!("{lo} to {hi} Hz (required unless hoop.from_geometry)"),
+    )?;
+    let max_mass = HOOP_MASS_MAX_BALL_MASSES * ball_mass;
+    let m = hoop.mass.unwrap_or(f64::NAN);
+    check(
+        "hoop.mass",
+        m,
+        m > 0.0 && m < max_mass,
+        &format!("> 0 and < {max_mass} kg (10 ball masses; required unless hoop.from_geometry)"),
+    )
+}
+
+/// The numerics the study may set.
+fn check_numerics(numerics: &crate::model::spec::NumericsSpec) -> Result<(), ModelError> {
+    if let Some(n) = numerics.segments {
         let (lo, hi) = (
             crate::model::bat::MIN_SEGMENTS,
             crate::model::bat::MAX_SEGMENTS,
@@ -148,10 +164,10 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
             &format!("[{lo}, {hi}]"),
         )?;
     }
-    if let Some(dt) = spec.numerics.dt {
+    if let Some(dt) = numerics.dt {
         check("numerics.dt", dt, dt > 0.0, "(0, stability limit] s")?;
     }
-    if let Some(b) = spec.numerics.max_steps {
+    if let Some(b) = numerics.max_steps {
         check(
             "numerics.max_steps",
             b as f64,
@@ -159,7 +175,7 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
             "a whole number >= 1",
         )?;
     }
-    check_step_budget(spec, length)
+    Ok(())
 }
 
 /// Refuse a collision that provably needs more steps than its budget, without preparing
