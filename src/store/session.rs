@@ -139,89 +139,20 @@ pub fn open_begun(
     begun: Option<BegunFile>,
 ) -> Result<Session, StoreError> {
     check_info(info, path)?;
+    let skeleton = take_begun(path, begun)?;
+    build::remove_stale_spills(&partial_path(path));
+    let mut s = Session::new(path, info, opts, skeleton);
     let jpath = journal_path(path);
     let want = JournalHeader::of(info);
-    let skeleton = match begun {
-        Some(mut b) => {
-            if b.path != path {
-                return Err(StoreError::BegunMismatch {
-                    path: path.to_path_buf(),
-                    what: format!("it was begun for {}", b.path.display()),
-                });
-            }
-            b.skeleton.take()
-        }
-        None => {
-            remove_if_exists(&partial_path(path))?;
-            None
-        }
-    };
-    build::remove_stale_spills(&partial_path(path));
-    let n_points = info.shape.n_points();
-    let mut s = Session {
-        path: path.to_path_buf(),
-        journal_path: jpath.clone(),
-        info: info.clone(),
-        meta: opts.run_meta.clone(),
-        journal: None,
-        done: PointSet::new(n_points),
-        build_memory: opts.build_memory,
-        skeleton,
-        gathered: None,
-        encoder: RecordEncoder::new(path, info),
-        placer: None,
-        history_tail: None,
-        flush_interval: opts.flush_interval,
-        sync_interval: opts.sync_interval,
-        last_flush: Instant::now(),
-        last_sync: Instant::now(),
-        resumed: 0,
-        dropped_bytes: 0,
-    };
-    let out_exists = path.exists();
-    let j_exists = jpath.exists();
-    if opts.resume && j_exists {
-        let done = &mut s.done;
-        let scan = journal::scan(&jpath, |r| {
-            if r.index < n_points {
-                done.insert(r.index);
-            }
-        })?;
-        if let Some(e) = scan.header.mismatch(&want, &jpath) {
-            return Err(e);
-        }
-        s.resumed = s.done.count();
-        s.dropped_bytes = scan.dropped_bytes;
-        s.journal = Some(JournalWriter::append_to(&jpath, &scan)?);
+    if opts.resume && jpath.exists() {
+        s.resume_journal(&want)?;
         return Ok(s);
     }
-    if opts.resume && out_exists {
-        // a finished (possibly partial, e.g. interrupted-then-finished) file: its records
-        // seed a new journal
-        let fi = read::file_info(path)?;
-        if let Some(e) = fi.header.mismatch(&want, path) {
-            return Err(e);
-        }
-        let mut w = JournalWriter::create(&jpath, &want)?;
-        let done = &mut s.done;
-        let encoder = &s.encoder;
-        read::for_each_record(path, |rec| {
-            let index = rec.index;
-            if index < n_points && !done.contains(index) {
-                w.append(&encoder.encode(rec)?.framed)?;
-                done.insert(index);
-                if w.buffered_bytes() > 1 << 22 {
-                    w.flush()?;
-                }
-            }
-            Ok(())
-        })?;
-        w.sync()?;
-        s.resumed = s.done.count();
-        s.journal = Some(w);
+    if opts.resume && path.exists() {
+        s.resume_finished_file(&want)?;
         return Ok(s);
     }
-    if !opts.resume && (out_exists || j_exists) {
+    if !opts.resume && (path.exists() || jpath.exists()) {
         if !opts.force {
             return Err(StoreError::Exists {
                 path: path.to_path_buf(),
@@ -234,13 +165,113 @@ pub fn open_begun(
     // a fresh journal: this session sees every record it will store
     s.gathered = build::Gathered::new(info, opts.build_memory);
     if info.history.is_some() {
+        let n_points = info.shape.n_points();
         let (start, end) = opts.run_meta.shard_range.unwrap_or((0, n_points));
         s.placer = Some(HistoryPlacer::new(start, end, opts.history_hold));
     }
     Ok(s)
 }
 
+/// The skeleton `begin` made for this output (or none: a stale `.partial` is removed).
+fn take_begun(
+    path: &Path,
+    begun: Option<BegunFile>,
+) -> Result<Option<build::Skeleton>, StoreError> {
+    match begun {
+        Some(mut b) => {
+            if b.path != path {
+                return Err(StoreError::BegunMismatch {
+                    path: path.to_path_buf(),
+                    what: format!("it was begun for {}", b.path.display()),
+                });
+            }
+            Ok(b.skeleton.take())
+        }
+        None => {
+            remove_if_exists(&partial_path(path))?;
+            Ok(None)
+        }
+    }
+}
+
 impl Session {
+    /// A session of output `path` with nothing done yet and no journal open.
+    fn new(
+        path: &Path,
+        info: &StudyInfo,
+        opts: &StoreOptions,
+        skeleton: Option<build::Skeleton>,
+    ) -> Session {
+        Session {
+            path: path.to_path_buf(),
+            journal_path: journal_path(path),
+            info: info.clone(),
+            meta: opts.run_meta.clone(),
+            journal: None,
+            done: PointSet::new(info.shape.n_points()),
+            build_memory: opts.build_memory,
+            skeleton,
+            gathered: None,
+            encoder: RecordEncoder::new(path, info),
+            placer: None,
+            history_tail: None,
+            flush_interval: opts.flush_interval,
+            sync_interval: opts.sync_interval,
+            last_flush: Instant::now(),
+            last_sync: Instant::now(),
+            resumed: 0,
+            dropped_bytes: 0,
+        }
+    }
+
+    /// Continue an interrupted run: the journal's valid records are done, its torn tail is
+    /// cut, and new records are appended after them.
+    fn resume_journal(&mut self, want: &JournalHeader) -> Result<(), StoreError> {
+        let n_points = self.info.shape.n_points();
+        let jpath = self.journal_path.clone();
+        let done = &mut self.done;
+        let scan = journal::scan(&jpath, |r| {
+            if r.index < n_points {
+                done.insert(r.index);
+            }
+        })?;
+        if let Some(e) = scan.header.mismatch(want, &jpath) {
+            return Err(e);
+        }
+        self.resumed = self.done.count();
+        self.dropped_bytes = scan.dropped_bytes;
+        self.journal = Some(JournalWriter::append_to(&jpath, &scan)?);
+        Ok(())
+    }
+
+    /// Continue a finished (possibly partial, e.g. interrupted-then-finished) file: its
+    /// records seed a new journal.
+    fn resume_finished_file(&mut self, want: &JournalHeader) -> Result<(), StoreError> {
+        let n_points = self.info.shape.n_points();
+        let fi = read::file_info(&self.path)?;
+        if let Some(e) = fi.header.mismatch(want, &self.path) {
+            return Err(e);
+        }
+        let mut w = JournalWriter::create(&self.journal_path, want)?;
+        let done = &mut self.done;
+        let encoder = &self.encoder;
+        read::for_each_record(&self.path, |rec| {
+            let index = rec.index;
+            if index < n_points && !done.contains(index) {
+                w.append(&encoder.encode(rec)?.framed)?;
+                done.insert(index);
+                if w.buffered_bytes() > 1 << 22 {
+                    w.flush()?;
+                }
+            }
+            Ok(())
+        })?;
+        w.sync()?;
+        self.resumed = self.done.count();
+        self.journal = Some(w);
+        Ok(())
+    }
+
     /// The output path.
     pub fn path(&self) -> &Path {
         &self.path
