@@ -65,92 +65,23 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
         .with_fapl(|p| p.chunk_cache(1, 0, 1.0))
         .create_excl(out)
         .ctx(out, "create the results file")?;
-
     let dims = &study_shape.dims;
-    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let chunk = summary_chunk(dims);
-
-    // ---- /summary (and /sweet_spot, computed from the same blocks)
     let att = Attacher::default();
-    let g = f
-        .create_group(l::GROUP_SUMMARY)
-        .ctx(out, "create group summary")?;
-    let (scales, aux) = study_dims(&g, dims, &att, out)?;
-    let sref: Vec<&Dataset> = scales.iter().collect();
-    let links = (&sref[..], &aux[..], &att);
-    let mut floats = Vec::new();
-    for def in &l::SUMMARY_FLOATS {
-        floats.push(new_var(&g, def, (&shape, &chunk), f64::NAN, links, out)?);
-    }
-    let recontact = new_var(&g, &l::RECONTACT, (&shape, &chunk), -1i8, links, out)?;
-    let status = new_var(
-        &g,
-        &l::STATUS,
-        (&shape, &chunk),
-        l::STATUS_NOT_COMPUTED,
-        links,
-        out,
-    )?;
-    attr_vec(&status, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe status")?;
-    attr_str(&status, "flag_meanings", "not_computed ok failed").ctx(out, "describe status")?;
-    let point_id = new_var(&g, &l::POINT_ID, (&shape, &chunk), 0u64, links, out)?;
-    let bat_index = new_var(&g, &l::BAT_INDEX, (&shape, &chunk), -1i32, links, out)?;
-
-    let iz = dims.iter().position(|d| d.name == l::IMPACT_Z);
-    let sweet = match iz {
-        Some(iz) => {
-            let sg = f
-                .create_group(l::GROUP_SWEET_SPOT)
-                .ctx(out, "create group sweet_spot")?;
-            let rest: Vec<Dim> = dims
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != iz)
-                .map(|(_, d)| d.clone())
-                .collect();
-            let (ss, saux) = study_dims(&sg, &rest, &att, out)?;
-            let ssref: Vec<&Dataset> = ss.iter().collect();
-            let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
-            let rchunk = without(&chunk, iz);
-            let mut vars = Vec::new();
-            for def in [
-                &l::SWEET_POSITION,
-                &l::SWEET_EXIT_SPEED,
-                &l::SWEET_WIDTH,
-                &l::SWEET_MIN_VIBRATION_POSITION,
-                &l::SWEET_MIN_VIBRATION_AMPLITUDE,
-                &l::SWEET_MIN_VIBRATION_ENERGY_POSITION,
-            ] {
-                let links = (&ssref[..], &saux[..], &att);
-                vars.push(new_var(&sg, def, (&rshape, &rchunk), f64::NAN, links, out)?);
-            }
-            let links = (&ssref[..], &saux[..], &att);
-            let edge = new_var(&sg, &l::SWEET_AT_EDGE, (&rshape, &rchunk), -1i8, links, out)?;
-            attr_vec(&edge, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe at_edge")?;
-            attr_str(&edge, "flag_meanings", "no_curve inside at_edge")
-                .ctx(out, "describe at_edge")?;
-            vars.push(edge);
-            let z = match dims[iz]
-                .coords
-                .iter()
-                .find(|c| c.name == l::IMPACT_Z)
-                .map(|c| &c.values)
-            {
-                Some(CoordValues::Numbers(z)) => z.clone(),
-                _ => {
-                    return Err(StoreError::BadRecord {
-                        path: out.to_path_buf(),
-                        what: "dim impact_z has no numeric coordinate impact_z".into(),
-                    })
-                }
-            };
-            Some((iz, vars, z))
-        }
+    let summary = summary_group(&f, dims, &chunk, &att, out)?;
+    let sweet = match dims.iter().position(|d| d.name == l::IMPACT_Z) {
+        Some(iz) => Some(sweet_spot_group(&f, dims, iz, &chunk, &att, out)?),
         None => None,
     };
-
     let errors = create_errors(&f, &att, out)?;
     att.write().ctx(out, "attach the dimension scales")?;
+    let SummaryVars {
+        floats,
+        recontact,
+        status,
+        point_id,
+        bat_index,
+    } = summary;
     Ok(Skeleton {
         f,
         out: out.to_path_buf(),
@@ -165,6 +96,105 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
         errors,
         history: Vec::new(),
     })
+}
+
+/// The variables of `/summary`.
+struct SummaryVars {
+    floats: Vec<Dataset>,
+    recontact: Dataset,
+    status: Dataset,
+    point_id: Dataset,
+    bat_index: Dataset,
+}
+
+/// `/summary`: the study's coordinates and one empty variable per stored quantity.
+fn summary_group(
+    f: &hdf5::File,
+    dims: &[Dim],
+    chunk: &[usize],
+    att: &Attacher,
+    out: &Path,
+) -> Result<SummaryVars, StoreError> {
+    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
+    let g = f
+        .create_group(l::GROUP_SUMMARY)
+        .ctx(out, "create group summary")?;
+    let (scales, aux) = study_dims(&g, dims, att, out)?;
+    let sref: Vec<&Dataset> = scales.iter().collect();
+    let links = (&sref[..], &aux[..], att);
+    let sc = (&shape[..], chunk);
+    let mut floats = Vec::new();
+    for def in &l::SUMMARY_FLOATS {
+        floats.push(new_var(&g, def, sc, f64::NAN, links, out)?);
+    }
+    let recontact = new_var(&g, &l::RECONTACT, sc, -1i8, links, out)?;
+    let status = new_var(&g, &l::STATUS, sc, l::STATUS_NOT_COMPUTED, links, out)?;
+    attr_vec(&status, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe status")?;
+    attr_str(&status, "flag_meanings", "not_computed ok failed").ctx(out, "describe status")?;
+    Ok(SummaryVars {
+        floats,
+        recontact,
+        status,
+        point_id: new_var(&g, &l::POINT_ID, sc, 0u64, links, out)?,
+        bat_index: new_var(&g, &l::BAT_INDEX, sc, -1i32, links, out)?,
+    })
+}
+
+/// `/sweet_spot`: the summary's coordinates without `impact_z` (dimension `iz`), the sweet
+/// spots' variables, and the impact positions they are found along.
+fn sweet_spot_group(
+    f: &hdf5::File,
+    dims: &[Dim],
+    iz: usize,
+    chunk: &[usize],
+    att: &Attacher,
+    out: &Path,
+) -> Result<(usize, Vec<Dataset>, Vec<f64>), StoreError> {
+    let z = match dims[iz]
+        .coords
+        .iter()
+        .find(|c| c.name == l::IMPACT_Z)
+        .map(|c| &c.values)
+    {
+        Some(CoordValues::Numbers(z)) => z.clone(),
+        _ => {
+            return Err(StoreError::BadRecord {
+                path: out.to_path_buf(),
+                what: "dim impact_z has no numeric coordinate impact_z".into(),
+            })
+        }
+    };
+    let sg = f
+        .create_group(l::GROUP_SWEET_SPOT)
+        .ctx(out, "create group sweet_spot")?;
+    let rest: Vec<Dim> = dims
+        .iter()
+        .enumerate()
+        .filter(|&(k, _)| k != iz)
+        .map(|(_, d)| d.clone())
+        .collect();
+    let (ss, saux) = study_dims(&sg, &rest, att, out)?;
+    let ssref: Vec<&Dataset> = ss.iter().collect();
+    let rshape: Vec<usize> = rest.iter().map(|d| d.size).collect();
+    let rchunk = without(chunk, iz);
+    let links = (&ssref[..], &saux[..], att);
+    let sc = (&rshape[..], &rchunk[..]);
+    let mut vars = Vec::new();
+    for def in [
+        &l::SWEET_POSITION,
+        &l::SWEET_EXIT_SPEED,
+        &l::SWEET_WIDTH,
+        &l::SWEET_MIN_VIBRATION_POSITION,
+        &l::SWEET_MIN_VIBRATION_AMPLITUDE,
+        &l::SWEET_MIN_VIBRATION_ENERGY_POSITION,
+    ] {
+        vars.push(new_var(&sg, def, sc, f64::NAN, links, out)?);
+    }
+    let edge = new_var(&sg, &l::SWEET_AT_EDGE, sc, -1i8, links, out)?;
+    attr_vec(&edge, "flag_values", &[-1i8, 0, 1]).ctx(out, "describe at_edge")?;
+    attr_str(&edge, "flag_meanings", "no_curve inside at_edge").ctx(out, "describe at_edge")?;
+    vars.push(edge);
+    Ok((iz, vars, z))
 }
 
 /// Add what depends on the bats and the run to a begun skeleton: the root attributes,
