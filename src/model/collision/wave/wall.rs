@@ -20,42 +20,12 @@ pub fn simulate_wall(
     spec: &CollisionSpec,
     history: Option<&HistoryRequest>,
 ) -> Result<(Outcome, Diagnostics), ModelError> {
-    let m = spec.ball.mass;
-    let v0 = spec.ball.speed;
+    let (m, v0) = (spec.ball.mass, spec.ball.speed);
     let law = ContactLaw::new(&spec.ball.law, v0);
-    let omega_c = (law.max_tangent(m, v0) / m).sqrt();
-    let limit = MODAL_MAX_STEP_FRACTION / omega_c;
-    let h = match spec.numerics.dt {
-        Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
-            return Err(out_of_range("numerics.dt", dt, "(0, resolution limit] s"))
-        }
-        Some(dt) if dt > limit => {
-            return Err(ModelError::TimeStepTooLarge {
-                dt,
-                limit,
-                integrator: "wall",
-            })
-        }
-        Some(dt) => dt,
-        None => MODAL_STEP_FRACTION / omega_c,
-    };
+    let h = wall_step(spec, &law)?;
     let budget = super::checked_step_budget(spec, h, "numerics.max_steps")?;
     let h2_over_6m = h * h / (6.0 * m);
     let mut recorder = history.map(Recorder::new).transpose()?;
-    let sample = |rec: &Recorder, force: f64, s: f64, v: f64| Sample {
-        force,
-        compression: s.max(0.0),
-        ball_velocity: v,
-        displacement: vec![
-            0.0;
-            if rec.wants_displacement {
-                rec.request().z.len()
-            } else {
-                0
-            }
-        ],
-        ..Sample::default()
-    };
     if let Some(rec) = recorder.as_mut() {
         let first = sample(rec, 0.0, 0.0, v0);
         rec.push(0.0, first);
@@ -83,6 +53,56 @@ pub fn simulate_wall(
             break;
         }
     }
+    let mut outcome = wall_outcome(m, v0, v, &contact);
+    outcome.history = recorder.map(|r| r.finish());
+    let diagnostics = Diagnostics {
+        energy_final: outcome.energy.ball_final + outcome.energy.ball_loss,
+        dt: h,
+        steps,
+        ..Diagnostics::default()
+    };
+    Ok((outcome, diagnostics))
+}
+
+/// The time step: the study's (checked against the contact's resolution limit), else the
+/// default fraction of the contact's time scale.
+fn wall_step(spec: &CollisionSpec, law: &ContactLaw) -> Result<f64, ModelError> {
+    let (m, v0) = (spec.ball.mass, spec.ball.speed);
+    let omega_c = (law.max_tangent(m, v0) / m).sqrt();
+    let limit = MODAL_MAX_STEP_FRACTION / omega_c;
+    match spec.numerics.dt {
+        Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
+            Err(out_of_range("numerics.dt", dt, "(0, resolution limit] s"))
+        }
+        Some(dt) if dt > limit => Err(ModelError::TimeStepTooLarge {
+            dt,
+            limit,
+            integrator: "wall",
+        }),
+        Some(dt) => Ok(dt),
+        None => Ok(MODAL_STEP_FRACTION / omega_c),
+    }
+}
+
+/// A sample of the ball against the wall (the wall does not move).
+fn sample(rec: &Recorder, force: f64, s: f64, v: f64) -> Sample {
+    let positions = if rec.wants_displacement {
+        rec.request().z.len()
+    } else {
+        0
+    };
+    Sample {
+        force,
+        compression: s.max(0.0),
+        ball_velocity: v,
+        displacement: vec![0.0; positions],
+        ..Sample::default()
+    }
+}
+
+/// The outcome of a ball of mass `m` that hit the wall at `v0` and left at velocity `v`
+/// (negative: away from the wall).
+fn wall_outcome(m: f64, v0: f64, v: f64, contact: &Contact) -> Outcome {
     let exit_speed = -v;
     let energy = EnergyPartition {
         initial: 0.5 * m * v0 * v0,
@@ -90,7 +110,7 @@ pub fn simulate_wall(
         ball_loss: contact.ball_loss,
         ..EnergyPartition::default()
     };
-    let outcome = Outcome {
+    Outcome {
         exit_speed,
         exit_speed_lab: exit_speed,
         // An immovable target has an infinite effective mass: e_A is the COR itself.
@@ -110,13 +130,6 @@ pub fn simulate_wall(
         recontact: contact.recontact,
         grip_vibration_amplitude: 0.0,
         grip_recoil_speed: 0.0,
-        history: recorder.map(|r| r.finish()),
-    };
-    let diagnostics = Diagnostics {
-        energy_final: energy.ball_final + energy.ball_loss,
-        dt: h,
-        steps,
-        ..Diagnostics::default()
-    };
-    Ok((outcome, diagnostics))
+        history: None,
+    }
 }
