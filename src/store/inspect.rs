@@ -2,6 +2,7 @@
 //! terminal.
 
 use super::error::{H5Ctx, StoreError};
+use super::header::JournalHeader;
 use super::layout as l;
 use super::read::{open_checked, str_attr};
 use hdf5::types::VarLenUnicode;
@@ -44,6 +45,24 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
     if let Ok(c) = str_attr(&f, "created", path) {
         let _ = writeln!(s, "created: {c}");
     }
+    let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
+    inspect_points(&g, &header, path, &mut s)?;
+    if let Ok(sg) = f.group(l::GROUP_SWEET_SPOT) {
+        inspect_sweet_spots(&sg, &g, &header, path, &mut s)?;
+    }
+    if let Ok(bg) = f.group(l::GROUP_BAT) {
+        inspect_bats(&bg, &mut s);
+    }
+    Ok(printable(&s))
+}
+
+/// The dims, the points by status, the histories.
+fn inspect_points(
+    g: &hdf5::Group,
+    header: &JournalHeader,
+    path: &Path,
+    s: &mut String,
+) -> Result<(), StoreError> {
     let dims: Vec<String> = header
         .dims
         .iter()
@@ -51,7 +70,6 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
         .collect();
     let n: usize = header.dims.iter().map(|d| d.1).product();
     let _ = writeln!(s, "dims: {} ({n} points)", dims.join(" × "));
-    let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
     let status = g
         .dataset(l::STATUS.name)
         .and_then(|d| d.read_raw::<i8>())
@@ -71,78 +89,83 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
             names.join(", ")
         );
     }
-    if let Ok(sg) = f.group(l::GROUP_SWEET_SPOT) {
-        let rd = |v: &str| {
-            sg.dataset(v)
-                .and_then(|d| d.read_raw::<f64>())
-                .ctx(path, "read sweet_spot")
-        };
-        let (p, e, w) = (rd("position")?, rd("exit_speed")?, rd("width")?);
-        let fin: Vec<usize> = (0..p.len()).filter(|&i| p[i].is_finite()).collect();
-        let edge = sg
-            .dataset(l::SWEET_AT_EDGE.name)
-            .and_then(|d| d.read_raw::<i8>())
-            .unwrap_or_default();
-        let n_edge = edge.iter().filter(|&&e| e == 1).count();
-        if fin.is_empty() {
-            let _ = writeln!(s, "sweet spot: none computed");
-        } else if fin.len() <= 10 {
-            let rest: Vec<&(String, usize)> = header
-                .dims
-                .iter()
-                .filter(|(n, _)| n != l::IMPACT_Z)
-                .collect();
-            let labels: Vec<Vec<String>> =
-                rest.iter().map(|(n, k)| dim_labels(&g, n, *k)).collect();
-            for i in fin {
-                // the curve's coordinates, last dim fastest
-                let mut r = i;
-                let mut at: Vec<String> = vec![String::new(); rest.len()];
-                for (k, (n, size)) in rest.iter().enumerate().rev() {
-                    at[k] = format!("{n}={}", labels[k][r % size]);
-                    r /= size;
-                }
-                let _ = writeln!(
-                    s,
-                    "sweet spot{}{}: z = {:.4} m, exit speed {:.3} m/s, width {:.4} m{}",
-                    if at.is_empty() { "" } else { " at " },
-                    at.join(", "),
-                    p[i],
-                    e[i],
-                    w[i],
-                    if edge.get(i) == Some(&1) {
-                        " (at the edge of the sampled impact_z)"
-                    } else {
-                        ""
-                    }
-                );
+    Ok(())
+}
+
+/// The sweet spots: each named by its curve's coordinates (up to 10), else their ranges.
+fn inspect_sweet_spots(
+    sg: &hdf5::Group,
+    g: &hdf5::Group,
+    header: &JournalHeader,
+    path: &Path,
+    s: &mut String,
+) -> Result<(), StoreError> {
+    let rd = |v: &str| {
+        sg.dataset(v)
+            .and_then(|d| d.read_raw::<f64>())
+            .ctx(path, "read sweet_spot")
+    };
+    let (p, e, w) = (rd("position")?, rd("exit_speed")?, rd("width")?);
+    let fin: Vec<usize> = (0..p.len()).filter(|&i| p[i].is_finite()).collect();
+    let edge = sg
+        .dataset(l::SWEET_AT_EDGE.name)
+        .and_then(|d| d.read_raw::<i8>())
+        .unwrap_or_default();
+    if fin.is_empty() {
+        let _ = writeln!(s, "sweet spot: none computed");
+    } else if fin.len() <= 10 {
+        let rest: Vec<&(String, usize)> = header
+            .dims
+            .iter()
+            .filter(|(n, _)| n != l::IMPACT_Z)
+            .collect();
+        let labels: Vec<Vec<String>> = rest.iter().map(|(n, k)| dim_labels(g, n, *k)).collect();
+        for i in fin {
+            // the curve's coordinates, last dim fastest
+            let mut r = i;
+            let mut at: Vec<String> = vec![String::new(); rest.len()];
+            for (k, (n, size)) in rest.iter().enumerate().rev() {
+                at[k] = format!("{n}={}", labels[k][r % size]);
+                r /= size;
             }
-        } else {
-            let mm = |v: &[f64]| {
-                let it = fin.iter().map(|&i| v[i]);
-                (
-                    it.clone().fold(f64::INFINITY, f64::min),
-                    it.fold(f64::NEG_INFINITY, f64::max),
-                )
-            };
-            let ((p0, p1), (e0, e1), (w0, w1)) = (mm(&p), mm(&e), mm(&w));
             let _ = writeln!(
                 s,
-                "sweet spots ({} curves): z {p0:.4}..{p1:.4} m, exit speed {e0:.3}..{e1:.3} m/s, width {w0:.4}..{w1:.4} m",
-                fin.len()
+                "sweet spot{}{}: z = {:.4} m, exit speed {:.3} m/s, width {:.4} m{}",
+                if at.is_empty() { "" } else { " at " },
+                at.join(", "),
+                p[i],
+                e[i],
+                w[i],
+                if edge.get(i) == Some(&1) {
+                    " (at the edge of the sampled impact_z)"
+                } else {
+                    ""
+                }
             );
         }
-        if n_edge > 0 {
-            let _ = writeln!(
-                s,
-                "  {n_edge} of them at the edge of the sampled impact_z (the maximum may lie outside; see sweet_spot/position_at_edge)"
-            );
-        }
+    } else {
+        let mm = |v: &[f64]| {
+            let it = fin.iter().map(|&i| v[i]);
+            (
+                it.clone().fold(f64::INFINITY, f64::min),
+                it.fold(f64::NEG_INFINITY, f64::max),
+            )
+        };
+        let ((p0, p1), (e0, e1), (w0, w1)) = (mm(&p), mm(&e), mm(&w));
+        let _ = writeln!(
+            s,
+            "sweet spots ({} curves): z {p0:.4}..{p1:.4} m, exit speed {e0:.3}..{e1:.3} m/s, width {w0:.4}..{w1:.4} m",
+            fin.len()
+        );
     }
-    if let Ok(bg) = f.group(l::GROUP_BAT) {
-        inspect_bats(&bg, &mut s);
+    let n_edge = edge.iter().filter(|&&e| e == 1).count();
+    if n_edge > 0 {
+        let _ = writeln!(
+            s,
+            "  {n_edge} of them at the edge of the sampled impact_z (the maximum may lie outside; see sweet_spot/position_at_edge)"
+        );
     }
-    Ok(printable(&s))
+    Ok(())
 }
 
 /// Text labels of a dim's entries: its `<dim>_label` coordinate, else its coordinate values,
