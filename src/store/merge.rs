@@ -98,40 +98,51 @@ pub fn merge_check(
         }
         declared.push((fi.shard, fi.shard_range));
     }
+    match missing_points(out, shards, &declared, &seen, n) {
+        Some((path, what)) => Err(StoreError::CannotMerge { path, what }),
+        None => Ok(()),
+    }
+}
+
+/// Where the points missing from the shards belong, naming the incomplete shard and the
+/// command that finishes it (or a missing shard file), if any are missing.
+fn missing_points(
+    out: &Path,
+    shards: &[PathBuf],
+    declared: &[(String, Option<(usize, usize)>)],
+    seen: &PointSet,
+    n: usize,
+) -> Option<(PathBuf, String)> {
     let n_missing = n - seen.count();
     let shown: Vec<usize> = seen.missing().take(8).collect();
-    if let Some(&first) = shown.first() {
-        let list = format!("{shown:?}{}", if n_missing > 8 { ", ..." } else { "" });
-        let owner_of = declared
-            .iter()
-            .position(|(_, r)| r.is_some_and(|(a, b)| a <= first && first < b));
-        let (path, what) = match owner_of {
-            Some(k) => {
-                let (a, b) = declared[k].1.unwrap_or_default();
-                let lack = (a..b.min(n)).filter(|&i| !seen.contains(i)).count();
-                (
-                    shards[k].clone(),
-                    format!(
-                        "shard {} is incomplete: it lacks {lack} of its {} points (flat indices {list}); the shards lack {} of the study's {n} points in all. Finish it with `batstudy run STUDY --shard {} --resume -o {}`",
-                        declared[k].0,
-                        b - a,
-                        n_missing,
-                        declared[k].0,
-                        shards[k].display()
-                    ),
-                )
-            }
-            None => (
-                out.to_path_buf(),
+    let &first = shown.first()?;
+    let list = format!("{shown:?}{}", if n_missing > 8 { ", ..." } else { "" });
+    let owner_of = declared
+        .iter()
+        .position(|(_, r)| r.is_some_and(|(a, b)| a <= first && first < b));
+    Some(match owner_of {
+        Some(k) => {
+            let (a, b) = declared[k].1.unwrap_or_default();
+            let lack = (a..b.min(n)).filter(|&i| !seen.contains(i)).count();
+            (
+                shards[k].clone(),
                 format!(
-                    "the shards lack {} of the study's {n} points (flat indices {list}): a shard file is missing from the list",
-                    n_missing
+                    "shard {} is incomplete: it lacks {lack} of its {} points (flat indices {list}); the shards lack {} of the study's {n} points in all. Finish it with `batstudy run STUDY --shard {} --resume -o {}`",
+                    declared[k].0,
+                    b - a,
+                    n_missing,
+                    declared[k].0,
+                    shards[k].display()
                 ),
+            )
+        }
+        None => (
+            out.to_path_buf(),
+            format!(
+                "the shards lack {n_missing} of the study's {n} points (flat indices {list}): a shard file is missing from the list"
             ),
-        };
-        return Err(StoreError::CannotMerge { path, what });
-    }
-    Ok(())
+        ),
+    })
 }
 
 /// Every stored point of shard `p` has the id the study gives its flat index (checked on
