@@ -26,6 +26,20 @@ pub struct FromRun {
     pub histories: HistoryTail,
 }
 
+/// The window of blocks `b0..b1`, its records read from `source`.
+fn read_window(
+    mut source: Source,
+    blocks: &BlockGrid,
+    (b0, b1): (usize, usize),
+    tally: &mut Tally,
+) -> Result<Window, StoreError> {
+    let mut w = Window::of_blocks(blocks, b0, b1);
+    while let Some(rec) = source.next()? {
+        w.put(&rec, blocks, b0, b1, tally);
+    }
+    Ok(w)
+}
+
 /// Fill a skeleton with the journal's records, write the counts and `created`, and close
 /// the file. Memory: `memory` bytes of summary values at most (a study larger than that is
 /// built window by window, its journal first split into one spill file per window), one
@@ -77,15 +91,11 @@ pub fn fill(
                 g.window
             }
             _ => {
-                let mut w = Window::of_blocks(&blocks, b0, b1);
-                let mut source = match &spill {
+                let source = match &spill {
                     Some(sp) => Source::Spill(sp.reader(k)?),
                     None => Source::Journal(RecordReader::open(journal, scan)?),
                 };
-                while let Some(rec) = source.next()? {
-                    w.put(&rec, &blocks, b0, b1, &mut tally);
-                }
-                w
+                read_window(source, &blocks, (b0, b1), &mut tally)?
             }
         };
         // a small study is one block: parallel over (block, variable), not blocks alone
