@@ -41,6 +41,17 @@ pub(super) fn cmd_plan(a: &PlanArgs) -> i32 {
     if !s.file.description.trim().is_empty() {
         println!("  {}", s.file.description.trim());
     }
+    print_dims(&s);
+    print_estimates(&s);
+    if a.list {
+        list_points(&s);
+    }
+    EXIT_OK
+}
+
+/// Each dimension with its coordinates' ranges or labels.
+fn print_dims(s: &Study) {
+    let plan = &s.plan;
     println!("dimensions (row-major, last fastest):");
     for d in &plan.shape().dims {
         println!("  {} [{}]", d.name, d.size);
@@ -59,6 +70,12 @@ pub(super) fn cmd_plan(a: &PlanArgs) -> i32 {
             println!("    {} ({}): {}", c.name, c.path, vals);
         }
     }
+}
+
+/// The measured estimate of the run time and the output's size.
+fn print_estimates(s: &Study) {
+    let plan = &s.plan;
+    let n = plan.n_points();
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let (per_point, per_bat, history_share) = measured_costs(&s);
     let secs = (n as f64 * per_point + plan.bats().len() as f64 * per_bat) / cores as f64;
@@ -96,21 +113,23 @@ pub(super) fn cmd_plan(a: &PlanArgs) -> i32 {
         human_bytes(bytes_per_point * n as f64),
         s.output_path(None).display()
     );
-    if a.list {
-        println!("points (index, id, parameters):");
-        for i in 0..n {
-            match plan.point(i) {
-                Ok(p) => println!("{i}\t{:016x}\t{}", p.id, plan.describe(i)),
-                Err(e) => println!(
-                    "{i}\t{:016x}\t{}\tERROR: {}",
-                    e.id,
-                    plan.describe(i),
-                    e.message
-                ),
-            }
+}
+
+/// Every point: index, id, parameters (or its error).
+fn list_points(s: &Study) {
+    let plan = &s.plan;
+    println!("points (index, id, parameters):");
+    for i in 0..plan.n_points() {
+        match plan.point(i) {
+            Ok(p) => println!("{i}\t{:016x}\t{}", p.id, plan.describe(i)),
+            Err(e) => println!(
+                "{i}\t{:016x}\t{}\tERROR: {}",
+                e.id,
+                plan.describe(i),
+                e.message
+            ),
         }
     }
-    EXIT_OK
 }
 
 /// Rough cost model for `plan`: seconds per point and per bat preparation.
