@@ -77,7 +77,7 @@ fn print_estimates(s: &Study) {
     let plan = &s.plan;
     let n = plan.n_points();
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let (per_point, per_bat, history_share) = measured_costs(&s);
+    let (per_point, per_bat, history_share) = measured_costs(s);
     let secs = (n as f64 * per_point + plan.bats().len() as f64 * per_bat) / cores as f64;
     println!(
         "estimated run time: ~{} on {cores} cores ({} per point, {} per bat, measured on a sample)",
