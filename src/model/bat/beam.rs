@@ -77,11 +77,8 @@ impl Beam {
         let n = segments;
         let d = geometry.length / n as f64;
         let z: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) * d).collect();
-        let seg = |i: usize, f: &dyn Fn(f64) -> f64| {
-            geometry.integrate(i as f64 * d, (i + 1) as f64 * d, f)
-        };
         let mass: Vec<f64> = (0..n)
-            .map(|i| seg(i, &|z| geometry.mass_per_length(z)))
+            .map(|i| segment_integral(geometry, d, i, &|z| geometry.mass_per_length(z)))
             .collect();
         let mut beam = match theory {
             BeamTheory::EulerBernoulli => {
@@ -89,74 +86,68 @@ impl Beam {
                 // compliance for a piecewise-constant I.
                 let bending: Vec<f64> = (0..n)
                     .map(|i| {
-                        geometry.youngs_modulus * seg(i, &|z| geometry.second_moment(z)) / d.powi(4)
+                        let i_avg =
+                            segment_integral(geometry, d, i, &|z| geometry.second_moment(z));
+                        geometry.youngs_modulus * i_avg / d.powi(4)
                     })
                     .collect();
                 Self::from_parts(d, z, mass, &bending, ends)
             }
-            BeamTheory::Timoshenko => {
-                let rotary: Vec<f64> = (0..n)
-                    .map(|i| seg(i, &|z| geometry.rotary_inertia_per_length(z)))
-                    .collect();
-                let ni = n as isize;
-                // element between nodes i and i + 1 (i = −1 and N − 1: ghosts of fixed ends)
-                let element = |i: isize| -> Vec<StrainRow> {
-                    let (lo, hi) = ((i as f64 + 0.5) * d, (i as f64 + 1.5) * d);
-                    let (lo, hi) = (lo.max(0.0), hi.min(geometry.length));
-                    let span = hi - lo;
-                    let ei = geometry.youngs_modulus
-                        * geometry.integrate(lo, hi, |z| geometry.second_moment(z))
-                        / span;
-                    let ga = geometry.integrate(lo, hi, |z| geometry.shear_stiffness(z)) / span;
-                    let y = |j: isize| if (0..ni).contains(&j) { j } else { -1 };
-                    let psi = |j: isize| if (0..ni).contains(&j) { ni + j } else { -1 };
-                    vec![
-                        StrainRow::new(&[(psi(i + 1), 1.0), (psi(i), -1.0)], ei / d),
-                        StrainRow::new(
-                            &[
-                                (y(i + 1), 1.0 / d),
-                                (y(i), -1.0 / d),
-                                (psi(i), -0.5),
-                                (psi(i + 1), -0.5),
-                            ],
-                            ga * d,
-                        ),
-                    ]
-                };
-                let mut rows = Vec::new();
-                if ends.knob == EndCondition::Fixed {
-                    rows.extend(element(-1));
-                }
-                for i in 0..ni - 1 {
-                    rows.extend(element(i));
-                }
-                if ends.barrel == EndCondition::Fixed {
-                    rows.extend(element(ni - 1));
-                }
-                Self {
-                    d,
-                    z,
-                    mass,
-                    ends,
-                    rotary,
-                    pin: None,
-                    grip_z: None,
-                    rows,
-                }
-            }
+            BeamTheory::Timoshenko => Self::timoshenko(geometry, d, z, mass, ends),
         };
         if let Some(g) = grip {
-            let (k, a) = beam.interpolation(g.z);
-            beam.grip_z = Some(g.z);
-            match g.kind {
-                GripKind::Pinned => beam.pin = Some((k, a)),
-                GripKind::Spring => beam.rows.push(StrainRow::new(
-                    &[(k as isize, 1.0 - a), (k as isize + 1, a)],
-                    g.stiffness.unwrap_or(0.0),
-                )),
-            }
+            beam.add_grip(g);
         }
         beam
+    }
+
+    /// The Timoshenko beam: deflection and rotation per node, a bending and a shear strain
+    /// per element (between nodes i and i + 1; ghost elements at fixed ends).
+    fn timoshenko(
+        geometry: &BatGeometry,
+        d: f64,
+        z: Vec<f64>,
+        mass: Vec<f64>,
+        ends: EndsSpec,
+    ) -> Self {
+        let n = z.len();
+        let rotary: Vec<f64> = (0..n)
+            .map(|i| segment_integral(geometry, d, i, &|z| geometry.rotary_inertia_per_length(z)))
+            .collect();
+        let ni = n as isize;
+        let mut rows = Vec::new();
+        if ends.knob == EndCondition::Fixed {
+            rows.extend(timoshenko_element(geometry, d, ni, -1));
+        }
+        for i in 0..ni - 1 {
+            rows.extend(timoshenko_element(geometry, d, ni, i));
+        }
+        if ends.barrel == EndCondition::Fixed {
+            rows.extend(timoshenko_element(geometry, d, ni, ni - 1));
+        }
+        Self {
+            d,
+            z,
+            mass,
+            ends,
+            rotary,
+            pin: None,
+            grip_z: None,
+            rows,
+        }
+    }
+
+    /// The hands: a pin, or a spring to the grip point.
+    fn add_grip(&mut self, g: &GripSpec) {
+        let (k, a) = self.interpolation(g.z);
+        self.grip_z = Some(g.z);
+        match g.kind {
+            GripKind::Pinned => self.pin = Some((k, a)),
+            GripKind::Spring => self.rows.push(StrainRow::new(
+                &[(k as isize, 1.0 - a), (k as isize + 1, a)],
+                g.stiffness.unwrap_or(0.0),
+            )),
+        }
     }
 
     /// A beam from per-segment masses and bending weights Y I_i / d³ (used by `new` and by
@@ -280,6 +271,37 @@ impl Beam {
         let k = (s.floor().max(0.0) as usize).min(n - 2);
         (k, s - k as f64)
     }
+}
+
+/// ∫ f over segment i (of length d) of the bat.
+fn segment_integral(geometry: &BatGeometry, d: f64, i: usize, f: &dyn Fn(f64) -> f64) -> f64 {
+    geometry.integrate(i as f64 * d, (i + 1) as f64 * d, f)
+}
+
+/// The Timoshenko element between nodes i and i + 1 of `ni` (i = −1 and ni − 1: ghosts of
+/// fixed ends): its bending strain (ψ') and its shear strain (y' − ψ), each with its
+/// element-averaged stiffness.
+fn timoshenko_element(geometry: &BatGeometry, d: f64, ni: isize, i: isize) -> Vec<StrainRow> {
+    let (lo, hi) = ((i as f64 + 0.5) * d, (i as f64 + 1.5) * d);
+    let (lo, hi) = (lo.max(0.0), hi.min(geometry.length));
+    let span = hi - lo;
+    let ei =
+        geometry.youngs_modulus * geometry.integrate(lo, hi, |z| geometry.second_moment(z)) / span;
+    let ga = geometry.integrate(lo, hi, |z| geometry.shear_stiffness(z)) / span;
+    let y = |j: isize| if (0..ni).contains(&j) { j } else { -1 };
+    let psi = |j: isize| if (0..ni).contains(&j) { ni + j } else { -1 };
+    vec![
+        StrainRow::new(&[(psi(i + 1), 1.0), (psi(i), -1.0)], ei / d),
+        StrainRow::new(
+            &[
+                (y(i + 1), 1.0 / d),
+                (y(i), -1.0 / d),
+                (psi(i), -0.5),
+                (psi(i + 1), -0.5),
+            ],
+            ga * d,
+        ),
+    ]
 }
 
 #[cfg(test)]
