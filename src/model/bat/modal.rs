@@ -88,21 +88,26 @@ impl ModalBasis {
         // about the grip); a threshold on λ would misclassify the lowest clamped mode of a
         // fine beam (λ₁/λ_max ~ (βd/2)⁴).
         let free = beam.ends == EndsSpec::default();
-        let n_rigid_expected = match (free, beam.grip_z.is_some()) {
+        let n_rigid = match (free, beam.grip_z.is_some()) {
             (true, false) => 2,
             (true, true) => 1,
             _ => 0,
-        };
-        let mut omega = Vec::with_capacity(n);
+        }
+        .min(eigen.values.len());
+        let omega: Vec<f64> = eigen
+            .values
+            .iter()
+            .enumerate()
+            .map(|(col, &lambda)| {
+                if col < n_rigid {
+                    0.0
+                } else {
+                    lambda.max(0.0).sqrt()
+                }
+            })
+            .collect();
         let mut shapes = DMatrix::zeros(n, n);
-        let mut n_rigid = 0;
-        for (col, &lambda) in eigen.values.iter().enumerate() {
-            if col < n_rigid_expected {
-                n_rigid += 1;
-                omega.push(0.0);
-            } else {
-                omega.push(lambda.max(0.0).sqrt());
-            }
+        for col in 0..eigen.values.len() {
             if pin_vector.is_some() && col == n - 1 {
                 continue; // the constraint's mode: inert, zero shape
             }
@@ -114,43 +119,7 @@ impl ModalBasis {
             }
         }
         if n_rigid > 0 {
-            // Replace the solver's rigid modes (exact only to ~ε·λ_max) by the exact
-            // translation and rotation (about the CM, or the grip), and M-orthogonalise the
-            // flexible shapes against them, so that the modal integrator conserves momentum
-            // and angular momentum to round-off (completeness: Σ_n (1ᵀMφ_n) φ_n(z) = 1).
-            let mass = &beam.mass;
-            let total: f64 = mass.iter().sum();
-            let z_cm = mass.iter().zip(&beam.z).map(|(m, z)| m * z).sum::<f64>() / total;
-            let centre = beam.grip_z.unwrap_or(z_cm);
-            let inertia: f64 = mass
-                .iter()
-                .zip(&beam.z)
-                .map(|(m, z)| m * (z - centre).powi(2))
-                .sum::<f64>()
-                + beam.total_rotary();
-            let rotation_col = n_rigid - 1;
-            for i in 0..nodes {
-                if n_rigid == 2 {
-                    shapes[(i, 0)] = 1.0 / total.sqrt();
-                }
-                shapes[(i, rotation_col)] = (beam.z[i] - centre) / inertia.sqrt();
-            }
-            for i in nodes..n {
-                if n_rigid == 2 {
-                    shapes[(i, 0)] = 0.0;
-                }
-                shapes[(i, rotation_col)] = 1.0 / inertia.sqrt();
-            }
-            for col in n_rigid..n {
-                for r in 0..n_rigid {
-                    let overlap: f64 = (0..n)
-                        .map(|i| dof_mass[i] * shapes[(i, r)] * shapes[(i, col)])
-                        .sum();
-                    for i in 0..n {
-                        shapes[(i, col)] -= overlap * shapes[(i, r)];
-                    }
-                }
-            }
+            exact_rigid_modes(beam, &dof_mass, &mut shapes, n_rigid);
         }
         Self {
             omega,
@@ -181,6 +150,47 @@ impl ModalBasis {
             }
         }
         nodes
+    }
+}
+
+/// Replace the solver's rigid modes (exact only to ~ε·λ_max) by the exact translation and
+/// rotation (about the CM, or the grip), and M-orthogonalise the flexible shapes against
+/// them, so that the modal integrator conserves momentum and angular momentum to round-off
+/// (completeness: Σ_n (1ᵀMφ_n) φ_n(z) = 1).
+fn exact_rigid_modes(beam: &Beam, dof_mass: &[f64], shapes: &mut DMatrix<f64>, n_rigid: usize) {
+    let (n, nodes) = (beam.dofs(), beam.len());
+    let mass = &beam.mass;
+    let total: f64 = mass.iter().sum();
+    let z_cm = mass.iter().zip(&beam.z).map(|(m, z)| m * z).sum::<f64>() / total;
+    let centre = beam.grip_z.unwrap_or(z_cm);
+    let inertia: f64 = mass
+        .iter()
+        .zip(&beam.z)
+        .map(|(m, z)| m * (z - centre).powi(2))
+        .sum::<f64>()
+        + beam.total_rotary();
+    let rotation_col = n_rigid - 1;
+    for i in 0..nodes {
+        if n_rigid == 2 {
+            shapes[(i, 0)] = 1.0 / total.sqrt();
+        }
+        shapes[(i, rotation_col)] = (beam.z[i] - centre) / inertia.sqrt();
+    }
+    for i in nodes..n {
+        if n_rigid == 2 {
+            shapes[(i, 0)] = 0.0;
+        }
+        shapes[(i, rotation_col)] = 1.0 / inertia.sqrt();
+    }
+    for col in n_rigid..n {
+        for r in 0..n_rigid {
+            let overlap: f64 = (0..n)
+                .map(|i| dof_mass[i] * shapes[(i, r)] * shapes[(i, col)])
+                .sum();
+            for i in 0..n {
+                shapes[(i, col)] -= overlap * shapes[(i, r)];
+            }
+        }
     }
 }
 
