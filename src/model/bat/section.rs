@@ -3,7 +3,7 @@
 
 use crate::model::bat::profile::{handle_factor, Profile};
 use crate::model::error::{out_of_range, ModelError};
-use crate::model::spec::{BatPreset, BatSpec, HandleSpec, ProfileSpec};
+use crate::model::spec::{BatPreset, BatSpec, HandleSpec, ProfileSpec, ShellSpec};
 
 /// Wood (R161, Nathan 2000).
 pub const WOOD_DENSITY: f64 = 649.0;
@@ -78,26 +78,7 @@ impl BatGeometry {
                 return Err(ModelError::UnresolvedCsvProfile(path.clone()))
             }
         };
-        let (density, youngs, shell, fill) = match bat.preset {
-            BatPreset::Wall => {
-                return Err(ModelError::Unsupported(
-                    "bat geometry of a wall (it is a rigid target, not a bat)",
-                ))
-            }
-            BatPreset::R161 => (WOOD_DENSITY, WOOD_YOUNGS_MODULUS, None, 0.0),
-            BatPreset::Aluminum => (
-                ALUMINUM_DENSITY,
-                ALUMINUM_YOUNGS_MODULUS,
-                Some((ALUMINUM_SHELL, 0.0)),
-                0.0,
-            ),
-            BatPreset::Corked => (
-                WOOD_DENSITY,
-                WOOD_YOUNGS_MODULUS,
-                Some((CORKED_SHELL, CORKED_SHELL_FROM)),
-                CORK_DENSITY,
-            ),
-        };
+        let preset = PresetMaterial::of(bat.preset)?;
         let is_wood = bat.preset != BatPreset::Aluminum;
         let material = &bat.material;
         let poisson_ratio = material.poisson_ratio.unwrap_or(if is_wood {
@@ -105,57 +86,31 @@ impl BatGeometry {
         } else {
             ALUMINUM_POISSON
         });
-        let youngs_modulus = material.youngs_modulus.unwrap_or(youngs);
+        let youngs_modulus = material.youngs_modulus.unwrap_or(preset.youngs_modulus);
         let shear_modulus = material.shear_modulus.unwrap_or(if is_wood {
             WOOD_SHEAR_MODULUS
         } else {
             youngs_modulus / (2.0 * (1.0 + poisson_ratio))
         });
-        let damping_ratio = match material.quality_factor {
-            None => 0.0,
-            Some(q) if q > 0.5 && q.is_finite() => 0.5 / q,
-            Some(q) => {
-                return Err(out_of_range(
-                    "bat.material.quality_factor",
-                    q,
-                    "(0.5, ∞) (underdamped modes)",
-                ))
-            }
-        };
+        let damping_ratio = damping_ratio(material.quality_factor)?;
         let length = bat.length.unwrap_or(profile.length());
-        if !(length > 0.0 && length.is_finite()) {
-            return Err(out_of_range("bat.length", length, "a finite number > 0 m"));
-        }
-        if length < profile.length() * (1.0 - 1e-12) {
-            return Err(ModelError::BatShorterThanProfile {
-                length,
-                profile_length: profile.length(),
-            });
-        }
+        check_length(length, &profile)?;
         let geometry = Self {
             profile,
             handle: bat.handle.clone(),
             length,
-            density: bat.material.density.unwrap_or(density),
+            density: bat.material.density.unwrap_or(preset.density),
             youngs_modulus,
             poisson_ratio,
             shear_modulus,
             shear_coefficient: material.shear_coefficient,
             damping_ratio,
-            shell: match (&bat.shell, shell) {
-                (None, preset) => preset,
-                (Some(s), preset) => {
-                    let thickness = s.thickness.or(preset.map(|p| p.0)).ok_or_else(|| {
-                        out_of_range(
-                            "bat.shell.thickness",
-                            f64::NAN,
-                            "a wall thickness in m (required: this preset is solid)",
-                        )
-                    })?;
-                    Some((thickness, s.from.or(preset.map(|p| p.1)).unwrap_or(0.0)))
-                }
-            },
-            fill_density: bat.fill.as_ref().map(|f| f.density).unwrap_or(fill),
+            shell: shell_of(bat.shell.as_ref(), preset.shell)?,
+            fill_density: bat
+                .fill
+                .as_ref()
+                .map(|f| f.density)
+                .unwrap_or(preset.fill_density),
         };
         geometry.check()?;
         Ok(geometry)
@@ -309,6 +264,93 @@ impl BatGeometry {
         }
         sum
     }
+}
+
+/// What a preset gives a bat before the study's overrides.
+struct PresetMaterial {
+    density: f64,
+    youngs_modulus: f64,
+    /// (wall thickness, start z) of the hollow part, if any.
+    shell: Option<(f64, f64)>,
+    fill_density: f64,
+}
+
+impl PresetMaterial {
+    fn of(preset: BatPreset) -> Result<Self, ModelError> {
+        let (density, youngs_modulus, shell, fill_density) = match preset {
+            BatPreset::Wall => {
+                return Err(ModelError::Unsupported(
+                    "bat geometry of a wall (it is a rigid target, not a bat)",
+                ))
+            }
+            BatPreset::R161 => (WOOD_DENSITY, WOOD_YOUNGS_MODULUS, None, 0.0),
+            BatPreset::Aluminum => (
+                ALUMINUM_DENSITY,
+                ALUMINUM_YOUNGS_MODULUS,
+                Some((ALUMINUM_SHELL, 0.0)),
+                0.0,
+            ),
+            BatPreset::Corked => (
+                WOOD_DENSITY,
+                WOOD_YOUNGS_MODULUS,
+                Some((CORKED_SHELL, CORKED_SHELL_FROM)),
+                CORK_DENSITY,
+            ),
+        };
+        Ok(PresetMaterial {
+            density,
+            youngs_modulus,
+            shell,
+            fill_density,
+        })
+    }
+}
+
+/// The modal damping ratio ζ = 1/(2Q) of a quality factor (none: undamped).
+fn damping_ratio(quality_factor: Option<f64>) -> Result<f64, ModelError> {
+    match quality_factor {
+        None => Ok(0.0),
+        Some(q) if q > 0.5 && q.is_finite() => Ok(0.5 / q),
+        Some(q) => Err(out_of_range(
+            "bat.material.quality_factor",
+            q,
+            "(0.5, ∞) (underdamped modes)",
+        )),
+    }
+}
+
+/// The bat's length: finite, positive, and not shorter than its profile.
+fn check_length(length: f64, profile: &Profile) -> Result<(), ModelError> {
+    if !(length > 0.0 && length.is_finite()) {
+        return Err(out_of_range("bat.length", length, "a finite number > 0 m"));
+    }
+    if length < profile.length() * (1.0 - 1e-12) {
+        return Err(ModelError::BatShorterThanProfile {
+            length,
+            profile_length: profile.length(),
+        });
+    }
+    Ok(())
+}
+
+/// The hollow part: the study's shell (its missing fields from the preset's), else the
+/// preset's.
+fn shell_of(
+    spec: Option<&ShellSpec>,
+    preset: Option<(f64, f64)>,
+) -> Result<Option<(f64, f64)>, ModelError> {
+    let Some(s) = spec else { return Ok(preset) };
+    let thickness = s.thickness.or(preset.map(|p| p.0)).ok_or_else(|| {
+        out_of_range(
+            "bat.shell.thickness",
+            f64::NAN,
+            "a wall thickness in m (required: this preset is solid)",
+        )
+    })?;
+    Ok(Some((
+        thickness,
+        s.from.or(preset.map(|p| p.1)).unwrap_or(0.0),
+    )))
 }
 
 #[cfg(test)]
