@@ -70,7 +70,27 @@ pub(super) fn located(
     varied: Option<usize>,
     e: ResolveError,
 ) -> StudyError {
-    let (epath, msg, value, allowed) = match e {
+    let (epath, msg, value, allowed) = what_failed(e);
+    let (at, origin) = where_set(file, plan, multi, varied, &epath);
+    let mut err = cx
+        .err(&at, format!("{msg} (set in {origin})"))
+        .field(if epath.is_empty() {
+            "base".to_string()
+        } else {
+            epath
+        });
+    if let Some(v) = value {
+        err = err.value(v);
+    }
+    if let Some(a) = allowed {
+        err = err.allowed(a);
+    }
+    err
+}
+
+/// The failed parameter's path, the message, the value and what is allowed.
+fn what_failed(e: ResolveError) -> (String, String, Option<String>, Option<String>) {
+    match e {
         ResolveError::Shape {
             path,
             message,
@@ -123,42 +143,35 @@ pub(super) fn located(
             None,
             None,
         ),
-    };
-    // Which block set this parameter? Prefer the varied dimension.
-    let order: Vec<usize> = varied.into_iter().chain(0..plan.dims.len()).collect();
-    let mut at = None;
-    let mut origin = String::from("base");
+    }
+}
+
+/// Where the parameter at `epath` was set for the point at `multi`: the block element
+/// (preferring the varied dimension) and its label, else `base`.
+fn where_set(
+    file: &StudyFile,
+    plan: &Plan,
+    multi: &[usize],
+    varied: Option<usize>,
+    epath: &str,
+) -> (Vec<Seg>, String) {
+    let order = varied.into_iter().chain(0..plan.dims.len());
     for d in order {
         let dim = &plan.dims[d];
         if let Some((p, _)) = dim
             .params
             .iter()
-            .find(|(p, _)| related(p, &epath) && !epath.is_empty())
+            .find(|(p, _)| related(p, epath) && !epath.is_empty())
         {
-            at = Some(dim_elem(file, dim, p, multi[d]));
-            origin = dim_label(dim, p, multi[d]);
-            break;
+            return (
+                dim_elem(file, dim, p, multi[d]),
+                dim_label(dim, p, multi[d]),
+            );
         }
     }
-    let at = at.unwrap_or_else(|| {
-        let mut s = keys(&["base"]);
-        s.extend(dotted(&epath));
-        s
-    });
-    let mut err = cx
-        .err(&at, format!("{msg} (set in {origin})"))
-        .field(if epath.is_empty() {
-            "base".to_string()
-        } else {
-            epath
-        });
-    if let Some(v) = value {
-        err = err.value(v);
-    }
-    if let Some(a) = allowed {
-        err = err.allowed(a);
-    }
-    err
+    let mut s = keys(&["base"]);
+    s.extend(dotted(epath));
+    (s, "base".to_string())
 }
 
 /// Where the study sets `field`: in `base`, else the first block value that sets it.
