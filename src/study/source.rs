@@ -41,9 +41,7 @@ enum Frame {
 impl SourceMap {
     /// Scan `text`; a malformed document yields the positions found before the error.
     pub fn build(text: &str) -> SourceMap {
-        let mut map = HashMap::new();
-        let mut frames: Vec<(Frame, bool)> = Vec::new(); // (frame, pushed a path segment)
-        let mut path: Vec<Seg> = Vec::new();
+        let mut scan = Scan::default();
         for item in Parser::new_from_str(text) {
             let (ev, span) = match item {
                 Ok(x) => x,
@@ -55,10 +53,7 @@ impl SourceMap {
                         line: e.marker().line(),
                         column: e.marker().col() + 1,
                     };
-                    return SourceMap {
-                        pos: map,
-                        too_deep: deep.then_some(at),
-                    };
+                    return scan.finish(deep.then_some(at));
                 }
             };
             let here = Pos {
@@ -66,70 +61,19 @@ impl SourceMap {
                 column: span.start.col() + 1,
             };
             match ev {
-                Event::Scalar(v, ..) => {
-                    if let Some((Frame::Map { want_key, key }, _)) = frames.last_mut() {
-                        if *want_key {
-                            let mut p = path.clone();
-                            p.push(Seg::Key(v.to_string()));
-                            map.insert(p, here);
-                            *key = Some(v.to_string());
-                            *want_key = false;
-                            continue;
-                        }
-                    }
-                    if let Some(seg) = value_seg(&frames) {
-                        if matches!(seg, Seg::Index(_)) {
-                            let mut p = path.clone();
-                            p.push(seg);
-                            map.insert(p, here);
-                        }
-                    }
-                    complete(&mut frames);
-                }
-                Event::Alias(_) => complete(&mut frames),
+                Event::Scalar(v, ..) => scan.scalar(&v, here),
+                Event::Alias(_) => complete(&mut scan.frames),
                 Event::MappingStart(..) | Event::SequenceStart(..) => {
-                    if frames.len() >= MAX_DEPTH {
-                        return SourceMap {
-                            pos: map,
-                            too_deep: Some(here),
-                        };
+                    if scan.frames.len() >= MAX_DEPTH {
+                        return scan.finish(Some(here));
                     }
-                    let seg = match frames.last() {
-                        Some((Frame::Map { want_key: true, .. }, _)) => Some(Seg::Key("?".into())),
-                        _ => value_seg(&frames),
-                    };
-                    let pushed = seg.is_some();
-                    if let Some(seg) = seg {
-                        path.push(seg.clone());
-                        if matches!(seg, Seg::Index(_)) {
-                            map.insert(path.clone(), here);
-                        }
-                    }
-                    let frame = if matches!(ev, Event::MappingStart(..)) {
-                        Frame::Map {
-                            want_key: true,
-                            key: None,
-                        }
-                    } else {
-                        Frame::Seq { next: 0 }
-                    };
-                    frames.push((frame, pushed));
+                    scan.start(matches!(ev, Event::MappingStart(..)), here);
                 }
-                Event::MappingEnd | Event::SequenceEnd => {
-                    if let Some((_, pushed)) = frames.pop() {
-                        if pushed {
-                            path.pop();
-                        }
-                    }
-                    complete(&mut frames);
-                }
+                Event::MappingEnd | Event::SequenceEnd => scan.end(),
                 _ => {}
             }
         }
-        SourceMap {
-            pos: map,
-            too_deep: None,
-        }
+        scan.finish(None)
     }
 
     /// Position of exactly this path.
@@ -140,6 +84,81 @@ impl SourceMap {
     /// Position of the longest prefix of `path` that is in the document.
     pub fn nearest(&self, path: &[Seg]) -> Option<Pos> {
         (1..=path.len()).rev().find_map(|n| self.get(&path[..n]))
+    }
+}
+
+/// The scan's state: the positions found, the open mappings and sequences, the path to
+/// where the scan is.
+#[derive(Default)]
+struct Scan {
+    map: HashMap<Vec<Seg>, Pos>,
+    /// (frame, whether it pushed a path segment)
+    frames: Vec<(Frame, bool)>,
+    path: Vec<Seg>,
+}
+
+impl Scan {
+    /// A scalar: a mapping's key (its position recorded), or a value (a sequence
+    /// element's position recorded).
+    fn scalar(&mut self, v: &str, here: Pos) {
+        if let Some((Frame::Map { want_key, key }, _)) = self.frames.last_mut() {
+            if *want_key {
+                let mut p = self.path.clone();
+                p.push(Seg::Key(v.to_string()));
+                self.map.insert(p, here);
+                *key = Some(v.to_string());
+                *want_key = false;
+                return;
+            }
+        }
+        if let Some(seg) = value_seg(&self.frames) {
+            if matches!(seg, Seg::Index(_)) {
+                let mut p = self.path.clone();
+                p.push(seg);
+                self.map.insert(p, here);
+            }
+        }
+        complete(&mut self.frames);
+    }
+
+    /// A mapping or a sequence opens.
+    fn start(&mut self, is_mapping: bool, here: Pos) {
+        let seg = match self.frames.last() {
+            Some((Frame::Map { want_key: true, .. }, _)) => Some(Seg::Key("?".into())),
+            _ => value_seg(&self.frames),
+        };
+        let pushed = seg.is_some();
+        if let Some(seg) = seg {
+            self.path.push(seg.clone());
+            if matches!(seg, Seg::Index(_)) {
+                self.map.insert(self.path.clone(), here);
+            }
+        }
+        let frame = match is_mapping {
+            true => Frame::Map {
+                want_key: true,
+                key: None,
+            },
+            false => Frame::Seq { next: 0 },
+        };
+        self.frames.push((frame, pushed));
+    }
+
+    /// A mapping or a sequence closes.
+    fn end(&mut self) {
+        if let Some((_, pushed)) = self.frames.pop() {
+            if pushed {
+                self.path.pop();
+            }
+        }
+        complete(&mut self.frames);
+    }
+
+    fn finish(self, too_deep: Option<Pos>) -> SourceMap {
+        SourceMap {
+            pos: self.map,
+            too_deep,
+        }
     }
 }
 
