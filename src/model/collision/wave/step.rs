@@ -68,24 +68,37 @@ pub fn stability_limit(spec: &CollisionSpec, bat: &PreparedBat) -> f64 {
 /// The step used for this collision: the user's (checked) or the default.
 pub fn time_step(spec: &CollisionSpec, bat: &PreparedBat) -> Result<f64, ModelError> {
     let limit = stability_limit(spec, bat);
-    let name = match spec.numerics.integrator {
-        Integrator::Modal => "modal",
-        Integrator::Verlet => "verlet",
+    let (name, default) = match spec.numerics.integrator {
+        Integrator::Modal => (
+            "modal",
+            MODAL_STEP_FRACTION / MODAL_MAX_STEP_FRACTION * limit,
+        ),
+        Integrator::Verlet => ("verlet", VERLET_STEP_FRACTION * limit),
     };
-    match spec.numerics.dt {
-        Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
-            Err(out_of_range("numerics.dt", dt, "(0, stability limit] s"))
-        }
+    checked_dt(spec.numerics.dt, (limit, "stability"), default, name)
+}
+
+/// The study's step `dt` if it is positive, finite and within `limit` (named, e.g.
+/// "stability"), else `default` when the study sets none.
+pub(super) fn checked_dt(
+    dt: Option<f64>,
+    (limit, limit_name): (f64, &str),
+    default: f64,
+    integrator: &'static str,
+) -> Result<f64, ModelError> {
+    match dt {
+        Some(dt) if !(dt > 0.0 && dt.is_finite()) => Err(out_of_range(
+            "numerics.dt",
+            dt,
+            &format!("(0, {limit_name} limit] s"),
+        )),
         Some(dt) if dt > limit => Err(ModelError::TimeStepTooLarge {
             dt,
             limit,
-            integrator: name,
+            integrator,
         }),
         Some(dt) => Ok(dt),
-        None => Ok(match spec.numerics.integrator {
-            Integrator::Modal => MODAL_STEP_FRACTION / MODAL_MAX_STEP_FRACTION * limit,
-            Integrator::Verlet => VERLET_STEP_FRACTION * limit,
-        }),
+        None => Ok(default),
     }
 }
 

@@ -11,7 +11,7 @@ use super::contact::Contact;
 use super::{Diagnostics, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::{Recorder, Sample};
-use crate::model::error::{out_of_range, ModelError};
+use crate::model::error::ModelError;
 use crate::model::outcome::{EnergyPartition, HistoryRequest, Outcome};
 use crate::model::spec::CollisionSpec;
 
@@ -70,18 +70,8 @@ fn wall_step(spec: &CollisionSpec, law: &ContactLaw) -> Result<f64, ModelError> 
     let (m, v0) = (spec.ball.mass, spec.ball.speed);
     let omega_c = (law.max_tangent(m, v0) / m).sqrt();
     let limit = MODAL_MAX_STEP_FRACTION / omega_c;
-    match spec.numerics.dt {
-        Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
-            Err(out_of_range("numerics.dt", dt, "(0, resolution limit] s"))
-        }
-        Some(dt) if dt > limit => Err(ModelError::TimeStepTooLarge {
-            dt,
-            limit,
-            integrator: "wall",
-        }),
-        Some(dt) => Ok(dt),
-        None => Ok(MODAL_STEP_FRACTION / omega_c),
-    }
+    let default = MODAL_STEP_FRACTION / omega_c;
+    super::step::checked_dt(spec.numerics.dt, (limit, "resolution"), default, "wall")
 }
 
 /// A sample of the ball against the wall (the wall does not move).
