@@ -42,7 +42,7 @@ pub(super) fn check_replaceable(output: &Path) -> Result<(), (String, String)> {
     if std::fs::symlink_metadata(output).is_err() {
         return Ok(());
     }
-    match store::file_info(output) {
+    match store::is_results_file(output) {
         Ok(_) => Ok(()),
         Err(e) => Err((
             format!(

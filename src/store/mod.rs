@@ -41,5 +41,7 @@ pub use inspect::{inspect, printable};
 pub use merge::{merge, merge_check};
 pub use options::{iso8601_now, RunMeta, StoreOptions, Summary};
 pub use paths::{discard_output, journal_path, partial_path};
-pub use read::{file_info, for_each_record, present_points, read_results, FileInfo, ReadBack};
+pub use read::{
+    file_info, for_each_record, is_results_file, present_points, read_results, FileInfo, ReadBack,
+};
 pub use session::{begin, check_resumable, open, open_begun, BegunFile, Session};

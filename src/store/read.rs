@@ -46,6 +46,17 @@ pub(super) fn str_attr(f: &hdf5::Location, name: &str, path: &Path) -> Result<St
     Ok(v.as_str().to_string())
 }
 
+/// Whether `path` is a batstudy results file of any layout version (an HDF5 file with the
+/// root attribute `layout_version`): what `--force` may replace. Files from older versions
+/// of batstudy are results files too.
+pub fn is_results_file(path: &Path) -> Result<(), StoreError> {
+    let f = hdf5::File::open(path).map_err(|e| bad(path, format!("HDF5 cannot open it ({e})")))?;
+    f.attr("layout_version")
+        .and_then(|a| a.read_scalar::<i64>())
+        .map(|_| ())
+        .map_err(|_| bad(path, "root attribute layout_version missing"))
+}
+
 pub(super) fn open_checked(path: &Path) -> Result<(hdf5::File, JournalHeader, u32), StoreError> {
     if !path.exists() {
         return Err(StoreError::io(
