@@ -18,7 +18,7 @@ fn main() {
 }
 
 /// 45 collisions, the bat prepared once and shared.
-#[divan::bench]
+#[divan::bench(sample_count = 300)]
 fn curve_45(bencher: Bencher) {
     let base = base_spec(0.70);
     let bat = prepare_bat(&base.bat, &base.numerics).expect("the bat");

@@ -44,7 +44,7 @@ fn base_bat() -> PreparedBat {
 }
 
 /// The default integrator: the beam's modes advanced exactly between contact steps.
-#[divan::bench]
+#[divan::bench(sample_count = 1000)]
 fn modal(bencher: Bencher) {
     let (spec, bat) = (base_spec(0.70), base_bat());
     bencher.bench_local(|| simulate(&spec, &bat, None).expect("modal").exit_speed);

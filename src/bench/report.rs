@@ -35,6 +35,14 @@ fn line(out: &mut dyn Write, s: String) {
     let _ = out.flush();
 }
 
+/// Is the one-minute load average at least a quarter of the cores (other work sharing them)?
+fn busy(loadavg: &str, cores: usize) -> bool {
+    let load1 = loadavg.split_whitespace().next();
+    load1
+        .and_then(|l| l.parse::<f64>().ok())
+        .is_some_and(|l| l >= 0.25 * cores as f64)
+}
+
 /// The machine: CPU, cores, memory, OS, load, where the files go.
 pub(super) fn print_machine(out: &mut dyn Write, m: &Machine) {
     let quick = if m.quick {
@@ -64,6 +72,14 @@ pub(super) fn print_machine(out: &mut dyn Write, m: &Machine) {
         out,
         format!("load    {} (load average at the start)", m.loadavg_start),
     );
+    if busy(&m.loadavg_start, m.nproc) {
+        line(
+            out,
+            "        other work is running: the rates below are lower than this machine gives \
+             idle"
+                .into(),
+        );
+    }
     line(out, format!("files   under {} (`--dir`)", m.dir));
     line(
         out,
