@@ -200,13 +200,16 @@ pub(super) fn print_headroom(out: &mut dyn Write, wh: &WriterHeadroom, cores: us
     );
     let bound = wh.headroom.min(wh.disk_headroom);
     let verdict = if bound >= cores as f64 {
-        "both keep up with every thread measured"
+        "the writer and the disk keep up with every thread"
     } else if wh.disk_headroom < wh.headroom {
         "the disk, not the cores, bounds full-history studies"
     } else {
         "the writer, not the cores, bounds full-history studies"
     };
-    line(out, format!("with {cores} threads: {verdict}"));
+    line(
+        out,
+        format!("on {cores} threads, {bound:.1} workers' worth of headroom: {verdict}"),
+    );
 }
 
 fn print_run_memory(out: &mut dyn Write, what: &str, r: &RunMemory) {
