@@ -1,59 +1,58 @@
-//! What is measured: the sizes of the cases (full or `--quick`), the base case of issue 7, and
-//! the studies run through the driver.
+//! What is measured: the sizes of the cases (full or `--quick`), the base case, and the
+//! studies run through the driver and the store.
 
 use crate::model::spec::CollisionSpec;
 use crate::study::{self, LoadOptions, Study};
 use std::path::Path;
 
-/// Sizes of the cases.
+/// Sizes of the cases of `batstudy bench`.
 pub(super) struct Sizes {
+    /// Runs of each study at each thread count (the median rate is reported).
     pub(super) repeats: usize,
-    pub(super) min_time: f64,
-    pub(super) curve_repeats: usize,
-    pub(super) parallel_omegas: usize,
-    pub(super) parallel_repeats: usize,
-    pub(super) summary_omegas: usize,
-    pub(super) history_omegas: usize,
-    pub(super) plan_points: [usize; 3],
-    pub(super) store_points: [usize; 3],
-    /// Store + null-sink pairs of the summary case. On a shared 2-core machine a 0.3 s run
-    /// varies by ±10 %; the median of 121 pairs pins the overhead to about ±1 %.
-    pub(super) write_repeats: usize,
+    /// Swing speeds (× 45 impact positions) of the summary study at `t` threads:
+    /// `max(.0, .1 × t)`, so that a run on many cores still lasts long enough to time.
+    pub(super) summary_omegas: (usize, usize),
+    /// The same for the history studies (full and scalar).
+    pub(super) history_omegas: (usize, usize),
+    /// Swing speeds of the writer-headroom study (one thread).
+    pub(super) headroom_omegas: usize,
+    /// MiB written to probe the disk.
+    pub(super) disk_mib: usize,
+    /// The memory section's summary-only study: impact positions × swing speeds × ball speeds.
+    pub(super) large_points: [usize; 3],
 }
 
 impl Sizes {
     pub(super) fn of(quick: bool) -> Sizes {
         if quick {
             Sizes {
-                repeats: 3,
-                min_time: 0.005,
-                curve_repeats: 3,
-                parallel_omegas: 2,
-                parallel_repeats: 1,
-                summary_omegas: 2,
-                history_omegas: 1,
-                plan_points: [100, 10, 10],
-                store_points: [100, 10, 10],
-                write_repeats: 1,
+                repeats: 1,
+                summary_omegas: (2, 0),
+                history_omegas: (1, 0),
+                headroom_omegas: 1,
+                disk_mib: 8,
+                large_points: [100, 10, 10],
             }
         } else {
             Sizes {
-                repeats: 7,
-                min_time: 0.25,
-                curve_repeats: 9,
-                parallel_omegas: 60,
-                parallel_repeats: 3,
-                summary_omegas: 60,
-                history_omegas: 40,
-                plan_points: [1000, 100, 100],
-                store_points: [1000, 100, 10],
-                write_repeats: 121,
+                repeats: 3,
+                summary_omegas: (60, 30),
+                history_omegas: (40, 10),
+                headroom_omegas: 40,
+                disk_mib: 1024,
+                large_points: [1000, 100, 10],
             }
         }
     }
+
+    /// Swing speeds of a study sized `(min, per_thread)` at `threads`.
+    pub(super) fn omegas((min, per_thread): (usize, usize), threads: usize) -> usize {
+        min.max(per_thread * threads)
+    }
 }
 
-/// The base case of issue 7 at impact position `z`.
+/// The base case (R161, linear-hysteresis ball, 40 m/s, default numerics) at impact
+/// position `z`.
 pub fn base_spec(z: f64) -> CollisionSpec {
     CollisionSpec::base_case(z)
 }
@@ -87,18 +86,18 @@ pub fn load_study(text: &str, name: &str) -> Result<Study, String> {
 }
 
 /// The history block of the history study: every field but the hoop's, 1 cm apart.
-pub(super) const HISTORY_BLOCK: &str =
+pub const HISTORY_BLOCK: &str =
     "history:\n  fields: [force, compression, ball_velocity, displacement, rigid_motion]\n  \
                 interval: 1.0e-5\n  duration: 2.0e-3\n  z_step: 0.01\n";
 
 /// The same histories without the bat's displacement: the scalar series only (force-time
 /// curves and the like), a few KB per point instead of 53.
-pub(super) const SCALAR_HISTORY_BLOCK: &str =
+pub const SCALAR_HISTORY_BLOCK: &str =
     "history:\n  fields: [force, compression, ball_velocity, rigid_motion]\n  \
                 interval: 1.0e-5\n  duration: 2.0e-3\n";
 
 /// A summary-only rigid-model study: `impacts` positions × `omegas` swing speeds × `speeds`
-/// ball speeds (cheap points, for the memory cases).
+/// ball speeds (cheap points, for the memory case).
 pub(super) fn rigid_study_text(name: &str, impacts: usize, omegas: usize, speeds: usize) -> String {
     format!(
         "name: {name}\nmodel: rigid\nbase:\n  bat: {{preset: r161}}\n  ball: {{speed: 40}}\n  \

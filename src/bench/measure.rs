@@ -1,7 +1,5 @@
-//! The measuring tools: CPU-time clocks, timing a call, the peak-resident-memory mark, the
-//! median of repeats, and the error text of a case that could not run.
-
-use std::time::Instant;
+//! The measuring tools: CPU-time clocks, the peak-resident-memory mark, the median of
+//! repeats, and the error text of a case that could not run.
 
 pub(super) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
@@ -34,23 +32,6 @@ pub(super) fn cpu_clock_seconds(clock: libc::clockid_t) -> f64 {
 /// journal write (issue 7: it inflated the measured store share).
 pub(super) fn thread_cpu_seconds() -> f64 {
     cpu_clock_seconds(libc::CLOCK_THREAD_CPUTIME_ID)
-}
-
-/// (wall, CPU) seconds per call of `f`, calling it until at least `min_time` of wall time has
-/// passed (at least once).
-pub(super) fn time_per_call(min_time: f64, mut f: impl FnMut()) -> (f64, f64) {
-    let c0 = thread_cpu_seconds();
-    let t0 = Instant::now();
-    let mut calls = 0u64;
-    loop {
-        f();
-        calls += 1;
-        let e = t0.elapsed().as_secs_f64();
-        if e >= min_time {
-            let c = thread_cpu_seconds() - c0;
-            return (e / calls as f64, c / calls as f64);
-        }
-    }
 }
 
 pub(super) fn proc_status_kib(key: &str) -> Option<u64> {

@@ -1,118 +1,125 @@
-//! `batstudy bench`: the performance figures of issue 7, measured in one run on one machine
-//! and printed as ratios against baselines measured in the same run.
+//! `batstudy bench`: what this machine does with batstudy, measured in one run and printed
+//! as facts about the machine (no targets, no reference times).
 //!
 //! Sections (each a field of [`BenchReport`]):
-//! - `integrators`: collisions/s on one thread for the base case (R161, linear-hysteresis
-//!   ball, 40 m/s, z = 0.70, default numerics) with the modal integrator and with plain
-//!   velocity Verlet at 0.9 × its stability limit; both checked against a converged reference
-//!   computed here (modal, dt/16, twice the segments);
-//! - `curve`: a 45-point exit-speed curve (z = 0.40..0.84) on one thread with a shared
-//!   prepared bat, and the bat preparation on its own;
-//! - `parallel`: a few thousand points through the real driver (`run_plan`, null sink) on
-//!   1 thread and on all cores;
-//! - `hdf5`: the share of wall time spent in the results store (journal + final file), for a
-//!   summary-only study and for one with full displacement histories (real driver + store in
-//!   a temporary directory);
-//! - `scaling`: points/s of a summary and of a full-history study at 1, 2, 4, … threads up to
-//!   every core; `writer_headroom`: the points/s the writer alone absorbs (appending
-//!   encoded records, then finishing the file) over the points/s one worker computes and
-//!   encodes (the cores the writer can keep up with), overall and while the run computes,
-//!   and the disk's durable write rate over the bytes one worker produces (the cores any
-//!   store on this disk can keep up with);
-//!   `curve_process`: the 45-point curve as a whole `batstudy run` process (issue 22);
-//! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before each
-//!   case) for a 10-million-point summary-only plan run through the driver with the rigid
-//!   model, and for the history study above.
+//! - `machine`: CPU model, cores available and listed, memory (and a cgroup's limit), OS,
+//!   load average, where the files went;
+//! - `scaling`: points/s of three wave-model studies through the real driver and store, as
+//!   `batstudy run` runs them (a summary-only study, one with full histories including the
+//!   bat's displacement, one with the scalar histories only), at 1, 2, 4, … threads up to
+//!   every core (or `--threads`), with the parallel efficiency of each against the first
+//!   thread count; a study grows with the threads past a minimum, so that every run lasts
+//!   long enough to time. On the most threads, the history study also with nothing stored
+//!   and with `compression: none`;
+//! - `writer_headroom`: the points/s the one writer thread absorbs on the history study
+//!   (appending encoded records, then finishing the file) over the points/s one worker
+//!   computes and encodes: the workers it keeps up with; and the disk's durable write rate
+//!   (`fdatasync`) over the bytes one worker produces: the workers any store on this disk
+//!   keeps up with;
+//! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before
+//!   each run) of the scaling studies on the most threads and of a large summary-only study.
 //!
-//! Timings are medians of repeats; ratios are medians of per-repeat ratios (baseline and
-//! candidate timed back to back), which cancels most of the noise of a shared machine.
-//! Timings never go into tests; `tests/bench_quick.rs` checks the accuracy figures only.
+//! Rates are medians of repeats. `--quick` shrinks every case to seconds (for tests).
 //!
-//! Files: `cases` (the sizes and studies), `measure` (clocks, timing, peak memory, medians),
-//! `sinks` (a null sink and a timing one), `speed` (`integrators`, `curve`), `parallel`,
-//! `write_share` (`hdf5`), `memory`, `scaling` (`scaling`, `writer_headroom`,
-//! `curve_process`), `report` (targets, printing, JSON). Off the run path:
-//! nothing in `run`, `store`, `study` or `model` uses it; the CLI's `bench` command (and
-//! `tests/bench_quick.rs`) call it.
+//! Files: `cases` (sizes, the base case, the studies), `machine`, `measure` (clocks, peak
+//! memory, medians), `sinks` (a null sink), `store_run` (one run through the store, a
+//! temporary directory), `scaling`, `headroom` (`writer_headroom`), `memory`, `report`
+//! (printing, JSON). `dev` holds what the development benchmarks in `benches/` and the
+//! tests use (integrator accuracy, the HDF5 share); the shipped bench does not run it.
+//! Off the run path: nothing in `run`, `store`, `study` or `model` uses this module.
 
 mod cases;
+pub mod dev;
+mod headroom;
+mod machine;
 mod measure;
 mod memory;
-mod parallel;
 mod report;
 mod scaling;
 mod sinks;
-mod speed;
-mod write_share;
+mod store_run;
 
-pub use cases::{base_spec, curve_positions, curve_study_text, load_study};
-pub use memory::MemoryBench;
-pub use parallel::ParallelBench;
-pub use report::{
-    BenchReport, Machine, ACCURACY_TARGET, CURVE_TARGET_S, EFFICIENCY_TARGET, HDF5_SHARE_TARGET,
-    SPEEDUP_TARGET,
+pub use cases::{
+    base_spec, curve_positions, curve_study_text, load_study, HISTORY_BLOCK, SCALAR_HISTORY_BLOCK,
 };
-pub use scaling::{CurveProcess, Scaling, ScalingPoint, WriterHeadroom};
-pub use speed::{CurveBench, IntegratorBench, IntegratorFigures};
-pub use write_share::{bench_write_vs_null, WriteShare};
+pub use headroom::WriterHeadroom;
+pub use machine::Machine;
+pub use memory::{MemoryBench, RunMemory};
+pub use report::BenchReport;
+pub use scaling::{Scaling, ScalingPoint};
+pub use sinks::{null_run, NullSink};
+pub use store_run::{store_run, store_run_with, StoreRun, TempDir};
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// What to run.
 #[derive(Debug, Clone, Default)]
 pub struct BenchOptions {
     /// Shrink every case so that the whole benchmark takes a few seconds (for tests).
     pub quick: bool,
+    /// Thread counts to measure (empty: 1, 2, 4, … up to every core).
+    pub threads: Vec<usize>,
+    /// Where the results files and the disk probe go (None: the system's temporary
+    /// directory). The disk measured is the one under it.
+    pub dir: Option<PathBuf>,
+}
+
+impl BenchOptions {
+    /// The thread counts to measure, ascending, without repeats; an error for 0.
+    pub fn thread_counts(&self) -> Result<Vec<usize>, String> {
+        if self.threads.contains(&0) {
+            return Err("--threads: a thread count must be at least 1".into());
+        }
+        let mut t = if self.threads.is_empty() {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            scaling::thread_counts(cores)
+        } else {
+            self.threads.clone()
+        };
+        t.sort_unstable();
+        t.dedup();
+        Ok(t)
+    }
 }
 
 /// Run every section, printing as it goes. Returns the figures.
 pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, String> {
+    let threads = opts.thread_counts()?;
     let sz = cases::Sizes::of(opts.quick);
-    let mut machine = report::machine(opts.quick);
-    // issue 7 asks for 2 threads (the machine's core count is printed alongside)
-    let threads = 2;
+    let base = opts.dir.clone().unwrap_or_else(std::env::temp_dir);
+    let dir = TempDir::new_in(&base)?;
+    let mut machine = machine::describe(opts.quick, &base);
     report::print_machine(out, &machine);
 
-    let ib = speed::bench_integrators(&sz)?;
-    report::print_integrators(out, &ib);
+    report::print_scaling_head(out, &threads);
+    let mut print_point = |p: &ScalingPoint| report::print_scaling_point(out, p);
+    let (scaling, peaks) = scaling::bench_scaling(&sz, &threads, dir.path(), &mut print_point)?;
+    report::print_scaling_end(out, &scaling);
 
-    let cb = speed::bench_curve(&sz)?;
-    report::print_curve(out, &cb);
+    let headroom = headroom::bench_writer_headroom(sz.headroom_omegas, sz.disk_mib, dir.path())?;
+    report::print_headroom(out, &headroom, scaling.cores);
 
-    let pb = parallel::bench_parallel(&sz, threads)?;
-    report::print_parallel(out, &pb);
+    let memory = memory::bench_memory(&sz, scaling.cores, dir.path(), &peaks)?;
+    report::print_memory(out, &memory);
 
-    let dir = write_share::tempfile_dir()?;
-    let (ws, wh, wl) = write_share::bench_hdf5(&sz, dir.path(), threads)?;
-    report::print_hdf5(out, threads, [&ws, &wl, &wh]);
-
-    let (mb, small_seconds) = memory::bench_memory(&sz, threads, dir.path(), &wh)?;
-    report::print_memory(out, threads, &mb, small_seconds, wh.rss_before_bytes);
-
-    let scaling = scaling::bench_scaling(&sz, dir.path())?;
-    let headroom = scaling::bench_writer_headroom(&sz, dir.path())?;
-    let curve_process = scaling::bench_curve_process(&sz, dir.path())?;
-    report::print_scaling(out, &scaling, &headroom, curve_process.as_ref());
-
-    machine.loadavg_end = report::loadavg();
+    machine.loadavg_end = machine::loadavg();
     report::print_end(out, &machine);
     Ok(BenchReport {
         machine,
-        integrators: ib,
-        curve: cb,
-        parallel: pb,
-        hdf5: vec![ws, wh, wl],
-        memory: mb,
         scaling,
         writer_headroom: headroom,
-        curve_process,
+        memory,
     })
 }
 
 /// `batstudy bench`: run, print, optionally write the figures as JSON. Returns the exit code
-/// (0, or 3 when a case could not run).
+/// (0; 2 for bad options; 3 when a case could not run or the JSON could not be written).
 pub fn main(opts: &BenchOptions, json: Option<&Path>) -> i32 {
+    if let Err(e) = opts.thread_counts() {
+        eprintln!("error: {e}");
+        return 2;
+    }
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
     match run(opts, &mut lock) {

@@ -67,11 +67,19 @@ pub enum Command {
         /// A results file.
         file: PathBuf,
     },
-    /// Measure speed, parallel efficiency, HDF5 write share and peak memory.
+    /// Measure what this machine does: points/s by thread count, parallel efficiency, the
+    /// writer's and the disk's headroom, peak memory.
     Bench {
         /// Shrink every case (a few seconds; for tests).
         #[arg(long)]
         quick: bool,
+        /// Thread counts to measure, e.g. `1,4,16` (default: 1, 2, 4, … up to every core).
+        #[arg(long, value_delimiter = ',', value_name = "LIST")]
+        threads: Vec<usize>,
+        /// Write the results files and the disk probe under this directory (default: the
+        /// system's temporary directory): put it on the disk your studies write to.
+        #[arg(long, value_name = "DIR")]
+        dir: Option<PathBuf>,
         /// Also write the figures as JSON to this file.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -142,9 +150,19 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         }
         Command::Merge(a) => merge::cmd_merge(&a),
         Command::Slurm(a) => slurm::cmd_slurm(&a, invocation),
-        Command::Bench { quick, json } => {
-            crate::bench::main(&crate::bench::BenchOptions { quick }, json.as_deref())
-        }
+        Command::Bench {
+            quick,
+            threads,
+            dir,
+            json,
+        } => crate::bench::main(
+            &crate::bench::BenchOptions {
+                quick,
+                threads,
+                dir,
+            },
+            json.as_deref(),
+        ),
         Command::Inspect { file } => match store::inspect(&file) {
             Ok(text) => {
                 print!("{text}");
