@@ -226,7 +226,15 @@ mod tests {
             ..BatSpec::default()
         };
         let (free, eb) = (EndsSpec::default(), BeamTheory::EulerBernoulli);
-        let cases: Vec<(&str, BatSpec, usize, EndsSpec, BeamTheory, Option<GripSpec>)> = vec![
+        type Case = (
+            &'static str,
+            BatSpec,
+            usize,
+            EndsSpec,
+            BeamTheory,
+            Option<GripSpec>,
+        );
+        let cases: Vec<Case> = vec![
             ("r161", BatSpec::default(), 169, free, eb, None),
             ("aluminum", preset(BatPreset::Aluminum), 169, free, eb, None),
             ("corked", preset(BatPreset::Corked), 169, free, eb, None),
