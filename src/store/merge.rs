@@ -75,8 +75,7 @@ pub fn merge_check(
                 what: "it is also the merge's output file".into(),
             });
         }
-        check_point_ids(p, point_id)?;
-        let present = read::present_points(p)?;
+        let present = present_with_their_ids(p, point_id)?;
         if let Some(i) = present.iter().find(|&i| seen.contains(i)) {
             let mut other = None;
             for q in &shards[..k] {
@@ -145,22 +144,29 @@ fn missing_points(
     })
 }
 
-/// Every stored point of shard `p` has the id the study gives its flat index (checked on
-/// all cores: recomputing an id resolves the point and hashes it).
-fn check_point_ids(p: &Path, point_id: &PointIdOf<'_>) -> Result<(), StoreError> {
+/// The stored points of shard `p`, each checked to have the id the study gives its flat
+/// index (on all cores: recomputing an id resolves the point and hashes it), in one pass
+/// over the shard's status and ids.
+fn present_with_their_ids(p: &Path, point_id: &PointIdOf<'_>) -> Result<PointSet, StoreError> {
     use rayon::prelude::*;
-    read::for_each_present_slab(p, |_, slab| {
-        match slab.par_iter().find_first(|&&(i, id)| point_id(i) != id) {
-            None => Ok(()),
-            Some(&(i, id)) => Err(StoreError::CannotMerge {
+    let mut present = None;
+    read::for_each_present_slab(p, |n, slab| {
+        if let Some(&(i, id)) = slab.par_iter().find_first(|&&(i, id)| point_id(i) != id) {
+            return Err(StoreError::CannotMerge {
                 path: p.to_path_buf(),
                 what: format!(
                     "the point at flat index {i} has point_id {id}, but the study's point there has {}: the file was altered or is of another study",
                     point_id(i)
                 ),
-            }),
+            });
         }
-    })
+        let set = present.get_or_insert_with(|| PointSet::new(n));
+        for &(i, _) in slab {
+            set.insert(i);
+        }
+        Ok(())
+    })?;
+    Ok(present.unwrap_or_else(|| PointSet::new(0)))
 }
 
 fn same_file(a: &Path, b: &Path) -> bool {

@@ -1,12 +1,12 @@
 //! The memory a point's time histories take, bounded before anything runs (issue 31: a
 //! request too big for memory validated, then aborted `run` and killed a Python kernel).
 
+use super::checks::bat_length;
 use super::error::StudyError;
 use super::locate::Ctx;
 use super::plan::Plan;
 use super::source::keys;
 use super::types::{StudyFile, MAX_AXIS_VALUES};
-use crate::model::bat::section::BatGeometry;
 use crate::model::outcome::HistoryField;
 
 /// Largest history a point may record, in bytes as computed (f64): samples × (series +
@@ -34,11 +34,11 @@ pub(super) fn check_history_size(
     let Some(h) = file.history.as_ref().filter(|h| !h.fields.is_empty()) else {
         return Ok(());
     };
+    // a bat that cannot be resolved (NaN) fails its points later; f64::max skips it here
     let longest = plan
         .bats()
         .iter()
-        .filter_map(|b| BatGeometry::resolve(&b.bat).ok())
-        .map(|g| g.length)
+        .map(|b| bat_length(&b.bat))
         .fold(0.0, f64::max);
     let positions = if h.fields.contains(&HistoryField::Displacement) {
         (longest / h.z_step + 1e-9).floor() + 1.0
