@@ -121,19 +121,16 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
         Ok(s) => s,
         Err(code) => return code,
     };
-    let job = check_flags(a, study_file, shards).and_then(|()| {
-        job_of(a, invocation, &study, shards).map_err(|e| match e {
-            JobError::Flag(e) => e,
-            JobError::Run(m) => StudyError::new(study_file, m),
-        })
-    });
+    let job = check_flags(a, study_file, shards)
+        .map_err(JobError::Flag)
+        .and_then(|()| job_of(a, invocation, &study, shards));
     let job = match job {
         Ok(j) => j,
-        Err(e) if e.field.is_none() => {
-            eprintln!("error: {}", e.message);
+        Err(JobError::Run(m)) => {
+            eprintln!("error: {m}");
             return EXIT_RUN_FAILED;
         }
-        Err(e) => {
+        Err(JobError::Flag(e)) => {
             eprintln!("{e}");
             return EXIT_BAD_INPUT;
         }
