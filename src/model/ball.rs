@@ -6,7 +6,7 @@
 //! compression that increases monotonically (unloading branch below s_max, loading above),
 //! which is what makes the integrators' implicit contact solve well posed.
 
-use crate::model::spec::{BallLaw, BallLawKind, Loading};
+use crate::model::spec::{BallLaw, BallLawKind, BallPreset, Loading};
 
 /// `speed_dependent`: default reference speed, m/s (85 ft/s, the MLB ball specification's
 /// wall-test speed).
@@ -19,15 +19,52 @@ pub const DEFAULT_COR_SLOPE: f64 = -0.001;
 /// exponent exceeds 800; above 1 the ball would gain energy).
 pub const COR_RANGE: (f64, f64) = (0.05, 1.0);
 
+/// The ball-alone measurements the `mlb` preset is calibrated on (docs/physics.md, "The
+/// calibrated ball"): the rule book's wall COR, the middle of 0.514–0.578 at 85 ft/s
+/// (Nathan 2000, footnote 13, quoting the MLB specification), and Cross's COR of a baseball
+/// dropped on a hard floor at 1 m/s (measured; Nathan 2000, Sec. III.B).
+pub const MLB_SPEC_COR: f64 = 0.546;
+pub const MLB_SPEC_SPEED: f64 = 25.9;
+pub const CROSS_LOW_SPEED_COR: f64 = 0.64;
+pub const CROSS_LOW_SPEED: f64 = 1.0;
+
+/// The `mlb` preset's COR exponent γ in e(v) = e_spec (v / v_spec)^(−γ): the curve through
+/// both calibration points (0.0488).
+pub fn mlb_cor_exponent() -> f64 {
+    (CROSS_LOW_SPEED_COR / MLB_SPEC_COR).ln() / (MLB_SPEC_SPEED / CROSS_LOW_SPEED).ln()
+}
+
+/// The law of a built-in ball.
+pub fn preset_law(preset: BallPreset) -> BallLaw {
+    match preset {
+        BallPreset::Mlb => BallLaw {
+            kind: BallLawKind::SpeedDependent,
+            cor: MLB_SPEC_COR,
+            reference_speed: Some(MLB_SPEC_SPEED),
+            cor_exponent: Some(mlb_cor_exponent()),
+            loading: Some(Loading::Power),
+            // Nathan's (2000) loading, k₁ 6.53e7 N/m^1.84 and α 1.84: no ball-alone force or
+            // stiffness measurement could be read here, so this is the stated assumption.
+            ..BallLaw::default()
+        },
+    }
+}
+
 /// The wall COR the law gives a ball that meets the target at normal speed `v`, m/s:
-/// `cor` for the fixed laws (the rigid model's e, also for `elastic`), the clamped line for
-/// `speed_dependent`.
+/// `cor` for the fixed laws (the rigid model's e, also for `elastic`), the clamped line or
+/// power curve for `speed_dependent`.
 pub fn cor_at_speed(law: &BallLaw, v: f64) -> f64 {
     match law.kind {
         BallLawKind::SpeedDependent => {
             let reference = law.reference_speed.unwrap_or(DEFAULT_REFERENCE_SPEED);
-            let slope = law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE);
-            (law.cor + slope * (v - reference)).clamp(COR_RANGE.0, COR_RANGE.1)
+            let e = match law.cor_exponent {
+                Some(gamma) => law.cor * (v.max(0.0) / reference).powf(-gamma),
+                None => {
+                    let slope = law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE);
+                    law.cor + slope * (v - reference)
+                }
+            };
+            e.clamp(COR_RANGE.0, COR_RANGE.1)
         }
         _ => law.cor,
     }

@@ -189,6 +189,14 @@ pub const RANGES: &[Range] = &[
         get: |s| s.ball.law.cor_slope,
     },
     Range {
+        path: "ball.law.cor_exponent",
+        min: 0.0,
+        max: 0.2,
+        unit: "1",
+        reason: "the mlb ball's 0.049 takes the COR from 0.64 at 1 m/s to 0.546 at 25.9 m/s; 0.2 would halve it from 1 to 32 m/s",
+        get: |s| s.ball.law.cor_exponent,
+    },
+    Range {
         path: "swing.omega",
         min: -200.0,
         max: 200.0,

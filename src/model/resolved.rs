@@ -23,7 +23,7 @@ pub fn resolved_tree(spec: &CollisionSpec) -> Value {
             if let Some((thickness, from)) = g.shell {
                 bat["shell"] = json!({"thickness": thickness, "from": from});
             }
-            if g.fill_density > 0.0 {
+            if g.fill_density > 0.0 && g.bore.is_none() {
                 bat["fill"] = json!({"density": g.fill_density});
             }
         }
@@ -35,7 +35,9 @@ pub fn resolved_tree(spec: &CollisionSpec) -> Value {
                 .law
                 .reference_speed
                 .unwrap_or(DEFAULT_REFERENCE_SPEED));
-            law["cor_slope"] = json!(spec.ball.law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE));
+            if spec.ball.law.cor_exponent.is_none() {
+                law["cor_slope"] = json!(spec.ball.law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE));
+            }
         }
     }
     tree

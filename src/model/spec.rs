@@ -105,6 +105,10 @@ pub struct BatSpec {
     /// Default: the preset's (cork 240 kg/m³ for `corked`, none otherwise); `null` for none.
     #[serde(default)]
     pub fill: Option<FillSpec>,
+    /// An axial bore drilled into the barrel end, as bats are corked: a cylinder of
+    /// constant diameter, optionally filled. Exclusive with `shell`. Default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bore: Option<BoreSpec>,
     /// Handle thickness variant (the paper's Fig. 11b).
     #[serde(default)]
     pub handle: HandleSpec,
@@ -230,6 +234,20 @@ pub struct ShellSpec {
     pub from: Option<f64>,
 }
 
+/// An axial bore from the barrel end (a corked bat as drilled: Nathan's 2003 test bat had
+/// a 1-in bore 10 in deep, filled with cork).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BoreSpec {
+    /// Diameter of the bore in m (1 in = 0.0254).
+    pub diameter: f64,
+    /// Depth in m, measured from the barrel end toward the knob (10 in = 0.254).
+    pub depth: f64,
+    /// Density of what fills the bore in kg/m³ (cork ≈ 240). Default 0: empty.
+    #[serde(default)]
+    pub fill_density: f64,
+}
+
 /// Filling of the hollow part.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -288,10 +306,25 @@ pub struct EndsSpec {
     pub barrel: EndCondition,
 }
 
+/// Built-in balls: force laws calibrated on tests of the ball alone (docs/physics.md,
+/// "The calibrated ball").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BallPreset {
+    /// An MLB baseball: `speed_dependent`, its wall COR a power of the speed through the
+    /// rule book's 0.546 at 25.9 m/s and Cross's 0.64 at 1 m/s; Nathan's (2000) power-law
+    /// loading (k₁ 6.53e7 N/m^1.84, α 1.84), a stated assumption.
+    Mlb,
+}
+
 /// The ball.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BallSpec {
+    /// Built-in ball whose law fills every `law` field the study leaves out. Default none
+    /// (the law's own defaults: the paper's linear ball).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preset: Option<BallPreset>,
     /// Mass in kg. Default 0.145.
     #[serde(default = "default_ball_mass")]
     pub mass: f64,
@@ -307,6 +340,7 @@ pub struct BallSpec {
 impl Default for BallSpec {
     fn default() -> Self {
         Self {
+            preset: None,
             mass: default_ball_mass(),
             speed: default_ball_speed(),
             law: BallLaw::default(),
@@ -376,6 +410,72 @@ pub struct BallLaw {
     /// Default `linear`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub loading: Option<Loading>,
+    /// `speed_dependent`: the COR as a power of the speed instead of a line,
+    /// e(v) = cor (v / reference_speed)^(−cor_exponent), so that it rises toward low speed
+    /// as measured balls' does. Exclusive with `cor_slope`. Default none (the line).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cor_exponent: Option<f64>,
+}
+
+/// `ball.law` as a study writes it: every field optional, so that a preset can fill the
+/// ones left out (field names and meanings: [`BallLaw`]).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BallLawFields {
+    kind: Option<BallLawKind>,
+    stiffness: Option<f64>,
+    cor: Option<f64>,
+    k1: Option<f64>,
+    alpha: Option<f64>,
+    reference_speed: Option<f64>,
+    cor_slope: Option<f64>,
+    loading: Option<Loading>,
+    cor_exponent: Option<f64>,
+}
+
+impl BallLawFields {
+    /// The law: these fields over `base` (a preset's law, or the defaults).
+    fn over(self, base: BallLaw) -> BallLaw {
+        BallLaw {
+            kind: self.kind.unwrap_or(base.kind),
+            stiffness: self.stiffness.unwrap_or(base.stiffness),
+            cor: self.cor.unwrap_or(base.cor),
+            k1: self.k1.unwrap_or(base.k1),
+            alpha: self.alpha.unwrap_or(base.alpha),
+            reference_speed: self.reference_speed.or(base.reference_speed),
+            cor_slope: self.cor_slope.or(base.cor_slope),
+            loading: self.loading.or(base.loading),
+            // a study that gives a slope asks for the line, whatever the preset's curve
+            cor_exponent: self
+                .cor_exponent
+                .or(base.cor_exponent.filter(|_| self.cor_slope.is_none())),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for BallSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Fields {
+            #[serde(default)]
+            preset: Option<BallPreset>,
+            #[serde(default = "default_ball_mass")]
+            mass: f64,
+            #[serde(default = "default_ball_speed")]
+            speed: f64,
+            #[serde(default)]
+            law: BallLawFields,
+        }
+        let f = Fields::deserialize(d)?;
+        let base = f.preset.map(crate::model::ball::preset_law).unwrap_or_default();
+        Ok(Self {
+            preset: f.preset,
+            mass: f.mass,
+            speed: f.speed,
+            law: f.law.over(base),
+        })
+    }
 }
 
 impl Default for BallLaw {
@@ -389,6 +489,7 @@ impl Default for BallLaw {
             reference_speed: None,
             cor_slope: None,
             loading: None,
+            cor_exponent: None,
         }
     }
 }

@@ -168,6 +168,9 @@ pub fn meta(path: &str) -> PathMeta {
         "bat.length" => ("m", "bat length", "bat length"),
         "bat.shell.thickness" => ("m", "shell", "bat shell wall thickness"),
         "bat.shell.from" => ("m", "shell from", "start of the hollow part, from the knob"),
+        "bat.bore.diameter" => ("m", "bore", "diameter of the axial bore"),
+        "bat.bore.depth" => ("m", "bore depth", "depth of the bore from the barrel end"),
+        "bat.bore.fill_density" => ("kg/m^3", "bore fill", "density of the bore's filling"),
         "bat.fill.density" => ("kg/m^3", "fill density", "density of the bat's filling"),
         "bat.handle.radius_scale" => ("1", "handle scale", "handle radius multiplier"),
         "bat.handle.end" => ("m", "handle end", "end of the handle from the knob"),
@@ -205,6 +208,12 @@ pub fn meta(path: &str) -> PathMeta {
             "COR slope",
             "change of the ball's COR per m/s of impact speed",
         ),
+        "ball.law.cor_exponent" => (
+            "1",
+            "COR exponent",
+            "exponent of the ball's COR curve e(v) = cor (v / reference_speed)^-exponent",
+        ),
+        "ball.preset" => ("", "ball", "built-in calibrated ball"),
         "ball.law.loading" => (
             "",
             "ball loading",

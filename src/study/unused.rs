@@ -30,12 +30,18 @@ fn wave(t: &Value) -> bool {
     text(t, "model", "wave") == "wave"
 }
 
+/// Whether the point uses a built-in ball (whose law is `speed_dependent`, loading `power`).
+fn preset_ball(t: &Value) -> bool {
+    get_path(t, "ball.preset").and_then(Value::as_str).is_some()
+}
+
 fn law(t: &Value) -> &str {
-    text(t, "ball.law.kind", "linear_hysteresis")
+    let default = if preset_ball(t) { "speed_dependent" } else { "linear_hysteresis" };
+    text(t, "ball.law.kind", default)
 }
 
 fn loading(t: &Value) -> &str {
-    text(t, "ball.law.loading", "linear")
+    text(t, "ball.law.loading", if preset_ball(t) { "power" } else { "linear" })
 }
 
 fn speed_dependent(t: &Value) -> bool {
@@ -75,6 +81,11 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         field: "ball.law.cor_slope",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
+        field: "ball.law.cor_exponent",
         used_when: "by ball.law.kind speed_dependent",
         uses: speed_dependent,
     },

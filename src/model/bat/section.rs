@@ -3,7 +3,7 @@
 
 use crate::model::bat::profile::{handle_factor, Profile};
 use crate::model::error::{out_of_range, ModelError};
-use crate::model::spec::{BatPreset, BatSpec, HandleSpec, ProfileSpec, ShellSpec};
+use crate::model::spec::{BatPreset, BatSpec, BoreSpec, HandleSpec, ProfileSpec, ShellSpec};
 
 /// Wood (R161, Nathan 2000).
 pub const WOOD_DENSITY: f64 = 649.0;
@@ -66,6 +66,9 @@ pub struct BatGeometry {
     pub shell: Option<(f64, f64)>,
     /// Density of the filling of the hollow part, kg/m³ (0: empty).
     pub fill_density: f64,
+    /// (radius, start z) of an axial bore from the barrel end, if any (exclusive with
+    /// `shell`; its filling is `fill_density`).
+    pub bore: Option<(f64, f64)>,
 }
 
 impl BatGeometry {
@@ -111,9 +114,47 @@ impl BatGeometry {
                 .as_ref()
                 .map(|f| f.density)
                 .unwrap_or(preset.fill_density),
+            bore: None,
+        };
+        let geometry = match &bat.bore {
+            None => geometry,
+            Some(bore) => geometry.with_bore(bore, bat.shell.is_some() || bat.fill.is_some())?,
         };
         geometry.check()?;
         Ok(geometry)
+    }
+
+    /// The solid bat drilled with `bore` (its fill replaces the preset's hollow part).
+    fn with_bore(mut self, bore: &BoreSpec, shell_given: bool) -> Result<Self, ModelError> {
+        if shell_given || self.shell.is_some() {
+            return Err(ModelError::Unsupported(
+                "bat.bore on a hollow bat: a bore drills a solid bat (use preset r161 and no shell or fill)",
+            ));
+        }
+        let ok = |v: f64| v > 0.0 && v.is_finite();
+        if !ok(bore.diameter) {
+            return Err(out_of_range("bat.bore.diameter", bore.diameter, "a finite number > 0 m"));
+        }
+        if !(ok(bore.depth) && bore.depth < self.length) {
+            return Err(out_of_range(
+                "bat.bore.depth",
+                bore.depth,
+                &format!("(0, {}) m (the bat's length)", self.length),
+            ));
+        }
+        let (radius, from) = (0.5 * bore.diameter, self.length - bore.depth);
+        for z in self.breakpoints().into_iter().chain([from]) {
+            if z >= from && radius >= self.outer_radius(z) {
+                return Err(out_of_range(
+                    "bat.bore.diameter",
+                    bore.diameter,
+                    &format!("< {:.4} m, the bat's diameter at z = {z:.3} m", 2.0 * self.outer_radius(z)),
+                ));
+            }
+        }
+        self.bore = Some((radius, from));
+        self.fill_density = bore.fill_density;
+        Ok(self)
     }
 
     fn check(&self) -> Result<(), ModelError> {
@@ -191,8 +232,11 @@ impl BatGeometry {
 
     /// Inner radius r(z) (0 where solid), m.
     pub fn inner_radius(&self, z: f64) -> f64 {
-        match self.shell {
-            Some((thickness, from)) if z >= from => (self.outer_radius(z) - thickness).max(0.0),
+        match (self.shell, self.bore) {
+            (Some((thickness, from)), _) if z >= from => {
+                (self.outer_radius(z) - thickness).max(0.0)
+            }
+            (_, Some((radius, from))) if z >= from => radius,
             _ => 0.0,
         }
     }
@@ -234,7 +278,7 @@ impl BatGeometry {
         let mut b: Vec<f64> = self.profile.knots_z().to_vec();
         b.push(self.handle.end);
         b.push(self.handle.end + self.handle.blend);
-        if let Some((_, from)) = self.shell {
+        if let Some((_, from)) = self.shell.or(self.bore) {
             b.push(from);
         }
         b.push(0.0);

@@ -102,6 +102,19 @@ fn check_ball(ball: &crate::model::spec::BallSpec) -> Result<(), ModelError> {
             "a finite number, 1/(m/s)",
         )?;
     }
+    if let Some(gamma) = law.cor_exponent {
+        let allowed = if law.cor_slope.is_some() {
+            "unset when ball.law.cor_slope is given (the COR is a line or a power curve, not both)"
+        } else {
+            "a finite number in [0, 1)"
+        };
+        check(
+            "ball.law.cor_exponent",
+            gamma,
+            law.cor_slope.is_none() && (0.0..1.0).contains(&gamma),
+            allowed,
+        )?;
+    }
     check(
         "ball.law.alpha",
         law.alpha,
@@ -201,6 +214,7 @@ fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError
             if loading_only.kind == crate::model::spec::BallLawKind::SpeedDependent {
                 loading_only.cor = 1.0;
                 loading_only.cor_slope = Some(0.0);
+                loading_only.cor_exponent = None;
             }
             let law = crate::model::ball::ContactLaw::new(&loading_only, approach);
             let omega = (law.max_tangent(spec.ball.mass, approach) / spec.ball.mass).sqrt();
