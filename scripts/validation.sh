@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 source scripts/release_binary.sh "${1:-}"
 out=target/validation
 mkdir -p "$out"
-for s in certification wall game; do
+for s in certification wall game low_speed; do
   "$bin" run "studies/validation/$s.yaml" -o "$out/$s.h5" --force --quiet
 done
-.venv/bin/python scripts/validation.py "$out"/certification.h5 "$out"/wall.h5 "$out"/game.h5 --check
+.venv/bin/python scripts/validation.py "$out"/certification.h5 "$out"/wall.h5 "$out"/game.h5 "$out"/low_speed.h5 --check
