@@ -522,7 +522,8 @@ pub struct HoopSpec {
     pub mass: Option<f64>,
     /// Derive frequency and mass of the lowest (n = 2, ovalling) shell mode from the wall at
     /// the impact point (thickness h, mid-surface radius, Y, ρ, ν): the ring formula
-    /// ω² = Y h² / (12 ρ (1 − ν²) a⁴) · n²(n² − 1)²/(n² + 1). Default false.
+    /// ω² = Y h² / (12 ρ (1 − ν²) a⁴) · n²(n² − 1)²/(n² + 1). Where the impact point is
+    /// solid (before a shell or bore starts) there is no hoop mode. Default false.
     #[serde(default)]
     pub from_geometry: bool,
     /// Axial length in m of the shell that moves in the hoop mode (`from_geometry`):

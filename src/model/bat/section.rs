@@ -127,8 +127,10 @@ impl BatGeometry {
     /// The solid bat drilled with `bore` (its fill replaces the preset's hollow part).
     fn with_bore(mut self, bore: &BoreSpec, shell_given: bool) -> Result<Self, ModelError> {
         if shell_given || self.shell.is_some() {
-            return Err(ModelError::Unsupported(
-                "bat.bore on a hollow bat: a bore drills a solid bat (use preset r161 and no shell or fill)",
+            return Err(out_of_range(
+                "bat.bore",
+                f64::NAN,
+                "a bore in a solid bat: preset r161, without bat.shell or bat.fill",
             ));
         }
         let ok = |v: f64| v > 0.0 && v.is_finite();
