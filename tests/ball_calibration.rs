@@ -123,6 +123,12 @@ fn a_preset_fills_what_the_study_leaves_out_and_the_study_wins() {
     let ball: BallSpec =
         serde_json::from_str(r#"{"preset": "mlb", "law": {"cor_slope": -0.002}}"#).unwrap();
     assert_eq!(ball.law.cor_exponent, None);
+    // null: the preset's value (a points set over a base that gives a law)
+    let ball: BallSpec =
+        serde_json::from_str(r#"{"preset": "mlb", "law": {"cor": null, "kind": null}}"#).unwrap();
+    assert_eq!(ball.law, preset_law(BallPreset::Mlb));
+    let ball: BallSpec = serde_json::from_str(r#"{"preset": "mlb", "law": null}"#).unwrap();
+    assert_eq!(ball.law, preset_law(BallPreset::Mlb));
     let unknown = serde_json::from_str::<BallSpec>(r#"{"preset": "mlb", "law": {"cr": 1}}"#);
     assert!(unknown.is_err());
 }

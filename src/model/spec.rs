@@ -464,8 +464,10 @@ impl<'de> Deserialize<'de> for BallSpec {
             mass: f64,
             #[serde(default = "default_ball_speed")]
             speed: f64,
+            // `law: null` leaves every field to the preset (or the defaults), which lets a
+            // study's points set pick a preset over a base that gives a law
             #[serde(default)]
-            law: BallLawFields,
+            law: Option<BallLawFields>,
         }
         let f = Fields::deserialize(d)?;
         let base = f.preset.map(crate::model::ball::preset_law).unwrap_or_default();
@@ -473,7 +475,7 @@ impl<'de> Deserialize<'de> for BallSpec {
             preset: f.preset,
             mass: f.mass,
             speed: f.speed,
-            law: f.law.over(base),
+            law: f.law.unwrap_or_default().over(base),
         })
     }
 }

@@ -15,7 +15,8 @@ fig05b bat_length ≈ 1.10 vs base                fig13a bat_preset == corked vs
 fig06  varying swing_omega, wave and rigid      fig13b bat_preset == aluminum vs base
 fig07a varying swing_omega, approach_speed      fig14  displacement + rigid motion histories,
 fig07b the same with ball_law_kind == elastic          base and aluminum, impact near 0.60
-fig07c the same with ball_law_kind == speed_dependent
+fig07c the same with ball_law_kind == speed_dependent (no preset)
+fig07d the same with ball_preset == mlb
 fig08  /sweet_spot/position, varying omega      fig15  hoop_frequency > 0 and the no-hoop bat
 anim   as fig14                                 bat_profiles  /bat profile and mode nodes
 sweet_spot_definitions  /bat profiles with every sweet-spot definition (/bat, /sweet_spot)
@@ -47,19 +48,20 @@ PRESET_PARAMS = {"bat_preset", "bat_shell_thickness", "bat_fill_density", "bat_m
 # --------------------------------------------------------------------------- drawing helpers
 
 
-def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, twins=False, always=()):
+def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, twins=False, always=(), label=None):
     """One line per curve of ``value(res, curve)`` (default exit speed) vs impact position.
 
     ``base`` (if given and among the curves) is drawn black and solid, the others in colour
     with distinct line styles.  With ``twins`` every (wave) curve is solid in its own colour,
-    its rigid-model twin dashed in the same colour and the rigid maximum a dot (Fig. 6)."""
+    its rigid-model twin dashed in the same colour and the rigid maximum a dot (Fig. 6).
+    ``label(curve)``, if given, names each line instead of its parameters or case label."""
     value = value or (lambda r, c: r.values(c, "exit_speed"))
     fig, ax = new_axes(title, IMPACT_LABEL, ylabel, res.name)
     others = 0
     recontacts = 0
     for i, c in enumerate(curves):
         y = value(res, c)
-        label = res.label(c, base, always)
+        name = label(c) if label else res.label(c, base, always)
         # Where the ball came back into contact (the handle whipped back): the curve jumps
         # there, and the mark says why.
         try:
@@ -70,11 +72,11 @@ def curve_figure(res, path, title, curves, base=None, value=None, ylabel=EXIT, t
             recontacts += 1
             ax.plot(np.asarray(y[IMPACT])[again], np.asarray(y)[again], "x", color="black", ms=6, mew=1.2)
         if c == base and not twins:
-            ax.plot(y[IMPACT], y, color="black", lw=2, label=label)
+            ax.plot(y[IMPACT], y, color="black", lw=2, label=name)
             continue
         color, style = COLORS[i % len(COLORS)], "-" if twins else STYLES[others % len(STYLES)]
         others += 1
-        ax.plot(y[IMPACT], y, color=color, ls=style, lw=1.6, label=label)
+        ax.plot(y[IMPACT], y, color=color, ls=style, lw=1.6, label=name)
         rigid = res.partner(c, "rigid") if twins else None
         if rigid is not None:
             yr = value(res, rigid)
@@ -171,14 +173,21 @@ def fig05b(res, path):
                   where={"bat_length": lambda v: abs(v - 1.10) < 0.005}, free={"bat_ends_barrel"})  # fmt: skip
 
 
+# The ball's own parameters, which a ball of its own (a `case`) may set.
+BALL_LAW_PARAMS = {"ball_law_kind", "ball_law_stiffness", "ball_law_cor", "ball_law_k1", "ball_law_alpha",
+                   "ball_law_reference_speed", "ball_law_cor_slope", "ball_law_loading", "ball_law_cor_exponent"}
+
+
 def _omega_curves(res, law=None):
     """Wave curves varying swing_omega, with the base ball law or with ``law`` (a
-    ``ball_law_kind`` such as ``elastic``)."""
+    ``ball_law_kind`` such as ``elastic``, or ``preset:NAME`` for a built-in ball)."""
     base = res.base(res.main_model())
     if law:
-        # the law's own parameters may be set only where the law is (a `case` of its own)
-        free = {"swing_omega", "ball_law_reference_speed", "ball_law_cor_slope", "ball_law_loading"}
-        curves = select(res.curves, base, free=free, where={"ball_law_kind": law})
+        free = {"swing_omega"} | BALL_LAW_PARAMS | {"ball_preset"}
+        preset = law.split(":", 1)[1] if law.startswith("preset:") else None
+        where = {"ball_preset": preset} if preset else {"ball_law_kind": law}
+        curves = [c for c in select(res.curves, base, free=free, where=where)
+                  if preset or c.params.get("ball_preset") in (None, "")]
         curves.sort(key=lambda c: c.params.get("swing_omega", 0.0))
     else:
         curves = one_factor(res.curves, base, "swing_omega")
@@ -195,8 +204,11 @@ def fig06(res, path):
 
 def _excess_figure(res, path, title, law):
     curves = _omega_curves(res, law)
+    # every line has the same ball: name the swing speed, which is what varies
+    by_omega = (lambda c: res.format_param("swing_omega", c.params.get("swing_omega", 0.0))) if law else None
     curve_figure(res, path, title, curves, res.base(), value=excess_speed, always=("swing_omega",),
-                 ylabel="exit speed − approach speed (m/s)\napproach = v_ball − ω (z − z_cm)")  # fmt: skip
+                 ylabel="exit speed − approach speed (m/s)\napproach = v_ball − ω (z − z_cm)",
+                 label=by_omega)  # fmt: skip
 
 
 def fig07a(res, path):
@@ -210,6 +222,10 @@ def fig07b(res, path):
 def fig07c(res, path):
     _excess_figure(res, path, "Fig. 7a with a ball whose COR falls with speed (e = 0.5 at 40 m/s, −0.001 per m/s)",
                    "speed_dependent")  # fmt: skip
+
+
+def fig07d(res, path):
+    _excess_figure(res, path, "Fig. 7a with the calibrated MLB ball (ball.preset: mlb)", "preset:mlb")
 
 
 def fig08(res, path):
@@ -441,6 +457,7 @@ FIGURES = {
     "fig07a_excess_exit_speed": fig07a,
     "fig07b_excess_no_hysteresis": fig07b,
     "fig07c_excess_speed_dependent_ball": fig07c,
+    "fig07d_excess_calibrated_ball": fig07d,
     "fig08_optimal_position_vs_omega": fig08,
     "fig10_density": fig10,
     "fig11a_modulus": fig11a,
