@@ -388,6 +388,23 @@ def assumptions(f: Files) -> list[str]:
     ]
 
 
+def ball_rig_table(f: Files) -> list[str]:
+    """What a ball certification reports, for the calibrated ball on a rigid wall."""
+    rig = batstudy.ball_rig(f.trees["validation_wall"]).isel(law=1)
+    lines = ["## The calibrated ball on the ball rig", "",
+             "What the standards report, for `ball.preset: mlb` on a rigid wall (`batstudy.ball_rig`; the",
+             "dynamic stiffness is ASTM F2845's form (F_peak / v)² / m). Outputs, not comparisons: no",
+             "published value could be read here to set against them.", "",
+             "| speed (m/s) | COR | peak force (kN) | contact time (ms) | compression (cm) | dynamic stiffness (MN/m) |",
+             "|---|---|---|---|---|---|"]
+    for v in (1.0, 25.9, 49.2, 60.8):
+        p = rig.sel(ball_speed=v)
+        lines.append(f"| {v:g} | {float(p.cor):.3f} | {float(p.peak_force) / 1e3:.1f} | "
+                     f"{float(p.contact_time) * 1e3:.2f} | {float(p.max_compression) * 100:.2f} | "
+                     f"{float(p.dynamic_stiffness) / 1e6:.2f} |")
+    return lines + [""]
+
+
 TITLES = {
     "verification": ("Verification", "against closed forms and other models (Nathan's model): these test the "
                      "numerics, not the physics, and are not counted as validation."),
@@ -435,6 +452,7 @@ def markdown(results, files: Files) -> str:
     ]
     for name in TABLES:
         lines += table(results, name)
+    lines += ball_rig_table(files)
     lines += ["## The ball's stated assumptions", "",
               "The ball-alone data constrain the COR at 1 and 25.9 m/s. They leave the loading's stiffness and",
               "where in the rule's window a ball lot sits unconstrained; this is how far the answers move:", ""]

@@ -8,6 +8,8 @@
 - :func:`open_results` (also ``batstudy.open``) opens a results file as an
   :class:`xarray.DataTree`, with the grid as named dimensions, resolved parameter values
   and case labels as coordinates, and the stored histories only (see :func:`histories`).
+- :func:`ball_rig` gives what a ball certification reports (COR, peak force, contact time,
+  dynamic stiffness) from a study of balls fired at ``bat.preset: wall``.
 - :func:`report` writes a results file's explorer, one HTML file.
 - :mod:`batstudy.plot` draws the paper's figures, or any figure of a results file
   (matplotlib: ``pip install 'batstudy[plot]'``).
@@ -22,6 +24,7 @@ are imported on first use, so that the analysis (``open_results``, ``histories``
 from importlib import import_module as _import_module
 from importlib.util import find_spec as _find_spec
 
+from ._ball_rig import ball_rig
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
 
@@ -33,6 +36,7 @@ __all__ = [
     "validate",
     "open_results",
     "histories",
+    "ball_rig",
     "report",
     "StudyError",
     "RunError",
