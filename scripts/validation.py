@@ -64,7 +64,8 @@ class Files:
 
 
 BAT_SETS = ("wood", "drilled", "aluminum", "aluminum+hoop", "drilled+hoop", "hoop1000", "hoop1500",
-            "hoop2000", "hoop2500", "test_bat", "test_bat_drilled", "soft_ball", "cor_low", "cor_high")
+            "hoop2000", "hoop2500", "test_bat", "test_bat_drilled", "soft_ball", "cor_low", "cor_high",
+            "wood_linear_ball", "aluminum+hoop_linear_ball")
 
 
 def bat_index(label: str) -> int:
@@ -129,8 +130,13 @@ def wall_cor(f: Files, speed: float) -> float:
     return float(w.exit_speed / w.approach_speed)
 
 
-def game(f: Files) -> xr.Dataset:
-    return f.open("validation_game", "summary")
+def game(f: Files, ball: int = 0) -> xr.Dataset:
+    """Nathan's game-speed collision with his ball (0) or the calibrated one (1)."""
+    return f.open("validation_game", "summary").isel(ball=ball)
+
+
+def game_sweet_spot(f: Files, ball: int = 0) -> float:
+    return float(f.open("validation_game", "sweet_spot").position.sel(model="wave").isel(ball=ball))
 
 
 def bat_value(f: Files, label: str, var: str) -> float:
@@ -255,7 +261,7 @@ VERIFICATION = [
         lambda x: f"{x * 1e3 - 1.1:+.2f} ms", True, band="±0.1 ms"),
     Row("verification", "sweet spot at game speed", "40 m/s pitch, bat CM 24 m/s, ω 51 rad/s, Nathan's ball (e 0.50)",
         "71–72 cm (model)", f"{NATHAN}, §III.C, Fig. 10",
-        lambda f: float(f.open("validation_game", "sweet_spot").position.sel(model="wave")), fmt(1, " cm", 100),
+        game_sweet_spot, fmt(1, " cm", 100),
         within(0.69, 0.74), diff(0.715, " m"), True, band="±2.5 cm"),
     Row("verification", "exit speed at 60 cm against the rigid bat", "same collision, lab frame",
         "about 25 % lower (model)", f"{NATHAN}, §III.C",
@@ -388,6 +394,38 @@ def assumptions(f: Files) -> list[str]:
     ]
 
 
+def conclusions(f: Files) -> list[str]:
+    """What the calibrated ball changes for the paper's conclusions, from the same files."""
+    bb = lambda bat: float(best(cert(f), bat, BBCOR_SPEED).bbcor)  # noqa: E231,E731
+    wood, al, al_hoop = bb("wood"), bb("aluminum"), bb("aluminum+hoop")
+    hoop_f = float(best(cert(f), "aluminum+hoop", BBCOR_SPEED).hoop_mode_frequency)
+    sweep = [bb(f"hoop{k}") for k in (1000, 1500, 2000, 2500)]
+    exit_at = lambda ball: float(game(f, ball).sel(model="wave").exit_speed_lab.max())  # noqa: E731
+    ea = lambda bat: float(best(cert(f), bat, CORK_TEST_SPEED, "collision_efficiency").collision_efficiency)  # noqa: E731
+    return [
+        "## What the calibrated ball changes for the paper's conclusions", "",
+        f"- **Aluminum against wood** (the paper's Fig. 13b): at rest and pivoted, at {BBCOR_SPEED} m/s, the best "
+        f"BBCOR is {wood:.3f} for wood, {al:.3f} for the 3 mm aluminum shell without a hoop mode and {al_hoop:.3f} "
+        f"with the hoop mode its wall gives ({hoop_f:.0f} Hz): a BBCOR ratio of {al_hoop / wood:.2f}. The "
+        f"aluminum bat's advantage is the hoop mode's, not the beam's. With the soft linear ball this page used "
+        f"before the calibration (7e5 N/m) the ratio was {bb('aluminum+hoop_linear_ball') / bb('wood_linear_ball'):.2f}: "
+        f"the stiffer calibrated ball, stiffer against the barrel's hoop spring, leaves more of the collision's "
+        f"energy to the hoop mode, which gives it back.",
+        f"- **The hoop optimum** (Fig. 15): over 1,000–2,500 Hz at a 30 g hoop, BBCOR falls from {sweep[0]:.3f} to "
+        f"{sweep[-1]:.3f} as the frequency rises ({', '.join(f'{v:.3f}' for v in sweep)}), the measured trend.",
+        f"- **The game-speed sweet spot** (Nathan's collision, 64 m/s in the bat's frame): "
+        f"{game_sweet_spot(f, 0) * 100:.1f} cm with Nathan's ball, {game_sweet_spot(f, 1) * 100:.1f} cm with the "
+        f"calibrated one; the best exit speed moves from {exit_at(0):.1f} to {exit_at(1):.1f} m/s.",
+        f"- **Corking as drilled** (1 in × 10 in, cork): e_A at {CORK_TEST_SPEED} m/s falls by "
+        f"{ea('test_bat') - ea('test_bat_drilled'):.3f} on the 34-in test bat, with no trampoline gain; the "
+        f"paper's corking (a 1 cm wall from 0.55 m) removes far more wood than bats are drilled.",
+        f"- **Absolute levels** stay a few hundredths high against the lab's wood bats (best BBCOR {wood:.3f} "
+        f"against just under 0.50): the ball's COR at bat-test speeds is the rule book's middle, and the "
+        f"stated-assumptions table shows that the window's low end closes the gap.",
+        "",
+    ]
+
+
 def ball_rig_table(f: Files) -> list[str]:
     """What a ball certification reports, for the calibrated ball on a rigid wall."""
     rig = batstudy.ball_rig(f.trees["validation_wall"]).isel(law=1)
@@ -452,6 +490,7 @@ def markdown(results, files: Files) -> str:
     ]
     for name in TABLES:
         lines += table(results, name)
+    lines += conclusions(files)
     lines += ball_rig_table(files)
     lines += ["## The ball's stated assumptions", "",
               "The ball-alone data constrain the COR at 1 and 25.9 m/s. They leave the loading's stiffness and",
