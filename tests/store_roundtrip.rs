@@ -212,10 +212,24 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
             hoop: 0.0,
             bat_damping: 0.5 + index as f64 / 11.0,
             grip_damping: 0.25 + index as f64 / 13.0,
+            friction: 0.125 + index as f64 / 17.0,
         },
         recontact: index % 5 == 0,
         grip_vibration_amplitude: 1e-4 * (1.0 + (z - 0.7).abs()),
         grip_recoil_speed: 0.5 - z,
+        // not stored: what the launch is computed from
+        ball_exit: Default::default(),
+        tangential_cor: 0.3 + 1e-4 * index as f64,
+        batted: batstudy::model::outcome::BattedBall {
+            bat_speed: 30.0 + z,
+            launch_angle: 0.2 + 1e-3 * index as f64,
+            spray_angle: -0.1,
+            backspin: 200.0 + index as f64,
+            sidespin: -20.0,
+            carry: 100.0 + 10.0 * z,
+            apex: 20.0 + z,
+            hang_time: 4.0 + z,
+        },
         history,
     })
 }

@@ -28,6 +28,18 @@ pub const MLB_SPEC_SPEED: f64 = 25.9;
 pub const CROSS_LOW_SPEED_COR: f64 = 0.64;
 pub const CROSS_LOW_SPEED: f64 = 1.0;
 
+/// The ball's radius, m: a 9.125-in circumference, the middle of the rule book's 9–9.25 in
+/// (the same ball as the flight's, `flight::BallProperties`).
+pub const DEFAULT_BALL_RADIUS: f64 = 9.125 * 0.0254 / std::f64::consts::TAU;
+/// The ball's moment of inertia over m r²: a uniform sphere's 2/5 (a baseball's layers,
+/// cork and rubber inside wool and leather, are close to uniform in density).
+pub const DEFAULT_INERTIA_FACTOR: f64 = 0.4;
+/// Coefficient of friction between ball and bat (docs/physics.md, "Oblique impacts").
+pub const DEFAULT_FRICTION: f64 = 0.15;
+/// The ball's tangential stiffness over its normal (secant) one (docs/physics.md, "Oblique
+/// impacts").
+pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.2;
+
 /// The `mlb` preset's COR exponent γ in e(v) = e_spec (v / v_spec)^(−γ): the curve through
 /// both calibration points (0.0488).
 pub fn mlb_cor_exponent() -> f64 {

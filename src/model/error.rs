@@ -62,6 +62,10 @@ pub enum ModelError {
     /// Memory for the point could not be reserved.
     #[error("cannot reserve {bytes:.0} bytes for {what}: not enough memory")]
     OutOfMemory { what: &'static str, bytes: f64 },
+    /// The batted ball's flight could not be computed (a launch outside the flight's
+    /// ranges, or a ball that never lands).
+    #[error("flight: {0}")]
+    Flight(String),
 }
 
 impl ModelError {
@@ -129,6 +133,7 @@ impl ModelError {
                 format!("{bytes:.0} bytes"),
                 "a smaller history (fewer samples, positions or fields)".into(),
             ),
+            ModelError::Flight(message) => ("flight".into(), none(), message.clone()),
             ModelError::NoSeparation { .. } | ModelError::Unsupported(_) => {
                 (none(), none(), self.to_string())
             }

@@ -112,6 +112,75 @@ pub struct EnergyPartition {
     pub bat_damping: f64,
     /// Dissipated by the grip's damper (`bat.grip.damping`; 0 without).
     pub grip_damping: f64,
+    /// Dissipated by the ball sliding on the bat (oblique impacts and spin; 0 head-on).
+    pub friction: f64,
+}
+
+/// The ball as it leaves the bat, in the bat-CM frame and the collision's plane (ŷ along
+/// the incoming ball, x̂ across the swing plane, b̂ the bat's axis: docs/physics.md,
+/// "Oblique impacts").
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BallExit {
+    /// Velocity along ŷ, m/s (negative: back toward the pitcher).
+    pub along: f64,
+    /// Velocity along x̂, m/s.
+    pub across: f64,
+    /// Spin about b̂, rad/s, in the sense of a pitch's backspin (so a batted ball's
+    /// backspin is negative here).
+    pub spin: f64,
+}
+
+/// The batted ball in the lab frame (docs/physics.md, "Launch" and "Flight"). NaN where it
+/// does not apply (the wall; the flight without a `flight` block or for a ball that goes
+/// back past the batter).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BattedBall {
+    /// Lab-frame speed of the bat's impact point toward the pitcher before contact, m/s
+    /// (`swing.cm_speed` − ω l).
+    pub bat_speed: f64,
+    /// Launch angle above the horizontal, rad.
+    pub launch_angle: f64,
+    /// Spray angle from straight-away centre field toward the first-base side, rad.
+    pub spray_angle: f64,
+    /// Backspin (positive) or topspin (negative), rad/s, about the horizontal axis across
+    /// the ball's path.
+    pub backspin: f64,
+    /// Sidespin, rad/s, about the axis across the path in its vertical plane, positive
+    /// curving toward the third-base (left-field) side.
+    pub sidespin: f64,
+    /// Horizontal distance from the contact point to the landing, m.
+    pub carry: f64,
+    /// Greatest height above the ground, m.
+    pub apex: f64,
+    /// Time from contact to landing, s.
+    pub hang_time: f64,
+}
+
+impl Default for BattedBall {
+    fn default() -> Self {
+        Self {
+            bat_speed: f64::NAN,
+            launch_angle: f64::NAN,
+            spray_angle: f64::NAN,
+            backspin: f64::NAN,
+            sidespin: f64::NAN,
+            carry: f64::NAN,
+            apex: f64::NAN,
+            hang_time: f64::NAN,
+        }
+    }
+}
+
+impl BallExit {
+    /// The exit speed, m/s, positive when the ball goes back toward the pitcher: −`along`
+    /// head-on (exactly), the speed in the plane signed so otherwise.
+    pub fn speed(&self) -> f64 {
+        if self.across == 0.0 {
+            -self.along
+        } else {
+            -self.along.signum() * self.along.hypot(self.across)
+        }
+    }
 }
 
 /// The result of one collision.
@@ -167,6 +236,15 @@ pub struct Outcome {
     /// Change of the grip point's rigid-body velocity caused by the collision, m/s, + along
     /// the incoming ball (zero for an impact at the grip's centre of percussion).
     pub grip_recoil_speed: f64,
+    /// The ball as it leaves, in the collision's plane (what the launch is computed from).
+    pub ball_exit: BallExit,
+    /// The tangential COR: minus the slip velocity of the ball's contact point on the bat
+    /// after the collision over the one before (rigid-body motion of the bat); 0 when the
+    /// ball rolls off, > 0 when it leaves spinning faster than rolling. NaN without slip
+    /// before (head-on without spin).
+    pub tangential_cor: f64,
+    /// The batted ball in the lab: its launch and flight (filled by `collision::launch`).
+    pub batted: BattedBall,
     /// Requested histories.
     pub history: Option<History>,
 }

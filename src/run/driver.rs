@@ -215,6 +215,7 @@ pub fn check_finite_for(o: &Outcome, model: ModelKind) -> Result<(), String> {
         ("energy.hoop", e.hoop),
         ("energy.bat_damping", e.bat_damping),
         ("energy.grip_damping", e.grip_damping),
+        ("energy.friction", e.friction),
     ];
     match fields
         .iter()

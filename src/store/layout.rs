@@ -4,7 +4,7 @@
 use crate::model::outcome::{History, HistoryCompression, HistoryField, HistoryRequest, Outcome};
 
 /// Version of the file layout documented in docs/layout.md.
-pub const LAYOUT_VERSION: u32 = 3;
+pub const LAYOUT_VERSION: u32 = 4;
 
 pub const GROUP_SUMMARY: &str = "summary";
 pub const GROUP_ERRORS: &str = "errors";
@@ -42,7 +42,7 @@ const fn v(
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 24;
+pub const N_SUMMARY_FLOATS: usize = 34;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -191,6 +191,66 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "hoop mass",
         "hoop-mode mass the collision used",
     ),
+    v(
+        "tangential_cor",
+        "1",
+        "tangential COR",
+        "minus the ball's slip velocity on the bat after the collision over the one before (0: rolls off; NaN head-on without spin)",
+    ),
+    v(
+        "bat_speed",
+        "m/s",
+        "bat speed",
+        "lab-frame speed of the bat's impact point toward the pitcher before contact",
+    ),
+    v(
+        "launch_angle",
+        "rad",
+        "launch angle",
+        "batted ball's launch angle above the horizontal, lab frame",
+    ),
+    v(
+        "spray_angle",
+        "rad",
+        "spray angle",
+        "batted ball's direction from straight-away centre field, positive toward the first-base side",
+    ),
+    v(
+        "spin",
+        "rad/s",
+        "spin",
+        "batted ball's backspin (positive) or topspin (negative) about the horizontal axis across its path",
+    ),
+    v(
+        "sidespin",
+        "rad/s",
+        "sidespin",
+        "batted ball's sidespin, positive curving toward the third-base side",
+    ),
+    v(
+        "carry",
+        "m",
+        "carry",
+        "horizontal distance from the contact point to the landing (flight; NaN without one)",
+    ),
+    v(
+        "apex",
+        "m",
+        "apex",
+        "greatest height of the flight above the ground",
+    ),
+    v(
+        "hang_time",
+        "s",
+        "hang time",
+        "time from contact to landing",
+    ),
+    v(
+        "energy_friction",
+        "J",
+        "friction loss",
+        "energy dissipated by the ball sliding on the bat",
+    ),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
@@ -225,6 +285,16 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.bpf,
         o.hoop_frequency,
         o.hoop_mass,
+        o.tangential_cor,
+        o.batted.bat_speed,
+        o.batted.launch_angle,
+        o.batted.spray_angle,
+        o.batted.backspin,
+        o.batted.sidespin,
+        o.batted.carry,
+        o.batted.apex,
+        o.batted.hang_time,
+        o.energy.friction,
     ]
 }
 
@@ -247,6 +317,17 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
         hoop_mass: f[23],
         grip_vibration_amplitude: f[14],
         grip_recoil_speed: f[15],
+        tangential_cor: f[24],
+        batted: crate::model::outcome::BattedBall {
+            bat_speed: f[25],
+            launch_angle: f[26],
+            spray_angle: f[27],
+            backspin: f[28],
+            sidespin: f[29],
+            carry: f[30],
+            apex: f[31],
+            hang_time: f[32],
+        },
         ..Default::default()
     };
     o.energy.initial = f[8];
@@ -257,6 +338,7 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
     o.energy.hoop = f[13];
     o.energy.bat_damping = f[16];
     o.energy.grip_damping = f[17];
+    o.energy.friction = f[33];
     o
 }
 
@@ -341,8 +423,33 @@ pub const SWEET_MIN_VIBRATION_ENERGY_POSITION: VarDef = v(
     "least-vibration-energy z",
     "impact position minimising energy_bat_vibration, from the knob (parabola-refined)",
 );
+pub const SWEET_CARRY_POSITION: VarDef = v(
+    "carry_position",
+    "m",
+    "longest-carry z",
+    "impact position of the longest carry, from the knob (parabola-refined; NaN without a flight)",
+);
+pub const SWEET_CARRY: VarDef = v(
+    "carry",
+    "m",
+    "longest carry",
+    "longest carry over impact_z (parabola-refined; NaN without a flight)",
+);
 /// Number of f64 `/sweet_spot` variables (before [`SWEET_AT_EDGE`]).
-pub const N_SWEET_FLOATS: usize = 6;
+pub const N_SWEET_FLOATS: usize = 8;
+/// The f64 `/sweet_spot` variables, in the order the build computes them.
+pub const SWEET_FLOATS: [&VarDef; N_SWEET_FLOATS] = [
+    &SWEET_POSITION,
+    &SWEET_EXIT_SPEED,
+    &SWEET_WIDTH,
+    &SWEET_MIN_VIBRATION_POSITION,
+    &SWEET_MIN_VIBRATION_AMPLITUDE,
+    &SWEET_MIN_VIBRATION_ENERGY_POSITION,
+    &SWEET_CARRY_POSITION,
+    &SWEET_CARRY,
+];
+/// Index of `carry` in [`SUMMARY_FLOATS`].
+pub const CARRY_INDEX: usize = 30;
 pub const SWEET_AT_EDGE: VarDef = v(
     "position_at_edge",
     "1",

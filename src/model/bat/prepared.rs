@@ -39,6 +39,8 @@ pub struct PreparedBat {
     pub(crate) damping_ratio: f64,
     /// Grip damper, N·s/m (0: none).
     pub(crate) grip_damping: f64,
+    /// Moment of inertia about the long axis, kg·m² (the bat's roll, for oblique impacts).
+    pub(crate) roll_inertia: f64,
     properties: BatProperties,
 }
 
@@ -94,7 +96,12 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
             angular_weight[k] += j * col[nodes + i];
         }
     }
+    // each cross section's polar moment: twice its diametral one
+    let roll_inertia = geometry.integrate(0.0, geometry.length, |z| {
+        2.0 * geometry.rotary_inertia_per_length(z)
+    });
     Ok(PreparedBat {
+        roll_inertia,
         damping_ratio: geometry.damping_ratio,
         grip_damping: bat.grip.as_ref().map_or(0.0, |g| g.damping),
         geometry,

@@ -1,10 +1,17 @@
 //! One collision: whether it can be computed (`validate`), the wave model (`wave/`: time
-//! step, contact, hoop, the modal and Verlet integrators), Brody's rigid model (`rigid`),
-//! the sampling of time histories (`history`), what the ball hits (`target`: a bat or a
-//! rigid wall), and the dispatch between models (`simulate`).
+//! step, contact, hoop, the modal and Verlet integrators), Brody's rigid model (`rigid`,
+//! and `rigid_model`: head-on, oblique, the wall), an oblique impact's geometry and the
+//! rigid oblique collision (`oblique`), the sampling of time histories (`history`), what
+//! the ball hits (`target`: a bat or a rigid wall), the batter's swing (`batter`), the
+//! batted ball's launch and flight (`launch`), and the dispatch between models
+//! (`simulate`).
 
+pub mod batter;
 pub(crate) mod history;
+pub mod launch;
+pub mod oblique;
 pub mod rigid;
+mod rigid_model;
 pub mod simulate;
 pub mod target;
 pub mod validate;

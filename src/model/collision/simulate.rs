@@ -2,12 +2,13 @@
 
 use crate::model::ball::wall_cor;
 use crate::model::bat::PreparedBat;
-use crate::model::collision::rigid::rigid_collision;
+use crate::model::collision::batter::swung;
+use crate::model::collision::launch;
+use crate::model::collision::rigid_model::{rigid_wall, simulate_rigid};
 use crate::model::collision::target::Target;
 use crate::model::collision::validate::validate_spec;
 use crate::model::collision::wave::{simulate_wall, simulate_wave, Diagnostics};
 use crate::model::error::ModelError;
-use crate::model::outcome::EnergyPartition;
 use crate::model::outcome::{HistoryRequest, Outcome};
 use crate::model::protocol::{
     bbcor_from_efficiency, besr_from_efficiency, free_effective_mass, moment_of_inertia_about,
@@ -35,6 +36,9 @@ pub fn simulate_with_diagnostics(
     if let Some(request) = history {
         crate::model::collision::validate::validate_history(request)?;
     }
+    // with a batter, the swing this bat gets
+    let swung = swung(spec, bat)?;
+    let spec = swung.as_ref();
     if !(spec.impact.z >= 0.0 && spec.impact.z <= bat.length()) {
         return Err(crate::model::error::out_of_range(
             "impact.z",
@@ -44,7 +48,7 @@ pub fn simulate_with_diagnostics(
     }
     let (mut outcome, diagnostics) = match spec.model {
         ModelKind::Wave => simulate_wave(spec, bat, history)?,
-        ModelKind::Rigid => (simulate_rigid(spec, bat), Diagnostics::default()),
+        ModelKind::Rigid => (simulate_rigid(spec, bat)?, Diagnostics::default()),
     };
     let p = bat.properties();
     let effective_mass = match spec.bat.grip.as_ref() {
@@ -56,6 +60,12 @@ pub fn simulate_with_diagnostics(
         _ => free_effective_mass(p.mass, p.z_cm, p.moment_of_inertia, spec.impact.z),
     };
     certify(spec, spec.swing.omega == 0.0, effective_mass, &mut outcome);
+    let lever_arm = spec.impact.z - p.z_cm;
+    let lab_speed = launch::complete(spec, lever_arm, &outcome.ball_exit, &mut outcome.batted)?;
+    // off the bat's path the lab speed is no longer the CM frame's plus the CM's
+    if outcome.ball_exit.across != 0.0 {
+        outcome.exit_speed_lab = lab_speed;
+    }
     Ok((outcome, diagnostics))
 }
 
@@ -96,90 +106,5 @@ pub fn simulate_target(
             certify(spec, true, f64::INFINITY, &mut outcome);
             Ok(outcome)
         }
-    }
-}
-
-/// Brody's model against an immovable wall: the ball comes back at e(v)·v.
-fn rigid_wall(spec: &CollisionSpec) -> Outcome {
-    let (m, v) = (spec.ball.mass, spec.ball.speed);
-    let e = crate::model::ball::cor_at_speed(&spec.ball.law, v);
-    Outcome {
-        exit_speed: e * v,
-        exit_speed_lab: e * v,
-        collision_efficiency: e,
-        approach_speed: v,
-        contact_time: f64::NAN,
-        impulse_time_99: f64::NAN,
-        peak_force: f64::NAN,
-        max_compression: f64::NAN,
-        impulse: m * (1.0 + e) * v,
-        hoop_frequency: f64::NAN,
-        hoop_mass: f64::NAN,
-        energy: EnergyPartition {
-            initial: 0.5 * m * v * v,
-            ball_final: 0.5 * m * (e * v).powi(2),
-            ball_loss: 0.5 * m * v * v * (1.0 - e * e),
-            ..EnergyPartition::default()
-        },
-        ..Outcome::default()
-    }
-}
-
-/// Brody's rigid-body model with e = `ball.law.cor` (its value at the approach speed for
-/// `speed_dependent`), on the prepared bat's mass properties.
-/// It has no time scale of its own: contact time, peak force and compression are NaN, the
-/// hoop mode is ignored, and the energy lost counts as lost in the ball.
-fn simulate_rigid(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
-    let properties = bat.properties();
-    let lever_arm = spec.impact.z - properties.z_cm;
-    let r = rigid_collision(
-        spec.ball.mass,
-        spec.ball.speed,
-        properties.mass,
-        properties.moment_of_inertia,
-        lever_arm,
-        spec.swing.omega,
-        // The COR at the relative normal speed of ball and bat surface at the impact point.
-        crate::model::ball::cor_at_speed(
-            &spec.ball.law,
-            spec.ball.speed - spec.swing.omega * lever_arm,
-        ),
-    );
-    Outcome {
-        exit_speed: r.exit_speed,
-        exit_speed_lab: r.exit_speed + spec.swing.cm_speed,
-        collision_efficiency: r.collision_efficiency,
-        approach_speed: r.approach_speed,
-        contact_time: f64::NAN,
-        impulse_time_99: f64::NAN,
-        peak_force: f64::NAN,
-        max_compression: f64::NAN,
-        hoop_frequency: f64::NAN,
-        hoop_mass: f64::NAN,
-        bbcor: f64::NAN,
-        besr: f64::NAN,
-        bpf: f64::NAN,
-        impulse: r.impulse,
-        energy: EnergyPartition {
-            initial: r.energy_initial,
-            ball_final: r.energy_ball_final,
-            ball_loss: r.energy_lost,
-            bat_rigid: r.energy_bat_final,
-            bat_vibration: 0.0,
-            hoop: 0.0,
-            bat_damping: 0.0,
-            grip_damping: 0.0,
-        },
-        recontact: false,
-        grip_vibration_amplitude: 0.0,
-        grip_recoil_speed: crate::model::bat::motion::grip_recoil_speed(
-            r.impulse,
-            r.impulse * lever_arm,
-            properties.mass,
-            properties.moment_of_inertia,
-            properties.z_cm,
-            crate::model::protocol::KNOB6,
-        ),
-        history: None,
     }
 }

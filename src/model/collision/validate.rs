@@ -32,6 +32,11 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     check_ball(&spec.ball)?;
     check("swing.omega", spec.swing.omega, true, "finite rad/s")?;
     check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
+    check_oblique(spec, wall)?;
+    check_batter(spec, wall)?;
+    if let Some(flight) = &spec.flight {
+        check_flight(flight)?;
+    }
     if let Some(hoop) = &spec.hoop {
         check_hoop(hoop, spec.ball.mass)?;
     }
@@ -122,6 +127,153 @@ fn check_ball(ball: &crate::model::spec::BallSpec) -> Result<(), ModelError> {
         "a finite number > 0",
     )?;
     Ok(())
+}
+
+/// An oblique impact, a spinning ball and the swing's angles.
+fn check_oblique(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
+    let offset = spec.impact.offset;
+    let flat = "0 against the wall (a flat target has no offset)";
+    check(
+        "impact.offset",
+        offset,
+        !wall || offset == 0.0,
+        if wall { flat } else { "finite m" },
+    )?;
+    check("ball.spin", spec.ball.spin, true, "finite rad/s")?;
+    if let Some(r) = spec.ball.radius {
+        check("ball.radius", r, r > 0.0, "a finite number > 0 m")?;
+    }
+    if let Some(k) = spec.ball.inertia_factor {
+        // a thin shell's 2/3 is the most a sphere can have
+        check(
+            "ball.inertia_factor",
+            k,
+            k > 0.0 && k <= 2.0 / 3.0,
+            "(0, 2/3]",
+        )?;
+    }
+    if let Some(mu) = spec.ball.law.friction {
+        check("ball.law.friction", mu, mu >= 0.0, "a finite number >= 0")?;
+    }
+    if let Some(k) = spec.ball.law.tangential_ratio {
+        check(
+            "ball.law.tangential_ratio",
+            k,
+            k > 0.0,
+            "a finite number > 0",
+        )?;
+    }
+    let right_angle = std::f64::consts::FRAC_PI_2;
+    for (path, angle) in [
+        ("swing.attack_angle", spec.swing.attack_angle),
+        ("swing.vertical_angle", spec.swing.vertical_angle),
+    ] {
+        check(path, angle, angle.abs() < right_angle, "(-pi/2, pi/2) rad")?;
+    }
+    Ok(())
+}
+
+/// The batter: speeds, the reference bat, the exponent, the pivot.
+fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
+    let Some(b) = &spec.batter else {
+        return Ok(());
+    };
+    if wall {
+        return Err(ModelError::Unsupported(
+            "a batter with bat.preset: wall (a wall is not swung)",
+        ));
+    }
+    check(
+        "batter.pitch_speed",
+        b.pitch_speed,
+        b.pitch_speed >= 0.0,
+        "a finite number >= 0 m/s",
+    )?;
+    check(
+        "batter.bat_speed",
+        b.bat_speed,
+        b.bat_speed > 0.0,
+        "a finite number > 0 m/s",
+    )?;
+    check(
+        "batter.pivot",
+        b.pivot,
+        b.pivot >= 0.0,
+        "a finite number >= 0 m (from the knob)",
+    )?;
+    check(
+        "batter.bat_speed_at",
+        b.bat_speed_at,
+        b.bat_speed_at > b.pivot,
+        "a finite number > batter.pivot m (from the knob)",
+    )?;
+    check(
+        "batter.reference_moi",
+        b.reference_moi,
+        b.reference_moi > 0.0,
+        "a finite number > 0 kg m^2",
+    )?;
+    check(
+        "batter.exponent",
+        b.exponent,
+        (0.0..=1.0).contains(&b.exponent),
+        "[0, 1]",
+    )
+}
+
+/// The flight's air: the ranges the flight model accepts.
+fn check_flight(f: &crate::model::spec::FlightSpec) -> Result<(), ModelError> {
+    check(
+        "flight.height",
+        f.height,
+        (0.0..=10.0).contains(&f.height),
+        "[0, 10] m",
+    )?;
+    check(
+        "flight.wind_direction",
+        f.wind_direction,
+        f.wind_direction.abs() <= std::f64::consts::PI,
+        "[-pi, pi] rad",
+    )?;
+    check(
+        "flight.wind_speed",
+        f.wind_speed,
+        f.wind_speed.abs() <= 100.0,
+        "[-100, 100] m/s",
+    )?;
+    let atmosphere = crate::model::flight::Atmosphere {
+        temperature_k: f.temperature,
+        sea_level_pressure_pa: f.pressure,
+        elevation_m: f.elevation,
+        relative_humidity: f.humidity,
+        wind_m_s: [0.0; 3],
+    };
+    atmosphere.validate().map_err(|e| flight_field(e, f))
+}
+
+/// A flight error named by the study's field.
+fn flight_field(
+    e: crate::model::flight::FlightError,
+    f: &crate::model::spec::FlightSpec,
+) -> ModelError {
+    use crate::model::flight::FlightError;
+    match e {
+        FlightError::OutOfRange {
+            name,
+            value,
+            allowed,
+        } => {
+            let path = match name {
+                "atmosphere.temperature_k" => "flight.temperature",
+                "atmosphere.sea_level_pressure_pa" => "flight.pressure",
+                "atmosphere.elevation_m" => "flight.elevation",
+                "atmosphere.relative_humidity" => "flight.humidity",
+                _ => "flight",
+            };
+            out_of_range(path, value, allowed)
+        }
+        other => out_of_range("flight.humidity", f.humidity, &other.to_string()),
+    }
 }
 
 /// The hoop mode: given (frequency and mass), or derived from the geometry (neither).

@@ -185,14 +185,18 @@ pub fn bbcor_scan_mapped(
     let spec = CollisionSpec {
         model: ModelKind::Wave,
         bat: bat_spec.clone(),
+        // the protocol's head-on shot of a ball without spin
         ball: BallSpec {
             speed: BBCOR_BALL_SPEED,
+            spin: 0.0,
             ..ball.clone()
         },
         swing: SwingSpec::default(),
         hoop: None,
-        impact: ImpactSpec { z: z0 },
+        impact: ImpactSpec { z: z0, offset: 0.0 },
         numerics: numerics.clone(),
+        batter: None,
+        flight: None,
     };
     let at = |zi: f64| {
         let mut spec = spec.clone();

@@ -180,14 +180,7 @@ fn sweet_spot_group(
     let links = (&ssref[..], &saux[..], att);
     let sc = (&rshape[..], &rchunk[..]);
     let mut vars = Vec::new();
-    for def in [
-        &l::SWEET_POSITION,
-        &l::SWEET_EXIT_SPEED,
-        &l::SWEET_WIDTH,
-        &l::SWEET_MIN_VIBRATION_POSITION,
-        &l::SWEET_MIN_VIBRATION_AMPLITUDE,
-        &l::SWEET_MIN_VIBRATION_ENERGY_POSITION,
-    ] {
+    for def in l::SWEET_FLOATS {
         vars.push(new_var(&sg, def, sc, f64::NAN, links, out)?);
     }
     let edge = new_var(&sg, &l::SWEET_AT_EDGE, sc, -1i8, links, out)?;

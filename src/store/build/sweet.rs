@@ -1,7 +1,7 @@
 //! The sweet spots of a block's curves along `impact_z` (the `/sweet_spot` variables): the
 //! one place the store calls the physics' sweet-spot finders.
 
-use crate::model::measures::sweet::find_sweet_spot;
+use crate::model::measures::sweet::{find_sweet_spot, SweetSpot};
 use crate::model::measures::sweet_defs::vibration_sweet_spot;
 use crate::store::layout as l;
 
@@ -22,19 +22,13 @@ pub(super) fn block_sweet_spots(
     let mut order: Vec<usize> = (0..nz).collect();
     order.sort_by(|&a, &b| z[a].total_cmp(&z[b]));
     let z: Vec<f64> = order.iter().map(|&q| z[q]).collect();
-    let curve = |slot: usize| -> ([f64; 6], i8) {
+    let curve = |slot: usize| -> ([f64; l::N_SWEET_FLOATS], i8) {
         let (hi, lo) = (slot / stride, slot % stride);
         let base = hi * nz * stride + lo;
         let along =
             |k: usize| -> Vec<f64> { order.iter().map(|&q| fv[k][base + q * stride]).collect() };
-        let exit = along(0);
-        let (zz, vv): (Vec<f64>, Vec<f64>) = z
-            .iter()
-            .zip(&exit)
-            .filter(|(_, v)| v.is_finite())
-            .map(|(&z, &v)| (z, v))
-            .unzip();
-        let s = find_sweet_spot(&zz, &vv);
+        let s = maximum_along(&z, &along(0));
+        let carry = maximum_along(&z, &along(l::CARRY_INDEX));
         let v = vibration_sweet_spot(
             &z,
             &along(l::GRIP_VIBRATION_INDEX),
@@ -49,13 +43,26 @@ pub(super) fn block_sweet_spots(
                 v.min_vibration_position,
                 v.min_vibration_amplitude,
                 v.min_vibration_energy_position,
+                carry.map_or(f64::NAN, |s| s.position),
+                carry.map_or(f64::NAN, |s| s.exit_speed),
             ],
             at_edge,
         )
     };
-    let rows: Vec<([f64; 6], i8)> = (0..outer).map(curve).collect();
+    let rows: Vec<([f64; l::N_SWEET_FLOATS], i8)> = (0..outer).map(curve).collect();
     (
         std::array::from_fn(|k| rows.iter().map(|r| r.0[k]).collect()),
         rows.iter().map(|r| r.1).collect(),
     )
+}
+
+/// The maximum of a curve over its finite points (`find_sweet_spot`: parabola-refined).
+fn maximum_along(z: &[f64], values: &[f64]) -> Option<SweetSpot> {
+    let (zz, vv): (Vec<f64>, Vec<f64>) = z
+        .iter()
+        .zip(values)
+        .filter(|(_, v)| v.is_finite())
+        .map(|(&z, &v)| (z, v))
+        .unzip();
+    find_sweet_spot(&zz, &vv)
 }

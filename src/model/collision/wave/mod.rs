@@ -19,12 +19,14 @@ use crate::model::ball::ContactLaw;
 use crate::model::bat::motion::grip_recoil_speed;
 use crate::model::bat::PreparedBat;
 use crate::model::collision::history::Recorder;
+use crate::model::collision::oblique::Oblique;
 use crate::model::error::ModelError;
-use crate::model::outcome::{EnergyPartition, HistoryRequest, Outcome};
+use crate::model::outcome::{BattedBall, EnergyPartition, HistoryRequest, Outcome};
 use crate::model::protocol::KNOB6;
 use crate::model::spec::{BeamTheory, CollisionSpec, Integrator};
 
 mod contact;
+mod exit;
 mod hoop;
 mod modal;
 mod project;
@@ -99,6 +101,8 @@ struct Collision {
     budget: u64,
     /// Modes above this angular frequency are treated quasi-statically (modal integrator).
     mode_cutoff: f64,
+    /// The oblique contact (`None`: head-on without spin, the paper's collision).
+    oblique: Option<Oblique>,
 }
 
 /// What an integrator hands back at the end.
@@ -119,6 +123,8 @@ struct FinalState {
     grip_amplitude: f64,
     steps: usize,
     modes: usize,
+    /// The oblique contact's final state (modal integrator; `None` head-on).
+    tangential: Option<modal::tangential::Tangential>,
 }
 
 /// Run one wave-model collision.
@@ -148,10 +154,15 @@ pub fn simulate_wave(
     Ok((outcome, diagnostics))
 }
 
-/// The explicit baseline steps the plain Euler–Bernoulli beam only.
+/// The explicit baseline steps the plain Euler–Bernoulli beam only, head-on.
 fn check_integrator(spec: &CollisionSpec, bat: &PreparedBat) -> Result<(), ModelError> {
     if spec.numerics.integrator != Integrator::Verlet {
         return Ok(());
+    }
+    if spec.impact.offset != 0.0 || spec.ball.spin != 0.0 {
+        return Err(ModelError::Unsupported(
+            "an oblique impact or a spinning ball needs the modal integrator",
+        ));
     }
     if bat.beam.pin.is_some() {
         return Err(ModelError::Unsupported(
@@ -178,6 +189,12 @@ fn collision_of(
     approach: f64,
 ) -> Result<Collision, ModelError> {
     let hoop = resolve_hoop(spec, bat)?;
+    let oblique = Oblique::resolve(spec, bat)?;
+    if oblique.is_some() && hoop.is_some() {
+        return Err(ModelError::Unsupported(
+            "a hoop mode with an oblique impact or a spinning ball (the hoop acts head-on)",
+        ));
+    }
     let dt = time_step(spec, bat)?;
     // The run lasts at least the re-contact watch after the ball has left.
     let budget = checked_step_budget(spec, dt, "numerics.max_steps")?;
@@ -186,7 +203,11 @@ fn collision_of(
         .beam
         .grip_z
         .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
-    let law = ContactLaw::new(&spec.ball.law, approach);
+    // a speed-dependent ball takes its COR at the normal speed it meets the bat with
+    let law = ContactLaw::new(
+        &spec.ball.law,
+        oblique.map_or(approach, |o| approach * o.cos),
+    );
     Ok(Collision {
         law,
         ball_mass: spec.ball.mass,
@@ -200,6 +221,7 @@ fn collision_of(
         dt,
         budget,
         mode_cutoff: MODE_CUTOFF_FACTOR * contact_omega(spec, hoop, &law, approach),
+        oblique,
     })
 }
 
@@ -228,7 +250,7 @@ fn energy_partition(
             + 0.5 * fin.bat_angular_momentum.powi(2) / bat.inertia_cm
     };
     let (hoop_mass, hoop_initial_velocity) = hoop_start(c);
-    EnergyPartition {
+    let mut energy = EnergyPartition {
         initial: 0.5 * m * c.ball_speed.powi(2)
             + 0.5 * c.omega.powi(2) * bat.inertia_cm
             + 0.5 * total_mass * u * u
@@ -240,7 +262,15 @@ fn energy_partition(
         hoop: fin.hoop_energy,
         bat_damping: fin.bat_damping,
         grip_damping: fin.grip_loss,
+        friction: 0.0,
+    };
+    if let Some(extra) = exit::oblique_energies(c, fin) {
+        energy.initial += extra.spin_before;
+        energy.ball_final += extra.ball_after;
+        energy.bat_rigid += extra.bat_after;
+        energy.friction = extra.friction;
     }
+    energy
 }
 
 /// The point's summary (histories are added by the caller).
@@ -254,8 +284,13 @@ fn outcome_of(
     approach: f64,
 ) -> Outcome {
     // back to the bat-CM frame
-    let exit_speed = -(fin.ball_velocity + c.frame_velocity);
+    let ball_exit = exit::ball_exit(c, fin);
+    let exit_speed = ball_exit.speed();
     Outcome {
+        ball_exit,
+        tangential_cor: exit::tangential_cor(c, bat, fin),
+        // the lab-frame launch and flight are the caller's (`collision::launch`)
+        batted: BattedBall::default(),
         exit_speed,
         exit_speed_lab: exit_speed + spec.swing.cm_speed,
         // v_exit = e_A v_pitch + (1 + e_A) v_bat with v_pitch = ball.speed and the bat's

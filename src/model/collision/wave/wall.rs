@@ -12,7 +12,7 @@ use super::{Diagnostics, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::{Recorder, Sample};
 use crate::model::error::ModelError;
-use crate::model::outcome::{EnergyPartition, HistoryRequest, Outcome};
+use crate::model::outcome::{BallExit, BattedBall, EnergyPartition, HistoryRequest, Outcome};
 use crate::model::spec::CollisionSpec;
 
 /// One ball fired at the wall at `ball.speed`.
@@ -120,6 +120,13 @@ fn wall_outcome(m: f64, v0: f64, v: f64, contact: &Contact) -> Outcome {
         recontact: contact.recontact,
         grip_vibration_amplitude: 0.0,
         grip_recoil_speed: 0.0,
+        ball_exit: BallExit {
+            along: v,
+            across: 0.0,
+            spin: 0.0,
+        },
+        tangential_cor: f64::NAN,
+        batted: BattedBall::default(),
         history: None,
     }
 }

@@ -11,6 +11,7 @@ mod propagator;
 mod record;
 mod setup;
 mod state;
+pub(super) mod tangential;
 
 use super::contact::Contact;
 use super::{displacement_points, spec_history, Collision, FinalState};
@@ -21,6 +22,7 @@ use crate::model::error::ModelError;
 use crate::model::protocol::KNOB6;
 use setup::Setup;
 use state::State;
+use tangential::{StepInputs, Tangential};
 
 pub(super) fn run_modal(
     c: &Collision,
@@ -46,7 +48,8 @@ pub(super) fn run_modal(
         if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, setup.h)) {
             let p_bat = state.bat_force(c);
             let hoop_rel = state.xh - state.y_c;
-            let smp = record::sample(rec, bat, &state, state.force, p_bat, hoop_rel, points.len());
+            let force = state.contact_force();
+            let smp = record::sample(rec, bat, &state, force, p_bat, hoop_rel, points.len());
             rec.push(state.t, smp);
         }
         if contact.stop_after(state.t, state.steps, setup.h, c.budget, recorder)? {
@@ -61,8 +64,28 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     let (y_free, g_end, alpha_d) = state::free_contact_point(c, s, state);
     let h2 = s.h * s.h;
     let w_free = state.w + s.h * state.v - h2 * state.force / (3.0 * c.ball_mass);
-    let (new_force, new_hoop_force, new_s) =
-        state::solve_contact(c, state, contact, w_free, y_free, s.g_start, g_end);
+    let (new_force, new_hoop_force, new_s, oblique_forces) = match (&c.oblique, &state.tangential) {
+        (Some(o), Some(t)) => {
+            let inputs = StepInputs {
+                law: &c.law,
+                mass: c.ball_mass,
+                h: s.h,
+                s_max: contact.s_max,
+                guess: 2.0 * state.s - state.s_before,
+            };
+            let y_part = (
+                w_free - y_free - s.g_start * state.force,
+                h2 / (6.0 * c.ball_mass) + g_end,
+            );
+            let (n1, t1, s1) = tangential::end_forces(o, t, &inputs, y_part, state.w - state.y_c);
+            (Tangential::bat_force_y(o, n1, t1), 0.0, s1, Some((n1, t1)))
+        }
+        _ => {
+            let (f1, fh1, s1) =
+                state::solve_contact(c, state, contact, w_free, y_free, s.g_start, g_end);
+            (f1, fh1, s1, None)
+        }
+    };
     // the bat is pushed by the ball (no hoop) or by the hoop spring
     let (p0, p1) = match c.hoop {
         Some(_) => (state.hoop_force, new_hoop_force),
@@ -78,9 +101,32 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     }
     state::advance_modes(s, state, (p0, p1), d);
     state::losses_after(s, state, d.1);
+    let dy_before = state.w - state.y_c;
     state.y_c = y_free + s.g_start * p0 + g_end * p1;
     state.w = w_free - h2 * new_force / (6.0 * c.ball_mass);
+    if let (Some(o), Some(forces)) = (&c.oblique, oblique_forces) {
+        advance_oblique(c, o, s.h, state, dy_before, forces);
+    }
     ball_and_contact(c, s, state, contact, (new_force, new_hoop_force, new_s));
+}
+
+/// The oblique contact's states after the step, and what sliding dissipated.
+fn advance_oblique(
+    c: &Collision,
+    o: &crate::model::collision::oblique::Oblique,
+    h: f64,
+    state: &mut State,
+    dy_before: f64,
+    forces: (f64, f64),
+) {
+    let dy_after = state.w - state.y_c;
+    let Some(t) = state.tangential.as_mut() else {
+        return;
+    };
+    let (u_before, t0) = (t.tangential_displacement(o, dy_before), t.shear);
+    tangential::advance(o, t, (c.ball_mass, h), forces);
+    let slip = t.tangential_displacement(o, dy_after) - u_before;
+    t.slip_loss += tangential::slip_loss(o.tangential_stiffness, (t0, forces.1), slip);
 }
 
 /// The ball's velocity, the compression, the forces and the clock after the step, and the
@@ -95,9 +141,10 @@ fn ball_and_contact(
     state.v -= s.h * (state.force + new_force) / (2.0 * c.ball_mass);
     let s_prev = state.s;
     state.s_before = state.s;
-    let s_states = match c.hoop {
-        Some(_) => state.w - state.xh,
-        None => state.w - state.y_c,
+    let s_states = match (c.hoop, &c.oblique, &state.tangential) {
+        (Some(_), _, _) => state.w - state.xh,
+        (None, Some(o), Some(t)) => t.compression(o, state.w - state.y_c),
+        _ => state.w - state.y_c,
     };
     // s from the solve and from the states agree to round-off; use the solve's in-contact
     let s_track = if new_force > 0.0 { new_s } else { s_states };
@@ -106,7 +153,14 @@ fn ball_and_contact(
     let t_prev = state.t;
     state.steps += 1;
     state.t = state.steps as f64 * s.h;
-    contact.update(&c.law, t_prev, s_prev, state.t, s_track, state.force);
+    contact.update(
+        &c.law,
+        t_prev,
+        s_prev,
+        state.t,
+        s_track,
+        state.contact_force(),
+    );
     state.s = s_track;
 }
 
@@ -138,5 +192,6 @@ fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> Fi
         grip_amplitude: grip_vibration_amplitude(bat, q, qd, KNOB6),
         steps: state.steps,
         modes: s.n,
+        tangential: state.tangential,
     }
 }

@@ -6,6 +6,7 @@ use super::super::contact::Contact;
 use super::super::Collision;
 use super::propagator::ModalStep;
 use super::setup::{dot_n, GripDamper, Setup};
+use super::tangential::Tangential;
 use crate::model::bat::PreparedBat;
 
 /// Everything that changes from step to step.
@@ -34,6 +35,8 @@ pub(super) struct State {
     /// Energy dissipated by material damping and by the grip damper.
     pub(super) bat_damping: f64,
     pub(super) grip_loss: f64,
+    /// The oblique contact's state (`None` head-on without spin).
+    pub(super) tangential: Option<Tangential>,
 }
 
 impl State {
@@ -62,7 +65,14 @@ impl State {
             d_force: 0.0,
             bat_damping: 0.0,
             grip_loss: 0.0,
+            tangential: c.oblique.as_ref().map(Tangential::first_contact),
         }
+    }
+
+    /// The contact force between ball and bat: the normal force of an oblique contact,
+    /// else the force along the ball's path.
+    pub(super) fn contact_force(&self) -> f64 {
+        self.tangential.map_or(self.force, |t| t.normal)
     }
 
     /// The force on the bat at the step's start: the ball's, or the hoop spring's.

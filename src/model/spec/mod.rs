@@ -10,6 +10,9 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+mod batter;
+pub use batter::{BatterSpec, FlightSpec};
+
 /// Which collision model to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema, Default)]
 #[serde(rename_all = "snake_case")]
@@ -45,6 +48,14 @@ pub struct CollisionSpec {
     /// Numerical resolution; every field defaults to a converged automatic choice.
     #[serde(default)]
     pub numerics: NumericsSpec,
+    /// A batter whose swing answers to the bat's moment of inertia. Default `null`: the
+    /// swing is `swing` as given, the same for every bat.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub batter: Option<BatterSpec>,
+    /// The batted ball's flight to the ground (carry, apex, hang time). Default `null`: no
+    /// flight (those results are NaN).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flight: Option<FlightSpec>,
 }
 
 impl CollisionSpec {
@@ -58,8 +69,13 @@ impl CollisionSpec {
             ball: BallSpec::default(),
             swing: SwingSpec::default(),
             hoop: None,
-            impact: ImpactSpec { z: impact_z },
+            impact: ImpactSpec {
+                z: impact_z,
+                offset: 0.0,
+            },
             numerics: NumericsSpec::default(),
+            batter: None,
+            flight: None,
         }
     }
 }
@@ -332,6 +348,16 @@ pub struct BallSpec {
     /// Default 40.
     #[serde(default = "default_ball_speed")]
     pub speed: f64,
+    /// Spin of the pitch about the bat's axis, rad/s, positive for backspin (a fastball's),
+    /// negative for topspin (a curveball's). Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub spin: f64,
+    /// Radius in m. Default 0.0369 (a 9.125-in circumference, the rule book's middle).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// Moment of inertia over m r². Default 0.4 (a uniform sphere).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia_factor: Option<f64>,
     /// Force–compression law.
     #[serde(default)]
     pub law: BallLaw,
@@ -343,6 +369,9 @@ impl Default for BallSpec {
             preset: None,
             mass: default_ball_mass(),
             speed: default_ball_speed(),
+            spin: 0.0,
+            radius: None,
+            inertia_factor: None,
             law: BallLaw::default(),
         }
     }
@@ -415,6 +444,16 @@ pub struct BallLaw {
     /// as measured balls' does. Exclusive with `cor_slope`. Default none (the line).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cor_exponent: Option<f64>,
+    /// Coefficient of friction between ball and bat (oblique impacts and spin). Default:
+    /// docs/physics.md, "Oblique impacts".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
+    /// Stiffness of the ball's tangential spring (Cross's tangential compliance: how far the
+    /// contact patch shears before it slides) over its normal stiffness, the secant F/s at
+    /// the compression a rigid wall would give at this impact's normal speed. Default:
+    /// docs/physics.md, "Oblique impacts".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_ratio: Option<f64>,
 }
 
 /// `ball.law` as a study writes it: every field optional, so that a preset can fill the
@@ -431,6 +470,8 @@ struct BallLawFields {
     cor_slope: Option<f64>,
     loading: Option<Loading>,
     cor_exponent: Option<f64>,
+    friction: Option<f64>,
+    tangential_ratio: Option<f64>,
 }
 
 impl BallLawFields {
@@ -449,6 +490,8 @@ impl BallLawFields {
             cor_exponent: self
                 .cor_exponent
                 .or(base.cor_exponent.filter(|_| self.cor_slope.is_none())),
+            friction: self.friction.or(base.friction),
+            tangential_ratio: self.tangential_ratio.or(base.tangential_ratio),
         }
     }
 }
@@ -464,17 +507,29 @@ impl<'de> Deserialize<'de> for BallSpec {
             mass: f64,
             #[serde(default = "default_ball_speed")]
             speed: f64,
+            #[serde(default)]
+            spin: f64,
+            #[serde(default)]
+            radius: Option<f64>,
+            #[serde(default)]
+            inertia_factor: Option<f64>,
             // `law: null` leaves every field to the preset (or the defaults), which lets a
             // study's points set pick a preset over a base that gives a law
             #[serde(default)]
             law: Option<BallLawFields>,
         }
         let f = Fields::deserialize(d)?;
-        let base = f.preset.map(crate::model::ball::preset_law).unwrap_or_default();
+        let base = f
+            .preset
+            .map(crate::model::ball::preset_law)
+            .unwrap_or_default();
         Ok(Self {
             preset: f.preset,
             mass: f.mass,
             speed: f.speed,
+            spin: f.spin,
+            radius: f.radius,
+            inertia_factor: f.inertia_factor,
             law: f.law.unwrap_or_default().over(base),
         })
     }
@@ -492,6 +547,8 @@ impl Default for BallLaw {
             cor_slope: None,
             loading: None,
             cor_exponent: None,
+            friction: None,
+            tangential_ratio: None,
         }
     }
 }
@@ -508,6 +565,16 @@ pub struct SwingSpec {
     /// exit speeds (the collision itself is solved in the CM frame). Default 0.
     #[serde(default)]
     pub cm_speed: f64,
+    /// Attack angle: the elevation of the bat's path (its impact point's velocity) above the
+    /// horizontal, rad, positive for an upward swing. The pitch arrives along that path (an
+    /// "on plane" swing, docs/physics.md "Launch"). Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub attack_angle: f64,
+    /// Vertical bat angle: the tilt of the bat's axis (knob to barrel) about its path, rad,
+    /// negative with the barrel below the hands (measured swings average about −0.5).
+    /// Default 0: a level bat.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub vertical_angle: f64,
 }
 
 /// A hoop mode: mass `mass` on a spring of frequency `frequency` between ball and bat;
@@ -541,6 +608,18 @@ pub struct HoopSpec {
 pub struct ImpactSpec {
     /// Impact position in m from the knob (0 < z < L).
     pub z: f64,
+    /// Distance of the ball's centre line below (+) or above (−) the bat's axis, m, in the
+    /// plane across the bat at `z` (|offset| < bat radius + ball radius). Negative is an
+    /// undercut: the bat passes below the ball's centre, which leaves with backspin and a
+    /// higher launch. Default 0: head-on, the paper's collision.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub offset: f64,
+}
+
+/// Default-valued angles and offsets are left out of a spec's canonical form, so that a
+/// point that does not use them keeps the id it had before they existed.
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0 && x.is_sign_positive()
 }
 
 /// Time integrator of the wave model.

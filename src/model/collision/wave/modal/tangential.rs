@@ -1,0 +1,192 @@
+//! The oblique contact's part of a modal step (`collision::oblique`): the ball and the bat
+//! across the swing plane, their spins, and the end forces (normal N, tangential T) found
+//! implicitly with the beam's response along ŷ.
+//!
+//! Over a step every force varies linearly, so the end displacements are affine in the end
+//! forces: the compression s = Δ·n̂ and the contact points' tangential displacement
+//! u = Δ·t̂ + r φ_ball + R φ_roll (Δ the ball's centre minus the bat's contact point) are
+//! s₁ = S₀ − b_nn N₁ − b_nt T₁ and u₁ = U₀ + b_nt N₁ + b_tt T₁. While the patch grips,
+//! T₁ = −k_t ξ₁ with ξ₁ = ξ₀ + u₁ − u₀ makes T₁ affine in N₁, and the ball's law gives N₁
+//! from one scalar equation, as head-on; if then |T₁| > μ N₁ the ball slides instead,
+//! T₁ = ±μ N₁ (a return mapping). The spring's extension is always −T/k_t, so the
+//! tangential force is the spring's state.
+
+use crate::model::ball::ContactLaw;
+use crate::model::collision::oblique::Oblique;
+
+/// What the oblique contact adds to the modal integrator's state.
+#[derive(Debug, Clone, Copy, Default)]
+pub(in crate::model::collision::wave) struct Tangential {
+    /// Normal force N and tangential force T on the ball (along −n̂ and t̂) at the step's
+    /// start, N.
+    pub(in crate::model::collision::wave) normal: f64,
+    pub(in crate::model::collision::wave) shear: f64,
+    /// The ball's centre and the bat's impact point across the swing plane (along x̂):
+    /// displacement (m) and velocity (m/s).
+    pub(in crate::model::collision::wave) ball_x: f64,
+    pub(in crate::model::collision::wave) ball_vx: f64,
+    pub(in crate::model::collision::wave) bat_x: f64,
+    pub(in crate::model::collision::wave) bat_vx: f64,
+    /// The ball's turn (rad) and spin (rad/s) about b̂; the bat's roll (rad) and roll rate.
+    pub(in crate::model::collision::wave) ball_turn: f64,
+    pub(in crate::model::collision::wave) ball_spin: f64,
+    pub(in crate::model::collision::wave) roll: f64,
+    pub(in crate::model::collision::wave) roll_rate: f64,
+    /// Energy dissipated by sliding so far, J.
+    pub(in crate::model::collision::wave) slip_loss: f64,
+}
+
+impl Tangential {
+    /// At first contact: nothing across the plane, the pitch's spin.
+    pub(in crate::model::collision::wave) fn first_contact(o: &Oblique) -> Tangential {
+        Tangential {
+            ball_spin: o.spin,
+            ..Tangential::default()
+        }
+    }
+
+    /// The force on the bat along ŷ (what bends the beam): N cos θ + T sin θ.
+    pub(in crate::model::collision::wave) fn bat_force_y(o: &Oblique, n: f64, t: f64) -> f64 {
+        n * o.cos + t * o.sin
+    }
+
+    /// The force on the bat along x̂: N sin θ − T cos θ.
+    fn bat_force_x(o: &Oblique, n: f64, t: f64) -> f64 {
+        n * o.sin - t * o.cos
+    }
+
+    /// The compression now, from the relative displacement along ŷ, `dy` (ball − bat).
+    pub(in crate::model::collision::wave) fn compression(&self, o: &Oblique, dy: f64) -> f64 {
+        o.cos * dy + o.sin * (self.ball_x - self.bat_x)
+    }
+
+    /// The contact points' tangential displacement now, with `dy` as above.
+    pub(in crate::model::collision::wave) fn tangential_displacement(
+        &self,
+        o: &Oblique,
+        dy: f64,
+    ) -> f64 {
+        -o.sin * dy
+            + o.cos * (self.ball_x - self.bat_x)
+            + o.ball.radius * self.ball_turn
+            + o.bat_radius * self.roll
+    }
+}
+
+/// The ball's mass, the step and the law: what every part of the solve shares.
+pub(in crate::model::collision::wave) struct StepInputs<'a> {
+    pub(in crate::model::collision::wave) law: &'a ContactLaw,
+    pub(in crate::model::collision::wave) mass: f64,
+    pub(in crate::model::collision::wave) h: f64,
+    pub(in crate::model::collision::wave) s_max: f64,
+    pub(in crate::model::collision::wave) guess: f64,
+}
+
+/// The step's end forces (N₁, T₁) and compression s₁. `y_part`: the relative displacement
+/// along ŷ at the step's end without the end force, and its compliance to the bat's end
+/// force along ŷ (the head-on solve's s₀ and c); `dy_now`: the relative displacement along
+/// ŷ now.
+pub(in crate::model::collision::wave) fn end_forces(
+    o: &Oblique,
+    t: &Tangential,
+    inp: &StepInputs,
+    (a_y, c_y): (f64, f64),
+    dy_now: f64,
+) -> (f64, f64, f64) {
+    let (c, s) = (o.cos, o.sin);
+    let (a_x, c_x) = cross_part(o, t, inp);
+    let (u_free, c_rot) = turn_part(o, t, inp.h);
+    let s0 = c * a_y + s * a_x;
+    let u0 = -s * a_y + c * a_x + u_free;
+    let b_nn = c * c * c_y + s * s * c_x;
+    let b_nt = c * s * (c_y - c_x);
+    let b_tt = s * s * c_y + c * c * c_x + c_rot;
+    let k = o.tangential_stiffness;
+    // gripping: T₁ = −k ξ₁, ξ₁ = −T₀/k + u₁ − u_now
+    let den = 1.0 + k * b_tt;
+    let alpha = (t.shear - k * (u0 - t.tangential_displacement(o, dy_now))) / den;
+    let beta = -k * b_nt / den;
+    let (n1, s1) =
+        inp.law
+            .solve_implicit(s0 - b_nt * alpha, b_nn + b_nt * beta, inp.s_max, inp.guess);
+    let t1 = alpha + beta * n1;
+    let mu = o.ball.friction;
+    if t1.abs() <= mu * n1 {
+        return (n1, t1, s1);
+    }
+    // sliding, against the direction the grip would have pushed
+    let sign = t1.signum();
+    let (n1, s1) = inp
+        .law
+        .solve_implicit(s0, b_nn + b_nt * sign * mu, inp.s_max, inp.guess);
+    (n1, sign * mu * n1, s1)
+}
+
+/// The relative displacement along x̂ at the step's end without the end forces, and its
+/// compliance to the bat's end force along x̂.
+fn cross_part(o: &Oblique, t: &Tangential, inp: &StepInputs) -> (f64, f64) {
+    let (h, m) = (inp.h, inp.mass);
+    let h2 = h * h;
+    let q0 = Tangential::bat_force_x(o, t.normal, t.shear);
+    let inv_x = 1.0 / o.cross_mass;
+    let ball = t.ball_x + h * t.ball_vx - h2 * q0 / (3.0 * m);
+    let bat = t.bat_x + h * t.bat_vx + h2 * q0 * inv_x / 3.0;
+    (ball - bat, h2 / 6.0 * (1.0 / m + inv_x))
+}
+
+/// The spins' part of the tangential displacement at the step's end without the end force,
+/// and its compliance to the end force T₁.
+fn turn_part(o: &Oblique, t: &Tangential, h: f64) -> (f64, f64) {
+    let (r, rb) = (o.ball.radius, o.bat_radius);
+    let lever2 = r * r / o.ball.inertia + rb * rb / o.roll_inertia;
+    let h2 = h * h;
+    let free = r * (t.ball_turn + h * t.ball_spin)
+        + rb * (t.roll + h * t.roll_rate)
+        + h2 * lever2 * t.shear / 3.0;
+    (free, h2 / 6.0 * lever2)
+}
+
+/// Move the ball and the bat across the plane and turn them under the step's forces
+/// (linear in time: exact for free masses), then take the end forces as the next start.
+pub(in crate::model::collision::wave) fn advance(
+    o: &Oblique,
+    t: &mut Tangential,
+    (m, h): (f64, f64),
+    (n1, t1): (f64, f64),
+) {
+    let h2 = h * h;
+    let (q0, q1) = (
+        Tangential::bat_force_x(o, t.normal, t.shear),
+        Tangential::bat_force_x(o, n1, t1),
+    );
+    t.ball_x += h * t.ball_vx - h2 * (2.0 * q0 + q1) / (6.0 * m);
+    t.ball_vx -= h * (q0 + q1) / (2.0 * m);
+    let inv_x = 1.0 / o.cross_mass;
+    t.bat_x += h * t.bat_vx + h2 * (2.0 * q0 + q1) * inv_x / 6.0;
+    t.bat_vx += h * (q0 + q1) * inv_x / 2.0;
+    let (t0, r, rb) = (t.shear, o.ball.radius, o.bat_radius);
+    let (ball_turn, spin) = turned(t.ball_turn, t.ball_spin, r / o.ball.inertia, h, (t0, t1));
+    let (roll, roll_rate) = turned(t.roll, t.roll_rate, rb / o.roll_inertia, h, (t0, t1));
+    (t.ball_turn, t.ball_spin, t.roll, t.roll_rate) = (ball_turn, spin, roll, roll_rate);
+    (t.normal, t.shear) = (n1, t1);
+}
+
+/// A body's angle and rate after a step under a torque `lever_over_inertia`·T, T linear.
+fn turned(
+    angle: f64,
+    rate: f64,
+    lever_over_inertia: f64,
+    h: f64,
+    (t0, t1): (f64, f64),
+) -> (f64, f64) {
+    (
+        angle + h * rate + h * h * lever_over_inertia * (2.0 * t0 + t1) / 6.0,
+        rate + h * lever_over_inertia * (t0 + t1) / 2.0,
+    )
+}
+
+/// Energy dissipated by sliding over a step: the tangential force's work on the slip
+/// (trapezoid) less what the spring stored. Zero while the patch grips.
+pub(in crate::model::collision::wave) fn slip_loss(k: f64, (t0, t1): (f64, f64), slip: f64) -> f64 {
+    -0.5 * (t0 + t1) * slip - (t1 * t1 - t0 * t0) / (2.0 * k)
+}
