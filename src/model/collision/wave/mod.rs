@@ -356,7 +356,8 @@ fn diagnostics_of(
             + energy.bat_vibration
             + energy.hoop
             + energy.bat_damping
-            + energy.grip_damping,
+            + energy.grip_damping
+            + energy.friction,
         dt: c.dt,
         steps: fin.steps,
         segments: bat.beam.len(),
