@@ -134,5 +134,5 @@ fn corking_gives_no_batted_ball_speed_with_a_measured_swing_exponent() {
     let fixed = batter(&reference, 0.0);
     let loss = best_batted_ball_speed(&corked_test_bat(), &fixed)
         - best_batted_ball_speed(&test_bat(), &fixed);
-    assert!(loss < -1.0 * MPH, "fixed swing: {:+.2} mph", loss / MPH);
+    assert!(loss < -MPH, "fixed swing: {:+.2} mph", loss / MPH);
 }
