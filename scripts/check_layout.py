@@ -7,7 +7,7 @@ Prints one line per problem and exits 1 if there is any, 0 (after "layout ok") i
 none, and 2 if the file cannot be checked at all (missing, not HDF5, or h5py / xarray /
 h5netcdf not installed).
 
-What is checked (layout_version 3, as docs/layout.md describes it):
+What is checked (layout_version 4, as docs/layout.md describes it):
 
 - root attributes: every documented one is present with its type; `Conventions` is CF-1.8;
   `title` names the study; `study_sha256` is the SHA-256 of `study_yaml`; `created` is ISO 8601
@@ -54,7 +54,7 @@ import json
 import re
 import sys
 
-LAYOUT_VERSION = 3
+LAYOUT_VERSION = 4
 # longest `long_name` (short, for plot labels; layout 3)
 LONG_NAME_MAX = 40
 
@@ -73,7 +73,9 @@ SUMMARY_FLOATS = {
     "energy_bat_rigid": "J", "energy_bat_vibration": "J", "energy_hoop": "J",
     "grip_vibration_amplitude": "m", "grip_recoil_speed": "m/s", "energy_bat_damping": "J",
     "energy_grip_damping": "J", "impulse_time_99": "s", "bbcor": "1", "besr": "1", "bpf": "1",
-    "hoop_mode_frequency": "Hz", "hoop_mode_mass": "kg",
+    "hoop_mode_frequency": "Hz", "hoop_mode_mass": "kg", "tangential_cor": "1",
+    "bat_speed": "m/s", "launch_angle": "rad", "spray_angle": "rad", "spin": "rad/s",
+    "sidespin": "rad/s", "carry": "m", "apex": "m", "hang_time": "s", "energy_friction": "J",
 }
 # name: (numpy dtype string, units)
 SUMMARY_INTS = {"recontact": ("int8", "1"), "status": ("int8", "1"),
@@ -82,7 +84,8 @@ SUMMARY_INTS = {"recontact": ("int8", "1"), "status": ("int8", "1"),
 ERRORS = {"flat_index": ("uint64", "1"), "point_id": ("uint64", "1"), "message": ("str", "")}
 
 SWEET = {"position": "m", "exit_speed": "m/s", "width": "m", "min_vibration_position": "m",
-         "min_vibration_amplitude": "m", "min_vibration_energy_position": "m"}
+         "min_vibration_amplitude": "m", "min_vibration_energy_position": "m",
+         "carry_position": "m", "carry": "m"}
 
 # name: (units, has a z dim)
 HISTORY = {"force": ("N", False), "compression": ("m", False), "ball_velocity": ("m/s", False),
@@ -481,7 +484,8 @@ class Checker:
             return
         z = s["impact_z"][()]
         lo, hi = float(np.min(z)), float(np.max(z))
-        for name in ("position", "min_vibration_position", "min_vibration_energy_position"):
+        for name in ("position", "min_vibration_position", "min_vibration_energy_position",
+                     "carry_position"):
             if name in g:
                 v = g[name][()]
                 v = v[np.isfinite(v)]

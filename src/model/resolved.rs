@@ -28,6 +28,7 @@ pub fn resolved_tree(spec: &CollisionSpec) -> Value {
             }
         }
     }
+    fill_contact_defaults(spec, &mut tree);
     if spec.ball.law.kind == BallLawKind::SpeedDependent {
         if let Some(law) = tree.pointer_mut("/ball/law") {
             law["reference_speed"] = json!(spec
@@ -41,6 +42,31 @@ pub fn resolved_tree(spec: &CollisionSpec) -> Value {
         }
     }
     tree
+}
+
+/// The oblique contact's and the swing's defaults (left out of the canonical spec when they
+/// are zero or unset, so that the points that do not use them keep their ids).
+fn fill_contact_defaults(spec: &CollisionSpec, tree: &mut Value) {
+    let ball = crate::model::collision::oblique::BallContact::of(&spec.ball);
+    let mut set = |pointer: &str, key: &str, value: f64| {
+        if let Some(node) = tree.pointer_mut(pointer) {
+            if node.get(key).is_none_or(Value::is_null) {
+                node[key] = json!(value);
+            }
+        }
+    };
+    set("/impact", "offset", 0.0);
+    set("/ball", "spin", 0.0);
+    set("/ball", "radius", ball.radius);
+    let factor = spec
+        .ball
+        .inertia_factor
+        .unwrap_or(crate::model::ball::DEFAULT_INERTIA_FACTOR);
+    set("/ball", "inertia_factor", factor);
+    set("/ball/law", "friction", ball.friction);
+    set("/ball/law", "tangential_ratio", ball.tangential_ratio);
+    set("/swing", "attack_angle", 0.0);
+    set("/swing", "vertical_angle", 0.0);
 }
 
 /// The value at a dotted path (`bat.material.density`) of [`resolved_tree`]; `None` where

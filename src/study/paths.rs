@@ -150,6 +150,47 @@ pub struct PathMeta {
 pub fn meta(path: &str) -> PathMeta {
     let (u, short, long) = match path {
         "impact.z" => ("m", "impact z", "impact position from the knob"),
+        "impact.offset" => (
+            "m",
+            "offset",
+            "distance of the ball's centre line below (+) or above (-) the bat's axis",
+        ),
+        "ball.spin" => ("rad/s", "pitch spin", "pitch's spin about the bat's axis, backspin positive"),
+        "ball.radius" => ("m", "ball radius", "ball radius"),
+        "ball.inertia_factor" => ("1", "ball I/mr²", "ball moment of inertia over m r^2"),
+        "ball.law.friction" => ("1", "friction", "coefficient of friction between ball and bat"),
+        "ball.law.tangential_ratio" => (
+            "1",
+            "k_t / k_n",
+            "ball's tangential stiffness over its normal (secant) stiffness",
+        ),
+        "swing.attack_angle" => ("rad", "attack angle", "elevation of the bat's path"),
+        "swing.vertical_angle" => (
+            "rad",
+            "vertical bat angle",
+            "tilt of the bat's axis about its path, barrel down negative",
+        ),
+        "batter.pitch_speed" => ("m/s", "pitch speed", "lab speed of the pitch"),
+        "batter.bat_speed" => (
+            "m/s",
+            "swing speed",
+            "the batter's swing speed with the reference bat",
+        ),
+        "batter.bat_speed_at" => ("m", "swing speed at", "where the swing speed is measured"),
+        "batter.reference_moi" => (
+            "kg m^2",
+            "reference MOI",
+            "the reference bat's moment of inertia about the pivot",
+        ),
+        "batter.exponent" => ("1", "swing exponent n", "exponent of the swing speed's MOI law"),
+        "batter.pivot" => ("m", "swing pivot", "the point the swing turns about, from the knob"),
+        "flight.temperature" => ("K", "air temperature", "air temperature"),
+        "flight.pressure" => ("Pa", "pressure", "barometric pressure at sea level"),
+        "flight.elevation" => ("m", "elevation", "elevation of the field"),
+        "flight.humidity" => ("1", "humidity", "relative humidity"),
+        "flight.wind_speed" => ("m/s", "wind", "wind speed"),
+        "flight.wind_direction" => ("rad", "wind direction", "where the wind blows to, from centre field"),
+        "flight.height" => ("m", "contact height", "height of the contact point"),
         "swing.omega" => (
             "rad/s",
             "swing ω",

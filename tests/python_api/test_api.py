@@ -52,7 +52,8 @@ def test_simulate_gives_every_summary_variable_and_histories():
         "peak_force", "max_compression", "impulse", "energy_initial", "energy_ball_final",
         "energy_ball_loss", "energy_bat_rigid", "energy_bat_vibration", "energy_hoop",
         "grip_vibration_amplitude", "grip_recoil_speed", "energy_bat_damping",
-        "energy_grip_damping", "recontact",
+        "energy_grip_damping", "recontact", "tangential_cor", "bat_speed", "launch_angle",
+        "spray_angle", "spin", "sidespin", "carry", "apex", "hang_time", "energy_friction",
     }
     assert with_h5_names <= set(r)
     h = r["history"]

@@ -1,0 +1,90 @@
+//! The ball's tangential parameters against the ball-on-fixed-cylinder test (issue 35).
+//!
+//! Reference: Nathan, Cantakos, Kesman, Mathew & Lukash, "Spin of a batted baseball",
+//! Procedia Eng. 34, 182 (2012): baseballs fired at up to 120 mph at a 3-in wood cylinder
+//! rigidly fixed to a wall. Read here: the opening (set-up; "for a given angle of incidence
+//! the scattered spin is nearly independent of the incident spin"). Second-hand (two public
+//! notes that quote the paper): for the 47 impacts without gross slip at 85–120 mph the
+//! tangential COR is e_x = 0.30 ± 0.02, μ = 0.15 from the gross-slip impacts, and the share of
+//! the incident spin that survives a fixed cylinder is (0.4 − e_x)/1.4 (its Eq. 3).
+//!
+//! batstudy's defaults (μ = 0.15, κ = 0.2, docs/physics.md "Oblique impacts") were chosen to
+//! give e_x = 0.30 at 20° incidence: that row is consistency. The speed independence and the
+//! incident-spin independence are predictions of the contact model; the angle dependence is a
+//! stated disagreement (the measured e_x is flat), held here so that a change is noticed.
+
+use batstudy::model::spec::*;
+use batstudy::model::{prepare_bat, simulate, PreparedBat};
+
+const CYLINDER_RADIUS: f64 = 0.0381; // 3 in diameter
+
+/// A rigid, immovable 3-in cylinder: a very stiff, very dense bat of constant radius.
+fn cylinder() -> (CollisionSpec, PreparedBat) {
+    let mut spec = CollisionSpec::base_case(0.42);
+    spec.bat.profile = Some(ProfileSpec::Knots(vec![
+        [0.0, CYLINDER_RADIUS],
+        [0.84, CYLINDER_RADIUS],
+    ]));
+    spec.bat.material.density = Some(649.0e4);
+    spec.bat.material.youngs_modulus = Some(1.814e14);
+    spec.ball = BallSpec {
+        preset: Some(BallPreset::Mlb),
+        law: batstudy::model::ball::preset_law(BallPreset::Mlb),
+        ..BallSpec::default()
+    };
+    let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
+    (spec, bat)
+}
+
+/// (e_x, the ball's spin after) for a ball at `speed` meeting the cylinder `degrees` off
+/// normal with incident spin `spin` (rad/s about the cylinder's axis).
+fn shot(speed: f64, degrees: f64, spin: f64) -> (f64, f64) {
+    let (mut spec, bat) = cylinder();
+    let ball_radius = batstudy::model::collision::oblique::BallContact::of(&spec.ball).radius;
+    spec.ball.speed = speed;
+    spec.ball.spin = spin;
+    spec.impact.offset = -(CYLINDER_RADIUS + ball_radius) * degrees.to_radians().sin();
+    let o = simulate(&spec, &bat, None).unwrap();
+    (o.tangential_cor, o.ball_exit.spin)
+}
+
+#[test]
+fn the_calibration_point_20_degrees_off_normal() {
+    for speed in [38.0, 46.0, 54.0] {
+        let (e_x, _) = shot(speed, 20.0, 0.0);
+        assert!((e_x - 0.30).abs() <= 0.02, "{speed} m/s: e_x {e_x}");
+    }
+}
+
+#[test]
+fn the_tangential_cor_hardly_depends_on_speed() {
+    // 85 to 120 mph, as measured: the spring stiffens with the ball
+    for degrees in [10.0, 20.0, 30.0] {
+        let (slow, _) = shot(38.0, degrees, 0.0);
+        let (fast, _) = shot(54.0, degrees, 0.0);
+        assert!((slow - fast).abs() < 0.015, "{degrees}°: {slow} vs {fast}");
+    }
+}
+
+#[test]
+fn the_outgoing_spin_depends_on_the_incident_spin_more_than_measured() {
+    // the surviving share of incident spin: (0.4 − e_x)/1.4 = 0.071 ± 0.014 for the measured
+    // e_x (second-hand); band set beforehand: below 0.15, "nearly independent". batstudy
+    // disagrees: its ball slides early in the contact, and a sliding ball keeps its spin
+    // (0.19 at 15°, 0.29 at 20°, 0.39 at 25°). The verdict is held: a change is noticed.
+    for (degrees, lo, hi) in [(15.0, 0.15, 0.25), (20.0, 0.24, 0.34), (25.0, 0.33, 0.45)] {
+        let (_, with_back) = shot(46.0, degrees, 200.0);
+        let (_, with_top) = shot(46.0, degrees, -200.0);
+        let share = (with_back - with_top) / 400.0;
+        assert!(share > 0.15 && (lo..hi).contains(&share), "{degrees}°: share {share}");
+    }
+}
+
+#[test]
+fn the_model_s_tangential_cor_falls_with_the_angle_where_the_measured_one_is_flat() {
+    // the stated disagreement (docs/physics.md): outside the measured 0.30 ± 0.02 at 10° and
+    // at 30°, on either side
+    let (at_10, _) = shot(46.0, 10.0, 0.0);
+    let (at_30, _) = shot(46.0, 30.0, 0.0);
+    assert!(at_10 > 0.32 && at_30 < 0.28, "10°: {at_10}, 30°: {at_30}");
+}
