@@ -95,7 +95,8 @@ HISTORY = {"force": ("N", False), "compression": ("m", False), "ball_velocity": 
 # name: (dims, units); "str" units mark text variables
 BAT = {
     "mass": (("bat",), "kg"), "z_cm": (("bat",), "m"), "moment_of_inertia": (("bat",), "kg m^2"),
-    "moment_of_inertia_knob6": (("bat",), "kg m^2"), "length": (("bat",), "m"),
+    "moment_of_inertia_knob6": (("bat",), "kg m^2"), "moment_of_inertia_knob": (("bat",), "kg m^2"),
+    "length": (("bat",), "m"),
     "mode_frequency": (("bat", "mode"), "Hz"), "mode_nodes": (("bat", "mode", "node"), "m"),
     "profile_z": (("bat", "profile_point"), "m"), "outer_radius": (("bat", "profile_point"), "m"),
     "inner_radius": (("bat", "profile_point"), "m"), "spec_json": (("bat",), ""),

@@ -51,6 +51,7 @@ pub const RESERVED_NAMES: &[&str] = &[
     "min_vibration_position",
     "min_vibration_amplitude",
     "min_vibration_energy_position",
+    "carry_position",
     "position_at_edge",
     "time",
     "z",

@@ -3,11 +3,7 @@
 //! was briefly both a swept parameter's coordinate and a stored variable).
 
 use batstudy::store::layout::{self as l, SUMMARY_FLOATS};
-use batstudy::store::layout::{
-    HISTORY_VARS, HIST_Z, SWEET_AT_EDGE, SWEET_EXIT_SPEED, SWEET_MIN_VIBRATION_AMPLITUDE,
-    SWEET_MIN_VIBRATION_ENERGY_POSITION, SWEET_MIN_VIBRATION_POSITION, SWEET_POSITION, SWEET_WIDTH,
-    TIME,
-};
+use batstudy::store::layout::{HISTORY_VARS, HIST_Z, SWEET_AT_EDGE, SWEET_FLOATS, TIME};
 use batstudy::study::paths::{coord_name, known_paths};
 
 #[test]
@@ -27,20 +23,8 @@ fn parameter_coordinates_and_summary_variables_have_different_names() {
 fn every_stored_name_beside_the_coordinates_is_reserved() {
     let mut names: Vec<&str> = l::SUMMARY_FLOATS.iter().map(|d| d.name).collect();
     names.extend([l::RECONTACT, l::STATUS, l::POINT_ID, l::BAT_INDEX].map(|d| d.name));
-    names.extend(
-        [
-            SWEET_POSITION,
-            SWEET_EXIT_SPEED,
-            SWEET_WIDTH,
-            SWEET_MIN_VIBRATION_POSITION,
-            SWEET_MIN_VIBRATION_AMPLITUDE,
-            SWEET_MIN_VIBRATION_ENERGY_POSITION,
-            SWEET_AT_EDGE,
-            TIME,
-            HIST_Z,
-        ]
-        .map(|d| d.name),
-    );
+    names.extend(SWEET_FLOATS.iter().map(|d| d.name));
+    names.extend([SWEET_AT_EDGE, TIME, HIST_Z].map(|d| d.name));
     names.extend(HISTORY_VARS.iter().map(|(d, _, _)| d.name));
     for n in names {
         assert!(

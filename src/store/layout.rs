@@ -579,6 +579,12 @@ pub const BAT_MOI6: VarDef = v(
     "MOI (6 in)",
     "moment of inertia about the point 0.1524 m (6 in) from the knob",
 );
+pub const BAT_MOI_KNOB: VarDef = v(
+    "moment_of_inertia_knob",
+    "kg m^2",
+    "MOI (knob)",
+    "moment of inertia about the knob (the batter model's default pivot)",
+);
 pub const BAT_LENGTH: VarDef = v("length", "m", "bat length", "bat length");
 pub const BAT_MODE_FREQ: VarDef = v(
     "mode_frequency",

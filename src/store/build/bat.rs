@@ -91,11 +91,14 @@ impl BatGroup<'_> {
     /// One value per bat: mass, CM, moments of inertia, length.
     fn scalars(&self, p: &[&BatProperties]) -> Result<(), StoreError> {
         type Getter = fn(&BatProperties) -> f64;
-        let per_bat: [(&VarDef, Getter); 5] = [
+        let per_bat: [(&VarDef, Getter); 6] = [
             (&l::BAT_MASS, |p| p.mass),
             (&l::BAT_Z_CM, |p| p.z_cm),
             (&l::BAT_MOI, |p| p.moment_of_inertia),
             (&l::BAT_MOI6, |p| p.moment_of_inertia_knob6),
+            (&l::BAT_MOI_KNOB, |p| {
+                p.moment_of_inertia + p.mass * p.z_cm * p.z_cm
+            }),
             (&l::BAT_LENGTH, |p| p.length),
         ];
         for (def, get) in per_bat {
