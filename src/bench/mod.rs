@@ -28,6 +28,7 @@
 //! tests use (integrator accuracy, the HDF5 share); the shipped bench does not run it.
 //! Off the run path: nothing in `run`, `store`, `study` or `model` uses this module.
 
+mod batted;
 mod cases;
 pub mod dev;
 mod headroom;
@@ -39,6 +40,7 @@ mod scaling;
 mod sinks;
 mod store_run;
 
+pub use batted::Batted;
 pub use cases::{
     base_spec, curve_positions, curve_study_text, load_study, HISTORY_BLOCK, SCALAR_HISTORY_BLOCK,
 };
@@ -103,6 +105,9 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     let memory = memory::bench_memory(&sz, scaling.cores, dir.path(), &peaks)?;
     report::print_memory(out, &memory);
 
+    let batted = batted::bench_batted(&sz, scaling.cores, dir.path())?;
+    report::print_batted(out, &batted);
+
     machine.loadavg_end = machine::loadavg();
     report::print_end(out, &machine);
     Ok(BenchReport {
@@ -110,6 +115,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         scaling,
         writer_headroom: headroom,
         memory,
+        batted,
     })
 }
 
