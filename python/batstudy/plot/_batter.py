@@ -87,11 +87,16 @@ def undercut(res, path):
     _need(s, ("swing_attack_angle", "impact_offset", "contact"), "an undercut study")
     if "launch_angle" not in s:
         raise Skip("no launch angle in this file")
+    where = ""
+    if "impact_z" in s.dims:
+        s = s.sel(impact_z=0.70, method="nearest")
+        where = f", {float(s['impact_z']):.2f} m from the knob"
     offset = s["impact_offset"].values * 100
     angles = s["swing_attack_angle"].values
     fig = new_figure(figsize=(12.5, 8.5), layout="constrained")
     axes = fig.subplots(2, 2)
-    fig.suptitle(f"Undercut hits: the ball below (+) or above (−) the bat's axis (study: {res.name})", fontsize=10)
+    fig.suptitle(f"Undercut hits{where}: the ball below (+) or above (−) the bat's axis (study: {res.name})",
+                 fontsize=10)
     base = s.isel(contact=0)
     panels = ((axes[0, 0], "launch_angle", np.degrees(1.0), "launch angle (deg)"),
               (axes[0, 1], "spin", 1 / RPM, "backspin (rpm; negative: topspin)"),
