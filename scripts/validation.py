@@ -432,39 +432,37 @@ PREDICTION = [
                cork_difference("corked")[0] + cork_difference("corked")[1]),
         diff(cork_difference("corked")[0], "", 4), True, band="the two s.d.s of the mean in quadrature"),
     Row("prediction", "backspin per degree of launch", f"{OBLIQUE}; launch 0–30°", "about 180 rpm per degree",
-        KENSRUD_2ND, spin_per_degree, fmt(0, " rpm/°"), within(144, 216), lambda v: f"{v / 180 - 1:+.0%}", False,
-        reason=lambda f: (
-            f"the contact model: backspin per degree falls as the undercut grows, from "
-            f"{spin_ratio_at(f, 10.0):.0f} rpm/° at a 10° launch to {spin_ratio_at(f, 28.0):.0f} at 28° (77 mph), "
-            f"because its tangential COR falls with the angle of incidence (next rows)"),
+        KENSRUD_2ND, spin_per_degree, fmt(0, " rpm/°"), within(144, 216), lambda v: f"{v / 180 - 1:+.0%}", True,
         band="±20 % (stated tolerance: the quoted number has none)"),
     Row("prediction", "most backspin over launch 0–30°", OBLIQUE, "3,500 rpm (the top of the measured range)",
         KENSRUD_READ, lambda f: float(oblique_points(f).spin.max()) * 30 / math.pi, fmt(0, " rpm"),
         within(0, 3500), lambda v: f"{v - 3500:+.0f} rpm", False,
         reason=lambda f: (
-            f"at 88 mph; 63 and 77 mph stay below ({float(oblique_points(f, 28.16).spin.max()) * 30 / math.pi:.0f} "
-            f"and {float(oblique_points(f, 34.42).spin.max()) * 30 / math.pi:.0f} rpm): the paper does not say which "
-            f"swing speeds reached its largest launches"),
+            "the most is " + ", ".join(
+                f"{float(oblique_points(f, v).spin.max()) * 30 / math.pi:.0f} rpm at {v / 0.44704:.0f} mph"
+                for v in (28.16, 34.42, 39.34))
+            + ", each near a 24° launch, where the ball's grip holds longest before it slides throughout; the "
+              "paper's abstract does not say which swing speeds reached its largest launches"),
         band="0–3,500 rpm"),
     Row("prediction", "spin over the spin of rolling contact, at most", f"{OBLIQUE}; launch 0–30°",
         "1.4 ('up to 40 % greater')", KENSRUD_READ,
         lambda f: 1 + float(oblique_points(f).tangential_cor.max()), fmt(2), within(1.0, 1.4),
         lambda v: f"{v - 1.4:+.2f}", False,
         reason=lambda f: (
-            f"the contact model: its tangential COR (1 + e_T is the spin over rolling spin of a rigid-body "
-            f"collision) falls with the angle of incidence, from {float(oblique_points(f).tangential_cor.max()):.2f} "
-            f"at the smallest undercut to {float(oblique_points(f).tangential_cor.min()):.2f} at a 30° launch, where "
-            f"the measured one is about constant; the ball slides early in the contact (docs/physics.md, 'Oblique "
-            f"impacts and spin')"),
+            f"just above: 1 + e_T is the spin over rolling spin of a rigid-body collision, and the model's e_T "
+            f"runs from {float(oblique_points(f).tangential_cor.min()):.2f} to "
+            f"{float(oblique_points(f).tangential_cor.max()):.2f} over the launch range, highest at about a 24° "
+            f"launch (docs/physics.md, 'Oblique impacts and spin')"),
         band="at most 1.4"),
     Row("prediction", "tangential COR on a wood bat", f"{OBLIQUE}, 77 mph; launch 0–30°", "0.464 ± 0.014",
         KENSRUD_2ND, lambda f: float(oblique_points(f, 34.42).tangential_cor.mean()), fmt(3), within(0.450, 0.478),
         diff(0.464), False,
         reason=lambda f: (
-            f"the contact model, calibrated to 0.30 on a fixed cylinder at 20° (Nathan et al. 2012, second-hand): "
-            f"on the swinging bat its e_T runs from {float(oblique_points(f, 34.42).tangential_cor.max()):.2f} to "
-            f"{float(oblique_points(f, 34.42).tangential_cor.min()):.2f} over the launch range; the fitted "
-            f"paper's value is one number for all impacts"),
+            f"the contact calibrated to e_x = 0.30 on a fixed cylinder at 20° (Nathan et al. 2012, second-hand) "
+            f"gives {float(oblique_points(f, 34.42).tangential_cor.min()):.2f}–"
+            f"{float(oblique_points(f, 34.42).tangential_cor.max()):.2f} on the swinging bat; the paper's fit is "
+            f"one number for all of a bat's impacts and folds the bat's recoil and roll into a rigid-body model, "
+            f"and its value for all bats, 0.405 ± 0.010, is nearer"),
         band="its quoted uncertainty"),
     Row("prediction", "ball compression in a bat test", f"wood bat at rest, pivoted, {BBCOR_SPEED} m/s, best point",
         "nearly 1 inch (2.5 cm)", f"{WSU} (an approximate statement)",

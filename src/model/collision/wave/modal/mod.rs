@@ -118,6 +118,7 @@ fn oblique_end_forces(
         h: s.h,
         s_max: contact.s_max,
         guess: 2.0 * state.s - state.s_before,
+        s_now: state.s,
     };
     let dy_now = state.w - state.y_c;
     let y0 = y_free + s.g_start * state.bat_force(c);
@@ -160,7 +161,7 @@ fn advance_oblique(
     let (u_before, t0) = (t.tangential_displacement(o, dy_before), t.shear);
     tangential::advance(o, t, (c.ball_mass, h), (n1, t1, nb1));
     let slip = t.tangential_displacement(o, dy_after) - u_before;
-    t.slip_loss += tangential::slip_loss(o.tangential_stiffness, (t0, t1), slip);
+    t.slip_loss += tangential::slip_loss((t0, t1), slip);
 }
 
 /// The ball's velocity, the compression, the forces and the clock after the step, and the

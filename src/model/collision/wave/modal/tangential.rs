@@ -6,10 +6,10 @@
 //! forces: the compression s = Δ·n̂ and the contact points' tangential displacement
 //! u = Δ·t̂ + r φ_ball + R φ_roll (Δ the ball's centre minus the bat's contact point) are
 //! s₁ = S₀ − b_nn N₁ − b_nt T₁ and u₁ = U₀ + b_nt N₁ + b_tt T₁. While the patch grips,
-//! T₁ = −k_t ξ₁ with ξ₁ = ξ₀ + u₁ − u₀ makes T₁ affine in N₁, and the ball's law gives N₁
-//! from one scalar equation, as head-on; if then |T₁| > μ N₁ the ball slides instead,
-//! T₁ = ±μ N₁ (a return mapping). The spring's extension is always −T/k_t, so the
-//! tangential force is the spring's state.
+//! T₁ = T₀ − k (u₁ − u₀) (k the patch's stiffness at the step's start) makes T₁ affine in
+//! N₁, and the ball's law gives N₁ from one scalar equation, as head-on; if then
+//! |T₁| > μ N₁ the ball slides instead, T₁ = ±μ N₁ (a return mapping). The tangential force
+//! itself is the patch's state.
 
 use crate::model::ball::ContactLaw;
 use crate::model::collision::oblique::Oblique;
@@ -94,6 +94,22 @@ pub(in crate::model::collision::wave) struct StepInputs<'a> {
     pub(in crate::model::collision::wave) h: f64,
     pub(in crate::model::collision::wave) s_max: f64,
     pub(in crate::model::collision::wave) guess: f64,
+    /// The compression at the step's start, m.
+    pub(in crate::model::collision::wave) s_now: f64,
+}
+
+/// The contact patch's tangential stiffness over this step, N/m: the ball's tangential ratio
+/// times the normal law's tangent dN/ds at the compression at the step's start (Mindlin: a
+/// patch's tangential stiffness grows with its radius as its normal stiffness does); 0 out
+/// of contact.
+fn patch_stiffness(o: &Oblique, inp: &StepInputs) -> f64 {
+    if inp.s_now <= 0.0 {
+        return 0.0;
+    }
+    let (_, tangent) = inp
+        .law
+        .force_and_tangent(inp.s_now, inp.s_max.max(inp.s_now));
+    o.ball.tangential_ratio * tangent
 }
 
 /// The step's end forces (N₁, T₁) and compression s₁. `y_part`: the relative displacement
@@ -115,8 +131,8 @@ pub(in crate::model::collision::wave) fn end_forces(
     let b_nn = c * c * c_y + s * s * c_x;
     let b_nt = c * s * (c_y - c_x);
     let b_tt = s * s * c_y + c * c * c_x + c_rot;
-    let k = o.tangential_stiffness;
-    // gripping: T₁ = −k ξ₁, ξ₁ = −T₀/k + u₁ − u_now
+    let k = patch_stiffness(o, inp);
+    // gripping: T₁ = T₀ − k (u₁ − u_now)
     let den = 1.0 + k * b_tt;
     let alpha = (t.shear - k * (u0 - t.tangential_displacement(o, dy_now))) / den;
     let beta = -k * b_nt / den;
@@ -178,7 +194,7 @@ pub(in crate::model::collision::wave) fn end_forces_hoop(
     let s_free = c * w_free + s * xb0 - xh0 + a_h * eta0;
     let u_now = t.tangential_displacement(o, dy_now);
     let u_free = -s * (w_free - y0) + c * (xb0 - xc0) + u_free + lever * eta0 - u_now;
-    let kt = o.tangential_stiffness;
+    let kt = patch_stiffness(o, inp);
     let den_t = 1.0 + kt * d_t;
     let (alpha, beta) = ((t.shear - kt * u_free) / den_t, -kt * d_n / den_t);
     let (n1, s1) = inp.law.solve_implicit(
@@ -278,8 +294,10 @@ fn turned(
     )
 }
 
-/// Energy dissipated by sliding over a step: the tangential force's work on the slip
-/// (trapezoid) less what the spring stored. Zero while the patch grips.
-pub(in crate::model::collision::wave) fn slip_loss(k: f64, (t0, t1): (f64, f64), slip: f64) -> f64 {
-    -0.5 * (t0 + t1) * slip - (t1 * t1 - t0 * t0) / (2.0 * k)
+/// The tangential force's work against the contact points' relative motion over a step
+/// (trapezoid): what the patch takes from the bodies. Summed over a contact it is what the
+/// tangential contact dissipated (the patch holds no force once the ball has left);
+/// within a contact it includes what the patch holds for the moment.
+pub(in crate::model::collision::wave) fn slip_loss((t0, t1): (f64, f64), slip: f64) -> f64 {
+    -0.5 * (t0 + t1) * slip
 }
