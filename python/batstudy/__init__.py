@@ -10,6 +10,8 @@
   and case labels as coordinates, and the stored histories only (see :func:`histories`).
 - :func:`ball_rig` gives what a ball certification reports (COR, peak force, contact time,
   dynamic stiffness) from a study of balls fired at ``bat.preset: wall``.
+- :func:`longest_carry` says where a study's ball flies farthest: the impact position and,
+  over a swept ``impact.offset``, the offset (a study with a ``flight``).
 - :func:`report` writes a results file's explorer, one HTML file.
 - :mod:`batstudy.plot` draws the paper's figures, or any figure of a results file
   (matplotlib: ``pip install 'batstudy[plot]'``).
@@ -25,6 +27,7 @@ from importlib import import_module as _import_module
 from importlib.util import find_spec as _find_spec
 
 from ._ball_rig import ball_rig
+from ._carry import longest_carry
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
 
@@ -37,6 +40,7 @@ __all__ = [
     "open_results",
     "histories",
     "ball_rig",
+    "longest_carry",
     "report",
     "StudyError",
     "RunError",
