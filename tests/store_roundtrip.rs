@@ -114,6 +114,7 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
             z: vec![0.2, 0.4, 0.6, 0.8, 1.0],
             precision,
             compression: Default::default(),
+            displacement: batstudy::model::outcome::HistoryDisplacement::Grid,
         }),
         bats: vec![bat("r161", 3), bat("r161, bat.material.density=700", 2)],
         allow_implausible: false,

@@ -2,7 +2,7 @@
 //! by linear interpolation between the states at the ends of each step.
 
 use crate::model::error::ModelError;
-use crate::model::outcome::{History, HistoryField, HistoryRequest};
+use crate::model::outcome::{History, HistoryDisplacement, HistoryField, HistoryRequest};
 
 /// The recordable quantities at one instant.
 #[derive(Debug, Clone, Default)]
@@ -19,7 +19,7 @@ pub(crate) struct Sample {
     /// Or the modal coordinates and the force on the bat, from which the recorder's
     /// [`Projector`] computes the displacement of each emitted sample only: half the
     /// states, and no interpolation of every z (issue 22: the displacement was a fifth of
-    /// a history point's time).
+    /// a history point's time); or which it records as they are (the modal form, issue 37).
     pub modal: Vec<f64>,
     pub modal_force: f64,
 }
@@ -36,7 +36,11 @@ pub(crate) struct Recorder<'r> {
     history: History,
     pub wants_displacement: bool,
     pub wants_rigid: bool,
+    /// Samples carry modal coordinates ([`Sample::modal`]).
+    pub wants_modal: bool,
     projector: Option<Projector>,
+    /// The modal form's scale: coordinates are recorded divided by it (`bat::shapes`).
+    modal_scale: f64,
 }
 
 impl<'r> Recorder<'r> {
@@ -64,10 +68,14 @@ impl<'r> Recorder<'r> {
             force: room(HistoryField::Force, 1)?,
             compression: room(HistoryField::Compression, 1)?,
             ball_velocity: room(HistoryField::BallVelocity, 1)?,
-            displacement: room(HistoryField::Displacement, request.z.len())?,
+            displacement: match request.displacement {
+                HistoryDisplacement::Grid => room(HistoryField::Displacement, request.z.len())?,
+                HistoryDisplacement::Modal => Vec::new(),
+            },
             rigid_translation: room(HistoryField::RigidMotion, 1)?,
             rigid_rotation: room(HistoryField::RigidMotion, 1)?,
             hoop_displacement: room(HistoryField::HoopDisplacement, 1)?,
+            ..History::default()
         };
         Ok(Self {
             request,
@@ -76,14 +84,47 @@ impl<'r> Recorder<'r> {
             history,
             wants_displacement: has(HistoryField::Displacement),
             wants_rigid: has(HistoryField::RigidMotion),
+            wants_modal: false,
             projector: None,
+            modal_scale: 1.0,
         })
+    }
+
+    /// Whether the displacement is recorded in modal form (`history.displacement: modal`).
+    pub fn modal_form(&self) -> bool {
+        self.wants_displacement && self.request.displacement == HistoryDisplacement::Modal
     }
 
     /// Samples carry modal coordinates ([`Sample::modal`]); `p` turns each emitted one
     /// into displacements.
     pub fn project_with(&mut self, p: Projector) {
         self.projector = Some(p);
+        self.wants_modal = true;
+    }
+
+    /// Samples carry the coordinates of `modes` modes, recorded divided by `scale` with
+    /// the force on the bat; `static_shape` (m/N at the bat's shape points) is the static
+    /// response of the modes not stepped (the modal form).
+    pub fn record_modes(
+        &mut self,
+        modes: usize,
+        scale: f64,
+        static_shape: Vec<f64>,
+    ) -> Result<(), ModelError> {
+        let n = self.request.n_samples.saturating_mul(modes);
+        let m = &mut self.history.modal;
+        for (v, len) in [(&mut m.coordinate, n), (&mut m.bat_load, self.request.n_samples)] {
+            v.try_reserve_exact(len)
+                .map_err(|_| ModelError::OutOfMemory {
+                    what: "the time histories",
+                    bytes: len as f64 * 8.0,
+                })?;
+        }
+        m.modes = modes;
+        m.static_shape = static_shape;
+        self.modal_scale = scale;
+        self.wants_modal = true;
+        Ok(())
     }
 
     pub fn request(&self) -> &'r HistoryRequest {
@@ -130,6 +171,14 @@ impl<'r> Recorder<'r> {
                 HistoryField::Force => h.force.push(s.force),
                 HistoryField::Compression => h.compression.push(s.compression),
                 HistoryField::BallVelocity => h.ball_velocity.push(s.ball_velocity),
+                HistoryField::Displacement if self.request.displacement
+                    == HistoryDisplacement::Modal =>
+                {
+                    let scale = self.modal_scale;
+                    let m = &mut h.modal;
+                    m.coordinate.extend(s.modal.iter().map(|q| q / scale));
+                    m.bat_load.push(s.modal_force);
+                }
                 HistoryField::Displacement => match &self.projector {
                     Some(p) => p(&s.modal, s.modal_force, &mut h.displacement),
                     None => h.displacement.extend_from_slice(&s.displacement),

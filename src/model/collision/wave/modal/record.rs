@@ -1,11 +1,36 @@
 //! What the modal integrator hands the history recorder: a projector from the modal
-//! coordinates to the bat's displacement at every requested z, and one sample per step.
+//! coordinates to the bat's displacement at every requested z (the grid form) or the
+//! static shape of the modes it does not step (the modal form), and one sample per step.
 
 use super::super::project::project;
 use super::setup::{shapes_at, Setup};
 use super::state::State;
+use crate::model::bat::shapes::{modal_scale, shape_point_weights};
 use crate::model::bat::PreparedBat;
 use crate::model::collision::history::{Recorder, Sample};
+use crate::model::error::ModelError;
+
+/// The modal form: the recorder keeps the stepped modes' coordinates and the force on the
+/// bat; the modes not stepped respond statically to that force, with this shape (m/N) at
+/// the bat's shape points, summed as the grid's projector sums it (`static_at`).
+pub(super) fn install_modal(
+    rec: &mut Recorder,
+    setup: &Setup,
+    bat: &PreparedBat,
+) -> Result<(), ModelError> {
+    let (n, n_all) = (setup.n, bat.modes.omega.len());
+    let static_shape = shape_point_weights(bat)
+        .iter()
+        .map(|&(k, a)| {
+            shapes_at(bat, k, a, n..n_all)
+                .iter()
+                .zip(&setup.static_weight)
+                .map(|(s, w)| s * w)
+                .sum()
+        })
+        .collect();
+    rec.record_modes(n, modal_scale(bat), static_shape)
+}
 
 /// Give the recorder the displacement of the bat at its requested positions (`points`:
 /// node pair, weight, inside the bat) as a function of the modal coordinates and the force
@@ -61,7 +86,7 @@ pub(super) fn sample(
     force: f64,
     p_bat: f64,
     hoop_rel: f64,
-    n_positions: usize,
+    wants_modal: bool,
 ) -> Sample {
     let q = &state.q;
     let dot = |x: &[f64]| x.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
@@ -76,7 +101,7 @@ pub(super) fn sample(
         hoop_displacement: hoop_rel,
         rigid_translation: rigid(&bat.momentum_weight, bat.beam.total_mass()),
         rigid_rotation: rigid(&bat.angular_weight, bat.inertia_cm),
-        modal: if rec.wants_displacement && n_positions > 0 {
+        modal: if wants_modal {
             q[..q.len()].to_vec()
         } else {
             Vec::new()
