@@ -138,7 +138,9 @@ const PLANE_MIN_VALUES: usize = 1024;
 /// a displacement chunk of 17 000 f32, libdeflate takes 50 µs on each of planes 0 and 1 and
 /// they come out at 99.8 % of their size). So the leading planes that look like uniform bytes go in as
 /// stored blocks and only the rest is deflated; deflate allows mixing block types in one
-/// stream, so every zlib reader (HDF5's filter, h5py, xarray) reads it as before.
+/// stream, so every zlib reader (HDF5's filter, h5py, xarray) reads it as before. A plane
+/// that ends in a run of zeros (a block of modal coordinates padded with zero rows, issue
+/// 37) is judged without them, and the run goes in as a short block of copies.
 fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
     let n = shuffled.len() / size.max(1);
     if n < PLANE_MIN_VALUES {
@@ -150,20 +152,31 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
     if size <= 1 {
         return deflate_zlib(shuffled, level);
     }
-    let stored_planes = shuffled
-        .chunks_exact(n)
-        .take_while(|plane| looks_uniform(plane))
-        .count();
-    if stored_planes == 0 {
+    let segments = leading_noise(shuffled, n);
+    if segments.is_empty() {
         return deflate_zlib(shuffled, level);
     }
-    let (stored, rest) = shuffled.split_at(stored_planes * n);
+    let consumed: usize = segments.iter().map(|s| s.len()).sum();
+    let rest = &shuffled[consumed..];
     let mut out = Vec::with_capacity(shuffled.len() + 64);
     out.extend_from_slice(&fixed_deflate::ZLIB_HEADER);
-    let blocks: Vec<&[u8]> = stored.chunks(u16::MAX as usize).collect();
-    for (i, block) in blocks.iter().enumerate() {
-        let last = rest.is_empty() && i + 1 == blocks.len();
-        fixed_deflate::push_stored_block(&mut out, block, last);
+    for (k, segment) in segments.iter().enumerate() {
+        let last_segment = rest.is_empty() && k + 1 == segments.len();
+        match segment {
+            Segment::Stored(bytes) => {
+                let blocks: Vec<&[u8]> = bytes.chunks(u16::MAX as usize).collect();
+                for (i, block) in blocks.iter().enumerate() {
+                    let last = last_segment && i + 1 == blocks.len();
+                    fixed_deflate::push_stored_block(&mut out, block, last);
+                }
+            }
+            Segment::Zeros(len) => {
+                fixed_deflate::push_zero_run(&mut out, *len);
+                if last_segment {
+                    fixed_deflate::push_stored_block(&mut out, &[], true);
+                }
+            }
+        }
     }
     if !rest.is_empty() {
         // a raw deflate stream of the rest, starting on the byte boundary the stored
@@ -179,6 +192,50 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
     }
     out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
     out
+}
+
+/// A piece of the leading planes: bytes stored as they are, or a run of zeros.
+enum Segment<'a> {
+    Stored(&'a [u8]),
+    Zeros(usize),
+}
+
+impl Segment<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Segment::Stored(b) => b.len(),
+            Segment::Zeros(n) => *n,
+        }
+    }
+}
+
+/// Zero runs shorter than this at a plane's end are left in it (noise ends in a zero byte
+/// one time in 256, in 64 of them never).
+const MIN_ZERO_RUN: usize = 64;
+
+/// The leading planes (each `n` bytes) that are noise, with a plane's trailing run of zeros
+/// apart; consecutive stored bytes in one segment, so that a chunk without zero runs is
+/// stored exactly as before.
+fn leading_noise(shuffled: &[u8], n: usize) -> Vec<Segment<'_>> {
+    let mut segments: Vec<Segment> = Vec::new();
+    let mut at = 0;
+    for plane in shuffled.chunks_exact(n) {
+        let zeros = plane.iter().rev().take_while(|&&b| b == 0).count();
+        let zeros = if zeros >= MIN_ZERO_RUN { zeros } else { 0 };
+        let data = &plane[..n - zeros];
+        if data.len() < MIN_ZERO_RUN || !looks_uniform(data) {
+            break;
+        }
+        match segments.last_mut() {
+            Some(Segment::Stored(prev)) => *prev = &shuffled[at - prev.len()..at + data.len()],
+            _ => segments.push(Segment::Stored(data)),
+        }
+        if zeros > 0 {
+            segments.push(Segment::Zeros(zeros));
+        }
+        at += n;
+    }
+    segments
 }
 
 /// Whether a byte plane is as good as uniform noise, which deflate cannot shrink: its bytes
@@ -350,6 +407,46 @@ mod tests {
         let back = ds.read_raw::<f32>().unwrap();
         assert_eq!(&back[..n], &v[..]);
         assert_eq!(&back[n..], &noisy[..]);
+    }
+
+    // A block of modal coordinates (issue 37): 21 rows of noisy f64 and 11 zero rows,
+    // mode-major. Each noise plane goes in stored without its zeros, which take a few bytes;
+    // HDF5's own filter reads the chunk back, and so do chunks with zeros in every plane, in
+    // the last plane only, and a whole block of zeros.
+    #[test]
+    fn zero_padded_blocks_read_back_through_hdf5() {
+        let (rows, used, t) = (32, 21, 200);
+        let block = |used: usize| -> Vec<f64> {
+            let mut v = vec![0.0; rows * t];
+            for (i, x) in v[..used * t].iter_mut().enumerate() {
+                *x = 1e-4 * (i as f64 * 0.0123).sin() + 1e-7 * (i as f64).sqrt();
+            }
+            v
+        };
+        let v = block(used);
+        let bytes = filtered_whole(&v, 1);
+        let shuffled = shuffle(&le_bytes(&v), 8);
+        // the noise planes' bytes stored, their zeros nearly free: far less than deflating
+        // every plane costs, and no more bytes than the data planes themselves
+        let deflated_all = deflate_zlib(&shuffled, 1);
+        assert!(bytes.len() < used * t * 8, "{} bytes", bytes.len());
+        assert!(bytes.len() <= deflated_all.len() + 64);
+        let dir = tempfile::tempdir().unwrap();
+        let file = hdf5::File::create(dir.path().join("modal.h5")).unwrap();
+        let cases = [v.clone(), block(1), block(rows), vec![0.0; rows * t]];
+        let ds = file
+            .new_dataset::<f64>()
+            .shape([cases.len(), rows, t])
+            .chunk([1, rows, t])
+            .shuffle()
+            .deflate(1)
+            .create("q")
+            .unwrap();
+        for (k, c) in cases.iter().enumerate() {
+            write_chunk(&ds, &[k, 0, 0], &filtered_whole(c, 1)).unwrap();
+        }
+        let back = ds.read_raw::<f64>().unwrap();
+        assert_eq!(back, cases.concat());
     }
 
     // Every plane noise, 280 000 bytes in all where a stored block holds 65 535: the stream

@@ -2,6 +2,7 @@
 //! copied into them in flat-index order: during the run (`store::placer`), the rest at the
 //! finish.
 
+use super::shapes::BatShapes;
 use super::skeleton::Skeleton;
 use super::vars::{new_var_level, study_dims};
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
@@ -12,13 +13,17 @@ use crate::store::dimscale::{self as h5u, attr_str, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::header::history_vars;
 use crate::store::journal::{
-    history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
+    decode_summary, history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
 };
-use crate::store::layout as l;
+use crate::store::layout::{self as l, HistoryDims};
+use crate::store::modal::ModalExtents;
 use hdf5::Dataset;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::Path;
+
+/// The stored history variables: index into [`l::HISTORY_VARS`], dataset, full shape.
+pub type HistoryVars = Vec<(usize, Dataset, Vec<usize>)>;
 
 /// The `/history` group and its (empty) variables.
 pub(super) fn create_history(
@@ -27,7 +32,7 @@ pub(super) fn create_history(
     info: &StudyInfo,
     att: &Attacher,
     out: &Path,
-) -> Result<Vec<(usize, Dataset, Vec<usize>)>, StoreError> {
+) -> Result<HistoryVars, StoreError> {
     let dims = &info.shape.dims;
     let g = f
         .create_group(l::GROUP_HISTORY)
@@ -36,43 +41,71 @@ pub(super) fn create_history(
     let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
     let tscale = h5u::scale_coord(&g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
     let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
-    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let vars = history_vars(h);
+    let ext = ModalExtents::of(info);
+    let modal = match vars.iter().any(|&k| l::is_modal(k)) {
+        true => Some(modal_scales(&g, &ext, out)?),
+        false => None,
+    };
     let level = l::history_deflate_level(h);
-    let mut created: Vec<(usize, Dataset, Vec<usize>)> = Vec::new();
+    let mut created = Vec::new();
     for &k in &vars {
-        let (def, _, with_z) = &l::HISTORY_VARS[k];
-        let mut s = shape.clone();
-        let mut c = vec![1; shape.len()];
+        let (def, _, tail) = &l::HISTORY_VARS[k];
+        let mut s: Vec<usize> = dims.iter().map(|d| d.size).collect();
+        let mut c = vec![1; s.len()];
         let mut sc: Vec<&Dataset> = scales.iter().collect();
-        s.push(h.n_samples);
-        c.push(h.n_samples.max(1));
-        sc.push(&tscale);
-        if *with_z {
-            s.push(h.z.len());
-            c.push(h.z.len().max(1));
-            sc.push(&zscale);
+        let (modes, points) = match &modal {
+            Some((m, p)) => (Some(m), Some(p)),
+            None => (None, None),
+        };
+        let (nt, nz) = (h.n_samples, h.z.len());
+        let along: Vec<(usize, usize, Option<&Dataset>)> = match tail {
+            HistoryDims::Time => vec![(nt, nt, Some(&tscale))],
+            HistoryDims::TimeZ => vec![(nt, nt, Some(&tscale)), (nz, nz, Some(&zscale))],
+            HistoryDims::ModeTime => vec![(ext.modes, ext.block, modes), (nt, nt, Some(&tscale))],
+            HistoryDims::ShapePoint => vec![(ext.points, ext.points, points)],
+        };
+        for (size, chunk, scale) in along {
+            s.push(size);
+            c.push(chunk.max(1));
+            sc.extend(scale);
         }
-        let ds = match h.precision {
-            HistoryPrecision::F64 => {
-                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux, att), level, out)?
-            }
+        // an unwritten block of coordinates is a block of modes the point did not step: 0
+        let fill = if *tail == HistoryDims::ModeTime { 0.0 } else { f64::NAN };
+        let links = (&sc[..], &aux[..], att);
+        let ds = match l::history_precision(h, k) {
+            HistoryPrecision::F64 => new_var_level(&g, def, (&s, &c), fill, links, level, out)?,
             HistoryPrecision::F32 => {
-                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux, att), level, out)?
+                new_var_level(&g, def, (&s, &c), fill as f32, links, level, out)?
             }
         };
-        attr_str(
-            &ds,
-            "precision",
-            match h.precision {
-                HistoryPrecision::F64 => "f64",
-                HistoryPrecision::F32 => "f32",
-            },
-        )
-        .ctx(out, "describe history")?;
+        let precision = match l::history_precision(h, k) {
+            HistoryPrecision::F64 => "f64",
+            HistoryPrecision::F32 => "f32",
+        };
+        attr_str(&ds, "precision", precision).ctx(out, "describe history")?;
         created.push((k, ds, s));
     }
     Ok(created)
+}
+
+/// The index coordinates of the modal form's dims in `/history`: `bat_mode`, `shape_point`.
+fn modal_scales(
+    g: &hdf5::Group,
+    ext: &ModalExtents,
+    out: &Path,
+) -> Result<(Dataset, Dataset), StoreError> {
+    let index = |n: usize| (0..n as i64).collect::<Vec<i64>>();
+    let modes = h5u::scale_coord(g, l::BAT_MODE_DIM.name, &index(ext.modes), &l::BAT_MODE_DIM)
+        .ctx(out, "write bat_mode")?;
+    let points = h5u::scale_coord(
+        g,
+        l::SHAPE_POINT_DIM.name,
+        &index(ext.points),
+        &l::SHAPE_POINT_DIM,
+    )
+    .ctx(out, "write shape_point")?;
+    Ok((modes, points))
 }
 
 /// The histories still to write when the run finishes (the placer's, `store::placer`).
@@ -89,53 +122,80 @@ pub enum HistoryTail {
 /// `store::encode` on the worker), as they are. `store::placer` calls this in flat-index
 /// order while the run goes on; [`write_histories`] continues from where it stopped.
 pub fn place_history(
-    sk: &Skeleton,
+    sk: &mut Skeleton,
     info: &StudyInfo,
     index: usize,
     framed: &[u8],
 ) -> Result<(), StoreError> {
-    write_point(
-        &sk.history,
+    let out = sk.out.clone();
+    let mut into = Into {
+        created: &sk.history,
+        block: ModalExtents::of(info).block,
+        shapes: sk.shapes.as_mut(),
         info,
-        index,
-        &framed[REC_PREFIX..],
-        &sk.out,
-        &sk.out,
-        0,
-    )
+        out: &out,
+    };
+    into.point(index, &framed[REC_PREFIX..], &out, 0)
 }
 
-/// One point's history chunks (`payload`: its journal record's) into the variables of
-/// [`create_history`]. `source` and `at` name where the record came from, for errors.
-fn write_point(
-    created: &[(usize, Dataset, Vec<usize>)],
-    info: &StudyInfo,
-    index: usize,
-    payload: &[u8],
-    source: &Path,
-    out: &Path,
-    at: u64,
-) -> Result<(), StoreError> {
-    let rank = info.shape.dims.len();
-    let pieces = history_chunks(payload, created.len()).ok_or_else(|| StoreError::BadJournal {
-        path: source.to_path_buf(),
-        what: format!(
-            "record of point {index} at byte {at} does not hold the study's {} histories",
-            created.len()
-        ),
-    })?;
-    let mut start = info.shape.unravel(index);
-    for ((_, ds, shape), bytes) in created.iter().zip(pieces) {
-        let tail = &shape[rank..];
-        if tail.iter().product::<usize>() == 0 {
-            continue;
+/// Where a point's histories go: the variables of [`create_history`], and the bats' mode
+/// shapes, written with the first history that steps them.
+struct Into<'a> {
+    created: &'a [(usize, Dataset, Vec<usize>)],
+    /// Modes per chunk of the modal coordinates.
+    block: usize,
+    shapes: Option<&'a mut BatShapes>,
+    info: &'a StudyInfo,
+    out: &'a Path,
+}
+
+impl Into<'_> {
+    /// One point's history chunks (`payload`: its journal record's) into the variables.
+    /// `source` and `at` name where the record came from, for errors.
+    fn point(
+        &mut self,
+        index: usize,
+        payload: &[u8],
+        source: &Path,
+        at: u64,
+    ) -> Result<(), StoreError> {
+        let bad = || StoreError::BadJournal {
+            path: source.to_path_buf(),
+            what: format!(
+                "record of point {index} at byte {at} does not hold the study's {} histories",
+                self.created.len()
+            ),
+        };
+        let pieces = history_chunks(payload).ok_or_else(bad)?;
+        // every variable one chunk, the modal coordinates the rest (their blocks of modes)
+        let blocks = (pieces.len() + 1)
+            .checked_sub(self.created.len())
+            .filter(|&b| b == 1 || self.created.iter().any(|v| v.0 == l::MODAL_COORDINATE))
+            .ok_or_else(bad)?;
+        let rank = self.info.shape.dims.len();
+        let idx = self.info.shape.unravel(index);
+        let mut pieces = pieces.into_iter();
+        for (k, ds, shape) in self.created {
+            let count = if *k == l::MODAL_COORDINATE { blocks } else { 1 };
+            let tail = &shape[rank..];
+            for (b, bytes) in pieces.by_ref().take(count).enumerate() {
+                if tail.iter().product::<usize>() == 0 {
+                    continue;
+                }
+                let mut start = idx.clone();
+                start.extend(std::iter::repeat_n(0, tail.len()));
+                if *k == l::MODAL_COORDINATE {
+                    start[rank] = b * self.block;
+                }
+                chunks::write_chunk(ds, &start, bytes)
+                    .ctx(self.out, &format!("write a history of {}", ds.name()))?;
+            }
         }
-        start.truncate(rank);
-        start.extend(std::iter::repeat_n(0, tail.len()));
-        chunks::write_chunk(ds, &start, bytes)
-            .ctx(out, &format!("write a history of {}", ds.name()))?;
+        if let (Some(shapes), Some((rec, _))) = (self.shapes.as_deref_mut(), decode_summary(payload)) {
+            shapes.ensure(self.info, rec.bat as usize, blocks, self.out)?;
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 /// Write the stored histories not yet in the file (`tail`) into the variables of
@@ -145,17 +205,24 @@ fn write_point(
 /// how far the placer got, so a study's file is the same whatever the thread count (issue 22).
 /// Memory: one record, and 32 bytes per point with histories (where its record is).
 pub(super) fn write_histories(
-    created: &[(usize, Dataset, Vec<usize>)],
+    sk: &mut Skeleton,
     info: &StudyInfo,
     journal: &Path,
     scan: &Scan,
     out: &Path,
     tail: HistoryTail,
 ) -> Result<(), StoreError> {
+    let mut into = Into {
+        created: &sk.history,
+        block: ModalExtents::of(info).block,
+        shapes: sk.shapes.as_mut(),
+        info,
+        out,
+    };
     let from = match tail {
         HistoryTail::Held(held) => {
             for (index, framed) in held {
-                write_point(created, info, index, &framed[REC_PREFIX..], journal, out, 0)?;
+                into.point(index, &framed[REC_PREFIX..], journal, 0)?;
             }
             return Ok(());
         }
@@ -180,7 +247,7 @@ pub(super) fn write_histories(
     let mut payload = Vec::new();
     for (index, place) in places {
         read_payload(&file, journal, place, &mut payload)?;
-        write_point(created, info, index, &payload, journal, out, place.at)?;
+        into.point(index, &payload, journal, place.at)?;
     }
     Ok(())
 }
