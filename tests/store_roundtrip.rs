@@ -58,6 +58,7 @@ fn bat(label: &str, n_modes: usize) -> BatVariant {
             mode_nodes: (1..=n_modes).map(|k| grid(0.1, 0.7, k + 1)).collect(),
             metrics: Default::default(),
         },
+        shapes: None,
     }
 }
 
