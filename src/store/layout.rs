@@ -7,7 +7,7 @@ use crate::model::outcome::{
 };
 
 /// Version of the file layout documented in docs/layout.md.
-pub const LAYOUT_VERSION: u32 = 3;
+pub const LAYOUT_VERSION: u32 = 4;
 
 pub const GROUP_SUMMARY: &str = "summary";
 pub const GROUP_ERRORS: &str = "errors";

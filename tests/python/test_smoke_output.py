@@ -14,6 +14,8 @@ xr = pytest.importorskip("xarray")
 
 from conftest import assert_layout_ok  # noqa: E402
 
+import batstudy  # noqa: E402
+
 SMOKE = os.environ.get("SMOKE_H5")
 pytestmark = pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
 
@@ -45,7 +47,11 @@ def test_xarray_dims_coordinates_and_units():
     base = s.exit_speed.sel(model="wave", swing_omega=0, case=0)
     assert base.sizes == {"impact_z": 4}
     h = open_group("history")
-    assert {"time", "z"} <= set(h.displacement.dims)
+    # the displacement in modal form (the default): batstudy.open computes y(z, t) from it
+    assert h.modal_coordinate.dims[-2:] == ("bat_mode", "time")
+    assert h.static_shape.dims[-1] == "shape_point" and "z" in h.coords
+    d = batstudy.open(SMOKE)["history"]["displacement"]
+    assert d.dims == ("history", "time", "z") and np.isfinite(d.isel(history=0).values).any()
 
 
 def test_rigid_points_match_brody_closed_form():
