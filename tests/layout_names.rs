@@ -38,6 +38,9 @@ fn every_stored_name_beside_the_coordinates_is_reserved() {
             SWEET_AT_EDGE,
             TIME,
             HIST_Z,
+            // the displacement's modal form (issue 37): its dims in `/history`
+            l::BAT_MODE_DIM,
+            l::SHAPE_POINT_DIM,
         ]
         .map(|d| d.name),
     );
