@@ -193,7 +193,11 @@ impl PartialEq for ShapeSource {
     fn eq(&self, other: &Self) -> bool {
         self.modes == other.modes
             && self.z.len() == other.z.len()
-            && self.z.iter().zip(&other.z).all(|(a, b)| a.to_bits() == b.to_bits())
+            && self
+                .z
+                .iter()
+                .zip(&other.z)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 }
 

@@ -69,7 +69,10 @@ fn the_loop_returns_the_curve_at_every_speed() {
     let law = preset_law(BallPreset::Mlb);
     for v in [1.0, 8.6, 25.9, 49.2, 60.8] {
         let (simulated, curve) = (wall_cor(v), cor_at_speed(&law, v));
-        assert!((simulated / curve - 1.0).abs() < 5e-3, "{v}: {simulated} against {curve}");
+        assert!(
+            (simulated / curve - 1.0).abs() < 5e-3,
+            "{v}: {simulated} against {curve}"
+        );
     }
 }
 
@@ -81,12 +84,21 @@ fn the_held_out_student_data_fall_as_the_curve_predicts() {
     let shots: Vec<(f64, f64, usize)> = cor_rows()
         .into_iter()
         .filter(|r| r.2.contains("used baseball no."))
-        .map(|(v, e, ball)| (v, e, ball.split("no. ").nth(1).unwrap()[..1].parse().unwrap()))
+        .map(|(v, e, ball)| {
+            (
+                v,
+                e,
+                ball.split("no. ").nth(1).unwrap()[..1].parse().unwrap(),
+            )
+        })
         .collect();
     assert_eq!(shots.len(), 28);
     let (gamma, se) = pooled_exponent(&shots);
     let curve = -(wall_cor(30.4) / wall_cor(8.6)).ln() / (30.4f64 / 8.6).ln();
-    assert!((curve - gamma).abs() <= 2.0 * se, "curve {curve}, data {gamma} ± {se}");
+    assert!(
+        (curve - gamma).abs() <= 2.0 * se,
+        "curve {curve}, data {gamma} ± {se}"
+    );
 }
 
 /// −slope of ln e against ln v with one intercept per ball (the within-ball regression), and
@@ -161,7 +173,11 @@ fn a_bore_removes_its_cylinder_of_wood() {
     assert!(((solid - empty) / (WOOD_DENSITY * volume) - 1.0).abs() < 1e-9);
     assert!(((corked - empty) / (240.0 * volume) - 1.0).abs() < 1e-9);
     let measured = (30.5 - 27.6) * 0.028_349_5;
-    assert!((solid - empty - measured).abs() < 0.003, "{}", solid - empty);
+    assert!(
+        (solid - empty - measured).abs() < 0.003,
+        "{}",
+        solid - empty
+    );
 }
 
 #[test]

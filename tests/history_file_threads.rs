@@ -121,7 +121,10 @@ fn same_file_on_one_and_two_threads(text: &str, names: &[&str]) {
     if names.contains(&"modal_coordinate") {
         // the bat's mode shapes: one block, written with the first history, in one place
         let (b1, b2) = (f1.group("bat").unwrap(), f2.group("bat").unwrap());
-        let (d1, d2) = (b1.dataset("mode_shape").unwrap(), b2.dataset("mode_shape").unwrap());
+        let (d1, d2) = (
+            b1.dataset("mode_shape").unwrap(),
+            b2.dataset("mode_shape").unwrap(),
+        );
         let (c1, c2) = (chunks(&one, &d1), chunks(&two, &d2));
         assert_eq!(c1.len(), 1);
         assert!(c1 == c2, "mode shapes differ in place or bytes");
@@ -208,7 +211,8 @@ fn uncompressed_same_data(text: &str, names: &[&str]) {
             "{name}"
         );
         // each stored chunk is the raw values: its elements × their size
-        let per_chunk = d2.chunk().unwrap()[2..].iter().product::<usize>() * d2.dtype().unwrap().size();
+        let per_chunk =
+            d2.chunk().unwrap()[2..].iter().product::<usize>() * d2.dtype().unwrap().size();
         let c = chunks(&raw, &d2);
         assert_eq!(c.len(), 2 * 16, "{name}");
         assert!(

@@ -253,7 +253,10 @@ fn merged_shards_equal_single_run_of(study: &str, stored: &str) {
     let a = dump_all(&dir.join("single.h5"));
     let b = dump_all(&dir.join("merged.h5"));
     assert!(a.len() > 30, "{} datasets", a.len());
-    assert!(a.iter().any(|(k, _)| k.starts_with(stored)), "{stored} stored");
+    assert!(
+        a.iter().any(|(k, _)| k.starts_with(stored)),
+        "{stored} stored"
+    );
     assert_eq!(a, b);
     // and through the store's reader
     let ra = read_results(&dir.join("single.h5"));

@@ -470,7 +470,10 @@ impl<'de> Deserialize<'de> for BallSpec {
             law: Option<BallLawFields>,
         }
         let f = Fields::deserialize(d)?;
-        let base = f.preset.map(crate::model::ball::preset_law).unwrap_or_default();
+        let base = f
+            .preset
+            .map(crate::model::ball::preset_law)
+            .unwrap_or_default();
         Ok(Self {
             preset: f.preset,
             mass: f.mass,

@@ -2,15 +2,15 @@
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
 use super::traits::{Encode, Simulator, Sink};
+use crate::model::bat::shapes;
 use crate::model::measures::metrics::bat_metrics_mapped;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
-use crate::model::bat::shapes;
 use crate::results::{PointRecord, ShapeSource};
-use std::sync::Arc;
 use crate::store::{EncodedRecord, RecordEncoder, Session};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;

@@ -66,7 +66,9 @@ impl StoredHistory {
             HistoryDims::ShapePoint if a.len() <= ext.points => {
                 Ok(vec![padded_points(a, ext.points)])
             }
-            HistoryDims::ModeTime if a.len() % nt.max(1) == 0 && a.len() / nt.max(1) <= ext.modes => {
+            HistoryDims::ModeTime
+                if a.len() % nt.max(1) == 0 && a.len() / nt.max(1) <= ext.modes =>
+            {
                 Ok(coordinate_blocks(a, nt, ext.block))
             }
             HistoryDims::ShapePoint => Err(format!("{} values, at most {}", a.len(), ext.points)),

@@ -345,7 +345,9 @@ mod tests {
     #[test]
     fn zero_runs_between_stored_blocks_inflate_back() {
         let mut x = 7u64;
-        for len in [1usize, 2, 3, 4, 257, 258, 259, 260, 261, 516, 517, 518, 5000] {
+        for len in [
+            1usize, 2, 3, 4, 257, 258, 259, 260, 261, 516, 517, 518, 5000,
+        ] {
             let noise: Vec<u8> = (0..100).map(|_| xorshift::next(&mut x) as u8).collect();
             let mut stream = ZLIB_HEADER.to_vec();
             push_zero_run(&mut stream, len);
@@ -358,7 +360,10 @@ mod tests {
             whole.extend_from_slice(&noise);
             stream.extend_from_slice(&libdeflater::adler32(&whole).to_be_bytes());
             assert_eq!(inflate(&stream, whole.len()), whole, "{len}");
-            assert!(stream.len() < 2 * 100 + 2 * 12 + 16 + 2 * len / 100, "{len}");
+            assert!(
+                stream.len() < 2 * 100 + 2 * 12 + 16 + 2 * len / 100,
+                "{len}"
+            );
         }
     }
 

@@ -36,12 +36,20 @@ fn preset_ball(t: &Value) -> bool {
 }
 
 fn law(t: &Value) -> &str {
-    let default = if preset_ball(t) { "speed_dependent" } else { "linear_hysteresis" };
+    let default = if preset_ball(t) {
+        "speed_dependent"
+    } else {
+        "linear_hysteresis"
+    };
     text(t, "ball.law.kind", default)
 }
 
 fn loading(t: &Value) -> &str {
-    text(t, "ball.law.loading", if preset_ball(t) { "power" } else { "linear" })
+    text(
+        t,
+        "ball.law.loading",
+        if preset_ball(t) { "power" } else { "linear" },
+    )
 }
 
 fn speed_dependent(t: &Value) -> bool {

@@ -135,7 +135,11 @@ impl BatGeometry {
         }
         let ok = |v: f64| v > 0.0 && v.is_finite();
         if !ok(bore.diameter) {
-            return Err(out_of_range("bat.bore.diameter", bore.diameter, "a finite number > 0 m"));
+            return Err(out_of_range(
+                "bat.bore.diameter",
+                bore.diameter,
+                "a finite number > 0 m",
+            ));
         }
         if !(ok(bore.depth) && bore.depth < self.length) {
             return Err(out_of_range(
@@ -150,7 +154,10 @@ impl BatGeometry {
                 return Err(out_of_range(
                     "bat.bore.diameter",
                     bore.diameter,
-                    &format!("< {:.4} m, the bat's diameter at z = {z:.3} m", 2.0 * self.outer_radius(z)),
+                    &format!(
+                        "< {:.4} m, the bat's diameter at z = {z:.3} m",
+                        2.0 * self.outer_radius(z)
+                    ),
                 ));
             }
         }

@@ -113,7 +113,10 @@ impl<'r> Recorder<'r> {
     ) -> Result<(), ModelError> {
         let n = self.request.n_samples.saturating_mul(modes);
         let m = &mut self.history.modal;
-        for (v, len) in [(&mut m.coordinate, n), (&mut m.bat_load, self.request.n_samples)] {
+        for (v, len) in [
+            (&mut m.coordinate, n),
+            (&mut m.bat_load, self.request.n_samples),
+        ] {
             v.try_reserve_exact(len)
                 .map_err(|_| ModelError::OutOfMemory {
                     what: "the time histories",
@@ -171,8 +174,8 @@ impl<'r> Recorder<'r> {
                 HistoryField::Force => h.force.push(s.force),
                 HistoryField::Compression => h.compression.push(s.compression),
                 HistoryField::BallVelocity => h.ball_velocity.push(s.ball_velocity),
-                HistoryField::Displacement if self.request.displacement
-                    == HistoryDisplacement::Modal =>
+                HistoryField::Displacement
+                    if self.request.displacement == HistoryDisplacement::Modal =>
                 {
                     let scale = self.modal_scale;
                     let m = &mut h.modal;

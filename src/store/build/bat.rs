@@ -1,8 +1,8 @@
 //! `/bat`: each bat variant's profile, mass, centre of mass, moments of inertia, free-free
 //! modes and metrics, along the `bat` dim.
 
-use crate::model::outcome::{BatMetrics, BatProperties};
 use super::shapes::{create_shapes, BatShapes};
+use crate::model::outcome::{BatMetrics, BatProperties};
 use crate::results::StudyInfo;
 use crate::store::dimscale::{self as h5u, describe, Attacher};
 use crate::store::error::{H5Ctx, StoreError};

@@ -71,7 +71,11 @@ pub(super) fn create_history(
             sc.extend(scale);
         }
         // an unwritten block of coordinates is a block of modes the point did not step: 0
-        let fill = if *tail == HistoryDims::ModeTime { 0.0 } else { f64::NAN };
+        let fill = if *tail == HistoryDims::ModeTime {
+            0.0
+        } else {
+            f64::NAN
+        };
         let links = (&sc[..], &aux[..], att);
         let ds = match l::history_precision(h, k) {
             HistoryPrecision::F64 => new_var_level(&g, def, (&s, &c), fill, links, level, out)?,
@@ -191,7 +195,9 @@ impl Into<'_> {
                     .ctx(self.out, &format!("write a history of {}", ds.name()))?;
             }
         }
-        if let (Some(shapes), Some((rec, _))) = (self.shapes.as_deref_mut(), decode_summary(payload)) {
+        if let (Some(shapes), Some((rec, _))) =
+            (self.shapes.as_deref_mut(), decode_summary(payload))
+        {
             shapes.ensure(self.info, rec.bat as usize, blocks, self.out)?;
         }
         Ok(())
