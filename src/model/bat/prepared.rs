@@ -35,6 +35,8 @@ pub struct PreparedBat {
     /// the integrator).
     pub(crate) z_cm: f64,
     pub(crate) inertia_cm: f64,
+    /// The lumped beam's mass (`Beam::total_mass`), kg: summed once, not per history sample.
+    pub(crate) total_mass: f64,
     /// Modal damping ratio of the flexible modes (0: undamped).
     pub(crate) damping_ratio: f64,
     /// Grip damper, N·s/m (0: none).
@@ -94,6 +96,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
             angular_weight[k] += j * col[nodes + i];
         }
     }
+    let total_mass = beam.total_mass();
     Ok(PreparedBat {
         damping_ratio: geometry.damping_ratio,
         grip_damping: bat.grip.as_ref().map_or(0.0, |g| g.damping),
@@ -104,6 +107,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         angular_weight,
         z_cm,
         inertia_cm,
+        total_mass,
         properties,
     })
 }

@@ -41,7 +41,7 @@ pub fn shape_points(bat: &PreparedBat) -> Vec<f64> {
 /// The factor √M (M the bat's mass, kg) that makes the mass-normalised mode shapes
 /// (kg^-½) dimensionless; the stored modal coordinates are divided by it (then in m).
 pub fn modal_scale(bat: &PreparedBat) -> f64 {
-    bat.beam.total_mass().sqrt()
+    bat.total_mass.sqrt()
 }
 
 /// Number of modes of the bat (one per degree of freedom).
