@@ -65,6 +65,8 @@ def test_bundled_study_has_the_public_layout(study, tmp_path):
     assert r.returncode == 0, r.stderr
     assert_layout_ok(out_grid)
     assert_same_displacement(out, out_grid)
+    with pytest.raises(ValueError, match="modal form"):
+        batstudy.open(out_grid, z=[0.5])
 
 
 def assert_same_displacement(modal, grid):
