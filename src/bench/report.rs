@@ -124,7 +124,10 @@ pub(super) fn print_scaling_point(out: &mut dyn Write, p: &ScalingPoint) {
             p.threads,
             cell(p.summary_points_per_second, p.summary_efficiency),
             cell(p.history_points_per_second, p.history_efficiency),
-            cell(p.history_modal_points_per_second, p.history_modal_efficiency),
+            cell(
+                p.history_modal_points_per_second,
+                p.history_modal_efficiency
+            ),
             cell(
                 p.history_scalar_points_per_second,
                 p.history_scalar_efficiency
