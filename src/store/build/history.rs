@@ -38,15 +38,8 @@ pub(super) fn create_history(
         .create_group(l::GROUP_HISTORY)
         .ctx(out, "create group history")?;
     let (scales, aux) = study_dims(&g, dims, att, out)?;
-    let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
-    let tscale = h5u::scale_coord(&g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
-    let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
     let vars = history_vars(h);
-    let ext = ModalExtents::of(info);
-    let modal = match vars.iter().any(|&k| l::is_modal(k)) {
-        true => Some(modal_scales(&g, &ext, out)?),
-        false => None,
-    };
+    let tails = Tails::create(&g, h, info, vars.iter().any(|&k| l::is_modal(k)), out)?;
     let level = l::history_deflate_level(h);
     let mut created = Vec::new();
     for &k in &vars {
@@ -54,38 +47,26 @@ pub(super) fn create_history(
         let mut s: Vec<usize> = dims.iter().map(|d| d.size).collect();
         let mut c = vec![1; s.len()];
         let mut sc: Vec<&Dataset> = scales.iter().collect();
-        let (modes, points) = match &modal {
-            Some((m, p)) => (Some(m), Some(p)),
-            None => (None, None),
-        };
-        let (nt, nz) = (h.n_samples, h.z.len());
-        let along: Vec<(usize, usize, Option<&Dataset>)> = match tail {
-            HistoryDims::Time => vec![(nt, nt, Some(&tscale))],
-            HistoryDims::TimeZ => vec![(nt, nt, Some(&tscale)), (nz, nz, Some(&zscale))],
-            HistoryDims::ModeTime => vec![(ext.modes, ext.block, modes), (nt, nt, Some(&tscale))],
-            HistoryDims::ShapePoint => vec![(ext.points, ext.points, points)],
-        };
-        for (size, chunk, scale) in along {
+        for (size, chunk, scale) in tails.of(*tail) {
             s.push(size);
             c.push(chunk.max(1));
             sc.extend(scale);
         }
         // an unwritten block of coordinates is a block of modes the point did not step: 0
-        let fill = if *tail == HistoryDims::ModeTime {
-            0.0
-        } else {
-            f64::NAN
+        let fill = match tail {
+            HistoryDims::ModeTime => 0.0,
+            _ => f64::NAN,
         };
         let links = (&sc[..], &aux[..], att);
-        let ds = match l::history_precision(h, k) {
-            HistoryPrecision::F64 => new_var_level(&g, def, (&s, &c), fill, links, level, out)?,
-            HistoryPrecision::F32 => {
-                new_var_level(&g, def, (&s, &c), fill as f32, links, level, out)?
-            }
-        };
-        let precision = match l::history_precision(h, k) {
-            HistoryPrecision::F64 => "f64",
-            HistoryPrecision::F32 => "f32",
+        let (ds, precision) = match l::history_precision(h, k) {
+            HistoryPrecision::F64 => (
+                new_var_level(&g, def, (&s, &c), fill, links, level, out)?,
+                "f64",
+            ),
+            HistoryPrecision::F32 => (
+                new_var_level(&g, def, (&s, &c), fill as f32, links, level, out)?,
+                "f32",
+            ),
         };
         attr_str(&ds, "precision", precision).ctx(out, "describe history")?;
         created.push((k, ds, s));
@@ -93,23 +74,66 @@ pub(super) fn create_history(
     Ok(created)
 }
 
-/// The index coordinates of the modal form's dims in `/history`: `bat_mode`, `shape_point`.
-fn modal_scales(
-    g: &hdf5::Group,
-    ext: &ModalExtents,
-    out: &Path,
-) -> Result<(Dataset, Dataset), StoreError> {
-    let index = |n: usize| (0..n as i64).collect::<Vec<i64>>();
-    let modes = h5u::scale_coord(g, l::BAT_MODE_DIM.name, &index(ext.modes), &l::BAT_MODE_DIM)
-        .ctx(out, "write bat_mode")?;
-    let points = h5u::scale_coord(
-        g,
-        l::SHAPE_POINT_DIM.name,
-        &index(ext.points),
-        &l::SHAPE_POINT_DIM,
-    )
-    .ctx(out, "write shape_point")?;
-    Ok((modes, points))
+/// The dimension scales of `/history` after the study's, and their sizes: `time`, `z`, and
+/// with the displacement's modal form `bat_mode` and `shape_point` (index coordinates).
+struct Tails {
+    time: (usize, Dataset),
+    z: (usize, Dataset),
+    modal: Option<(ModalExtents, Dataset, Dataset)>,
+}
+
+impl Tails {
+    fn create(
+        g: &hdf5::Group,
+        h: &HistoryRequest,
+        info: &StudyInfo,
+        modal: bool,
+        out: &Path,
+    ) -> Result<Tails, StoreError> {
+        let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
+        let time = h5u::scale_coord(g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
+        let z = h5u::scale_coord(g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
+        let modal = match modal {
+            true => {
+                let ext = ModalExtents::of(info);
+                let index = |n: usize| (0..n as i64).collect::<Vec<i64>>();
+                let (m, p) = (&l::BAT_MODE_DIM, &l::SHAPE_POINT_DIM);
+                let modes =
+                    h5u::scale_coord(g, m.name, &index(ext.modes), m).ctx(out, "write bat_mode")?;
+                let points = h5u::scale_coord(g, p.name, &index(ext.points), p)
+                    .ctx(out, "write shape_point")?;
+                Some((ext, modes, points))
+            }
+            false => None,
+        };
+        Ok(Tails {
+            time: (h.n_samples, time),
+            z: (h.z.len(), z),
+            modal,
+        })
+    }
+
+    /// (size, chunk size, dimension scale) of each dim after the study's.
+    fn of(&self, dims: HistoryDims) -> Vec<(usize, usize, Option<&Dataset>)> {
+        let (nt, time) = (self.time.0, Some(&self.time.1));
+        let m = self.modal.as_ref();
+        let ext = m.map_or(
+            ModalExtents {
+                modes: 0,
+                block: 1,
+                points: 0,
+            },
+            |m| m.0,
+        );
+        match dims {
+            HistoryDims::Time => vec![(nt, nt, time)],
+            HistoryDims::TimeZ => vec![(nt, nt, time), (self.z.0, self.z.0, Some(&self.z.1))],
+            HistoryDims::ModeTime => {
+                vec![(ext.modes, ext.block, m.map(|m| &m.1)), (nt, nt, time)]
+            }
+            HistoryDims::ShapePoint => vec![(ext.points, ext.points, m.map(|m| &m.2))],
+        }
+    }
 }
 
 /// The histories still to write when the run finishes (the placer's, `store::placer`).
