@@ -38,8 +38,10 @@ What is checked (layout_version 4, as docs/layout.md describes it):
   point, each naming a failed point of `/summary`;
 - `/sweet_spot`: the summary dims without `impact_z`, with the same coordinate values, every
   public variable (`position_at_edge` int8); positions inside the sampled `impact_z` range, widths from 0 to its length;
-- `/history`: the summary dims plus `time` (s, from 0, increasing) and, for `displacement`,
-  `z` (m); only known variables, f32 or f64, with their units;
+- `/history`: the summary dims plus `time` (s, from 0, increasing) and `z` (m); only known
+  variables, f32 or f64, with their units; the displacement on the grid (`displacement`) or
+  in modal form (`modal_coordinate`, `bat_load`, `static_shape`, f64, with `/bat/shape_z` and
+  `/bat/mode_shape` of matching dims), never both;
 - `/bat`: dims `bat` (text labels), `mode` (1, 2, …), `node`, `profile_point`, `bbcor_point`,
   and every public variable with its dims and units.
 
@@ -87,10 +89,18 @@ SWEET = {"position": "m", "exit_speed": "m/s", "width": "m", "min_vibration_posi
          "min_vibration_amplitude": "m", "min_vibration_energy_position": "m",
          "carry_position": "m", "carry": "m"}
 
-# name: (units, has a z dim)
-HISTORY = {"force": ("N", False), "compression": ("m", False), "ball_velocity": ("m/s", False),
-           "displacement": ("m", True), "rigid_translation": ("m", False),
-           "rigid_rotation": ("rad", False), "hoop_displacement": ("m", False)}
+# name: (units, dims after the study's)
+HISTORY = {"force": ("N", ("time",)), "compression": ("m", ("time",)),
+           "ball_velocity": ("m/s", ("time",)), "displacement": ("m", ("time", "z")),
+           "rigid_translation": ("m", ("time",)), "rigid_rotation": ("rad", ("time",)),
+           "hoop_displacement": ("m", ("time",)),
+           # the displacement's modal form (layout 4): f64, and /bat's MODAL_BAT
+           "modal_coordinate": ("m", ("bat_mode", "time")), "bat_load": ("N", ("time",)),
+           "static_shape": ("m/N", ("shape_point",))}
+MODAL = ("modal_coordinate", "bat_load", "static_shape")
+# /bat with the modal form: name: (dims, units)
+MODAL_BAT = {"shape_z": (("bat", "shape_point"), "m"),
+             "mode_shape": (("bat", "bat_mode", "shape_point"), "1")}
 
 # name: (dims, units); "str" units mark text variables
 BAT = {
@@ -512,13 +522,21 @@ class Checker:
         if not present:
             self.bad("/history", "no history variable")
         for name in present:
-            units, with_z = HISTORY[name]
-            want_dims = tuple(dims) + (("time", "z") if with_z else ("time",))
-            ds = self.want(g, dims_of, name, None, units, want_dims)
+            units, tail = HISTORY[name]
+            want_dims = tuple(dims) + tail
+            ds = self.want(g, dims_of, name, "float64" if name in MODAL else None, units,
+                           want_dims)
             if ds is not None and ds.dtype.name not in ("float32", "float64"):
                 self.bad(f"/history/{name}", f"type {ds.dtype}, expected float32 or float64")
-        if "displacement" in g:
+        if "displacement" in g or any(k in g for k in MODAL):
             self.want(g, dims_of, "z", None, "m", ("z",))
+        modal = [k for k in MODAL if k in g]
+        if modal and len(modal) != len(MODAL):
+            self.bad("/history", f"the modal form needs {', '.join(MODAL)}; it has {', '.join(modal)}")
+        if modal and "displacement" in g:
+            self.bad("/history", "both forms of the displacement (grid and modal)")
+        if modal:
+            self.modal(f, g)
         if "time" in g and self.check_data:
             t = g["time"][()]
             if t.size and (t[0] != 0 or (np.diff(t) <= 0).any()):
@@ -528,6 +546,31 @@ class Checker:
             if sorted(names) != sorted(present):
                 self.bad("/history", f"variables {sorted(present)}, but the store header "
                                      f"lists {sorted(names)}")
+
+    def modal(self, f, g):
+        """The modal form: its dims agree with /bat's shapes, which must be there; the
+        coordinates' chunks are blocks of modes, the static shape's one per history."""
+        import numpy as np
+        b = f["bat"] if "bat" in f else None
+        if b is None or any(k not in b for k in MODAL_BAT):
+            self.bad("/bat", f"the modal form needs {', '.join(MODAL_BAT)} in /bat")
+            return
+        bdims = self.group_generic(b)
+        for name, (dims, units) in MODAL_BAT.items():
+            self.want(b, bdims, name, "float64", units, dims)
+        for dim, var, axis in (("bat_mode", "mode_shape", 1), ("shape_point", "shape_z", 1)):
+            if dim in g and g[dim].shape[0] != b[var].shape[axis]:
+                self.bad(f"/history/{dim}", f"{g[dim].shape[0]} entries, /bat/{var} has "
+                                            f"{b[var].shape[axis]}")
+        q = g["modal_coordinate"]
+        if q.chunks is not None and q.chunks[-1] != q.shape[-1]:
+            self.bad("/history/modal_coordinate", "a chunk does not hold every time sample")
+        if self.check_data and "shape_z" in b:
+            z = b["shape_z"][()]
+            for k, row in enumerate(z):
+                row = row[np.isfinite(row)]
+                if row.size and (row[0] != 0 or (np.diff(row) <= 0).any()):
+                    self.bad("/bat/shape_z", f"bat {k}: shape points do not start at 0 and increase")
 
     def bat(self, f, header):
         import numpy as np

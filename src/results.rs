@@ -2,6 +2,8 @@
 //! arrays, and one finished point. Plain data; no I/O.
 
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
+use std::ops::Range;
+use std::sync::Arc;
 
 /// The names the results file gives its own variables beside a study's coordinates (in
 /// `/summary`, `/sweet_spot`, `/history`; `history` is the Python reader's dimension of
@@ -62,6 +64,11 @@ pub const RESERVED_NAMES: &[&str] = &[
     "rigid_translation",
     "rigid_rotation",
     "hoop_displacement",
+    "modal_coordinate",
+    "bat_load",
+    "static_shape",
+    "bat_mode",
+    "shape_point",
     "history",
 ];
 
@@ -165,6 +172,44 @@ pub struct BatVariant {
     /// The bat's resolved parameters as canonical JSON.
     pub spec_json: String,
     pub properties: BatProperties,
+    /// Its mode shapes, for the modal form of its displacement histories (None: a wall, or
+    /// a bat that could not be prepared).
+    pub shapes: Option<ShapeSource>,
+}
+
+/// A bat's mode shapes at its shape points (`model::bat::shapes`), taken a block of modes at
+/// a time when a stored history first needs them: the store writes only the modes some
+/// history steps (a bat's every mode is some 230 KB, a history's coordinates a tenth of it).
+#[derive(Clone)]
+pub struct ShapeSource {
+    /// Positions of the shape points, m from the knob.
+    pub z: Vec<f64>,
+    /// Number of modes of the bat.
+    pub modes: usize,
+    /// The scaled shapes of a range of modes at the shape points, mode-major.
+    pub shapes: Arc<dyn Fn(Range<usize>) -> Vec<f64> + Send + Sync>,
+}
+
+impl std::fmt::Debug for ShapeSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ShapeSource")
+            .field("points", &self.z.len())
+            .field("modes", &self.modes)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The same points and number of modes (the shapes themselves come from the bat).
+impl PartialEq for ShapeSource {
+    fn eq(&self, other: &Self) -> bool {
+        self.modes == other.modes
+            && self.z.len() == other.z.len()
+            && self
+                .z
+                .iter()
+                .zip(&other.z)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
 }
 
 /// Everything the store needs to know about a study before the first point arrives.

@@ -55,12 +55,17 @@ fn bench_quick_reports_every_section_and_no_targets() {
             p.summary_points_per_second,
             p.history_points_per_second,
             p.history_scalar_points_per_second,
+            p.history_modal_points_per_second,
         ] {
             assert!(rate > 0.0 && rate.is_finite(), "{p:?}");
         }
         assert!(p.summary_efficiency > 0.0 && p.history_scalar_efficiency > 0.0);
+        assert!(p.history_modal_efficiency > 0.0);
     }
     assert!(sc.history_compute_points_per_second > 0.0);
+    assert!(sc.history_modal_compute_points_per_second > 0.0);
+    // issue 37: the displacement in modal form takes fewer bytes than on its 85-z grid
+    assert!(sc.history_modal_file_bytes < sc.history_file_bytes);
     assert!(sc.history_uncompressed_file_bytes > sc.history_file_bytes);
     // the writer's headroom, and the disk's over the bytes a history point makes
     let wh = &r.writer_headroom;
@@ -72,6 +77,8 @@ fn bench_quick_reports_every_section_and_no_targets() {
         "{} B/point",
         wh.file_bytes_per_point
     );
+    assert!(wh.modal_file_bytes_per_point < wh.file_bytes_per_point);
+    assert!(wh.modal_headroom > 0.0 && wh.modal_disk_headroom > 0.0);
     let m = &r.memory;
     assert_eq!(m.large_summary.points, 10_000);
     assert!(m.history_bytes_in_memory > 0);
@@ -107,6 +114,13 @@ fn bench_quick_json_has_every_section_and_key() {
         "history_file_bytes",
         "history_scalar_points_per_second",
         "history_scalar_vs_summary_per_core",
+        // issue 37: the history study with the displacement in modal form
+        "history_modal_points_per_second",
+        "history_modal_efficiency",
+        "history_modal_vs_summary_per_core",
+        "history_modal_file_bytes",
+        "history_modal_compute_points_per_second",
+        "history_modal_vs_summary_ceiling",
     ] {
         assert!(json["scaling"].get(key).is_some(), "scaling lacks {key}");
     }
@@ -114,6 +128,7 @@ fn bench_quick_json_has_every_section_and_key() {
         "threads",
         "summary_points_per_second",
         "history_points_per_second",
+        "history_modal_points_per_second",
     ] {
         assert!(
             json["scaling"]["points"][0].get(key).is_some(),
@@ -132,6 +147,12 @@ fn bench_quick_json_has_every_section_and_key() {
         "file_bytes_per_point",
         "disk_bytes_per_second",
         "disk_headroom",
+        "modal_file_bytes_per_point",
+        "modal_worker_points_per_second",
+        "modal_writer_points_per_second",
+        "modal_headroom",
+        "modal_run_headroom",
+        "modal_disk_headroom",
     ] {
         assert!(
             json["writer_headroom"].get(key).is_some(),

@@ -323,6 +323,17 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: values `impact.z` takes in the study: 0.4, 0.41",
         ],
     ),
+    // issue 37: the displacement's modal form is the modal integrator's own state
+    (
+        "modal_history_with_verlet",
+        &[
+            "modal_history_with_verlet.yaml:7:1",
+            "`history.displacement`",
+            "point numerics.integrator=verlet records the displacement in modal form",
+            "value: modal",
+            "allowed: grid",
+        ],
+    ),
     (
         "base_type_under_grid",
         &[

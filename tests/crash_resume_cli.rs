@@ -1,6 +1,8 @@
 //! A real `batstudy run`, killed with SIGKILL at several moments, then completed with
 //! `--resume`, gives the same data as an uninterrupted run, bit for bit (issue 5, "Nothing
-//! lost"; the data compared are every stored point's outcome and histories).
+//! lost"; the data compared are every stored point's outcome and histories). The histories
+//! hold the displacement in modal form (issue 37), so the bats' mode shapes, written with the
+//! first history that steps them, are compared too.
 
 mod common;
 
@@ -17,10 +19,21 @@ grid:
   swing.omega: [0, -15, -30, -45, -60]
   bat.material.density: [600, 649, 700]
   impact.z: {range: [0.40, 0.84, 0.004]}
-history: {fields: [force], interval: 2.0e-5, duration: 2.0e-3, only: {swing.omega: [-30]}}
+history: {fields: [force, displacement], interval: 2.0e-5, duration: 2.0e-3, z_step: 0.05,
+          only: {swing.omega: [-30]}}
 "#;
 
-use common::{batstudy_command as batstudy, batstudy_ok, stored_records as data};
+use common::{batstudy_command as batstudy, batstudy_ok, stored_records};
+
+/// Every stored point's outcome and histories, and the bits of the bats' mode shapes.
+fn data(path: &Path) -> (Vec<String>, Vec<u64>) {
+    let f = hdf5::File::open(path).unwrap();
+    let shapes: Vec<f64> = f.dataset("bat/mode_shape").unwrap().read_raw().unwrap();
+    (
+        stored_records(path),
+        shapes.iter().map(|x| x.to_bits()).collect(),
+    )
+}
 
 #[test]
 fn killed_runs_resume_to_the_uninterrupted_result() {
@@ -33,7 +46,8 @@ fn killed_runs_resume_to_the_uninterrupted_result() {
     let r = reference.to_str().unwrap();
     batstudy_ok(&["run", study, "-o", r, "-j", "2", "-q"]);
     let want = data(&reference);
-    assert_eq!(want.len(), 5 * 3 * 111);
+    assert_eq!(want.0.len(), 5 * 3 * 111);
+    assert!(want.1.iter().any(|&x| x != 0), "mode shapes written");
 
     // Killed at several moments of the run itself, counted from when its journal appears
     // (the bats are prepared by then): fixed delays from the start missed the run once it

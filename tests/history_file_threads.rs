@@ -3,6 +3,8 @@
 //! runs with `--jobs 1` and `--jobs 2` give files of the same size whose history chunks sit
 //! at the same addresses with the same bytes; HDF5's own shuffle and deflate filters read
 //! them back. A journal of the old format is refused on `--resume` with a clear message.
+//! Both forms of the displacement (issue 37): on the grid, and modal (the coordinates in
+//! blocks of modes, and `/bat`'s mode shapes written with the first history that steps them).
 
 mod common;
 
@@ -25,7 +27,17 @@ history:
   duration: 2.0e-3
   z_step: 0.05
   only: {swing.omega: [0, -60]}
+  displacement: grid
 "#;
+
+/// The history variables each form stores (one chunk per history each, the study's
+/// collisions stepping fewer than 32 modes).
+const GRID: [&str; 2] = ["force", "displacement"];
+const MODAL: [&str; 4] = ["force", "modal_coordinate", "bat_load", "static_shape"];
+
+fn modal(study: &str) -> String {
+    study.replace("displacement: grid", "displacement: modal")
+}
 
 /// (chunk offset, file address, stored bytes) of every chunk of a dataset, in HDF5's order.
 fn chunks(path: &Path, ds: &hdf5::Dataset) -> Vec<(Vec<u64>, u64, Vec<u8>)> {
@@ -44,9 +56,18 @@ fn chunks(path: &Path, ds: &hdf5::Dataset) -> Vec<(Vec<u64>, u64, Vec<u8>)> {
 
 #[test]
 fn a_history_study_gives_the_same_file_on_one_and_two_threads() {
+    same_file_on_one_and_two_threads(STUDY, &GRID);
+}
+
+#[test]
+fn a_modal_history_study_gives_the_same_file_on_one_and_two_threads() {
+    same_file_on_one_and_two_threads(&modal(STUDY), &MODAL);
+}
+
+fn same_file_on_one_and_two_threads(text: &str, names: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
     let study = dir.path().join("study.yaml");
-    std::fs::write(&study, STUDY).unwrap();
+    std::fs::write(&study, text).unwrap();
     let run = |jobs: &str| {
         let path = dir.path().join(format!("j{jobs}.h5"));
         batstudy_ok(&[
@@ -73,7 +94,7 @@ fn a_history_study_gives_the_same_file_on_one_and_two_threads() {
         hdf5::File::open(&two).unwrap(),
     );
     let (g1, g2) = (f1.group("history").unwrap(), f2.group("history").unwrap());
-    for name in ["force", "displacement"] {
+    for &name in names {
         let (d1, d2) = (g1.dataset(name).unwrap(), g2.dataset(name).unwrap());
         let (c1, c2) = (chunks(&one, &d1), chunks(&two, &d2));
         // two thirds of the points record histories: one chunk each
@@ -87,15 +108,26 @@ fn a_history_study_gives_the_same_file_on_one_and_two_threads() {
         assert!(filters
             .iter()
             .any(|f| matches!(f, hdf5::filters::Filter::Deflate(_))));
-        let v: Vec<f32> = d1.read_raw().unwrap();
-        let finite = v.iter().filter(|x| x.is_finite()).count();
+        let v: Vec<f64> = d1.read_raw().unwrap();
+        let finite = v.iter().filter(|x| x.is_finite() && **x != 0.0).count();
         assert!(
             finite > 0 && finite < v.len(),
             "{name}: {finite} of {}",
             v.len()
         );
-        let w: Vec<f32> = d2.read_raw().unwrap();
+        let w: Vec<f64> = d2.read_raw().unwrap();
         assert!(v.iter().zip(&w).all(|(a, b)| a.to_bits() == b.to_bits()));
+    }
+    if names.contains(&"modal_coordinate") {
+        // the bat's mode shapes: one block, written with the first history, in one place
+        let (b1, b2) = (f1.group("bat").unwrap(), f2.group("bat").unwrap());
+        let (d1, d2) = (
+            b1.dataset("mode_shape").unwrap(),
+            b2.dataset("mode_shape").unwrap(),
+        );
+        let (c1, c2) = (chunks(&one, &d1), chunks(&two, &d2));
+        assert_eq!(c1.len(), 1);
+        assert!(c1 == c2, "mode shapes differ in place or bytes");
     }
 }
 
@@ -135,9 +167,15 @@ fn a_journal_of_the_old_format_is_refused_on_resume() {
 
 /// `history.compression: none` stores the same histories without filters: every variable of
 /// `/history` has no filter, the data read back equal the deflated study's bit for bit, and
-/// the file holds the raw chunk sizes (samples × z × 4 bytes for f32 displacement).
+/// the file holds the raw chunk sizes (samples × z × 4 bytes for f32 displacement; a block
+/// of 32 modes × samples × 8 bytes for the modal coordinates).
 #[test]
 fn uncompressed_histories_hold_the_same_data() {
+    uncompressed_same_data(STUDY, &GRID);
+    uncompressed_same_data(&modal(STUDY), &MODAL);
+}
+
+fn uncompressed_same_data(text: &str, names: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
     let run = |name: &str, text: &str| {
         let study = dir.path().join(format!("{name}.yaml"));
@@ -152,28 +190,29 @@ fn uncompressed_histories_hold_the_same_data() {
         ]);
         path
     };
-    let deflated = run("deflated", STUDY);
+    let deflated = run("deflated", text);
     let raw = run(
         "raw",
-        &STUDY.replace("  z_step: 0.05\n", "  z_step: 0.05\n  compression: none\n"),
+        &text.replace("  z_step: 0.05\n", "  z_step: 0.05\n  compression: none\n"),
     );
     let (f1, f2) = (
         hdf5::File::open(&deflated).unwrap(),
         hdf5::File::open(&raw).unwrap(),
     );
     let (g1, g2) = (f1.group("history").unwrap(), f2.group("history").unwrap());
-    for name in ["force", "displacement"] {
+    for &name in names {
         let (d1, d2) = (g1.dataset(name).unwrap(), g2.dataset(name).unwrap());
         assert!(!d1.filters().is_empty(), "{name}: deflated by default");
         assert!(d2.filters().is_empty(), "{name}: no filters");
-        let (v, w): (Vec<f32>, Vec<f32>) = (d1.read_raw().unwrap(), d2.read_raw().unwrap());
+        let (v, w): (Vec<f64>, Vec<f64>) = (d1.read_raw().unwrap(), d2.read_raw().unwrap());
         assert_eq!(v.len(), w.len());
         assert!(
             v.iter().zip(&w).all(|(a, b)| a.to_bits() == b.to_bits()),
             "{name}"
         );
-        // each stored chunk is the raw values: samples (× z) × 4 bytes
-        let per_chunk = d2.chunk().unwrap()[2..].iter().product::<usize>() * 4;
+        // each stored chunk is the raw values: its elements × their size
+        let per_chunk =
+            d2.chunk().unwrap()[2..].iter().product::<usize>() * d2.dtype().unwrap().size();
         let c = chunks(&raw, &d2);
         assert_eq!(c.len(), 2 * 16, "{name}");
         assert!(

@@ -25,6 +25,8 @@ fn every_stored_name_beside_the_coordinates_is_reserved() {
     names.extend([l::RECONTACT, l::STATUS, l::POINT_ID, l::BAT_INDEX].map(|d| d.name));
     names.extend(SWEET_FLOATS.iter().map(|d| d.name));
     names.extend([SWEET_AT_EDGE, TIME, HIST_Z].map(|d| d.name));
+    // the displacement's modal form (issue 37): its dims in `/history`
+    names.extend([l::BAT_MODE_DIM, l::SHAPE_POINT_DIM].map(|d| d.name));
     names.extend(HISTORY_VARS.iter().map(|(d, _, _)| d.name));
     for n in names {
         assert!(

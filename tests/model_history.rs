@@ -31,6 +31,7 @@ fn every_requested_field_is_sampled_on_the_common_axis() {
             z: vec![0.1, 0.7, 0.9],
             precision: Default::default(),
             compression: Default::default(),
+            displacement: batstudy::model::outcome::HistoryDisplacement::Grid,
         };
         let o = simulate(&spec, &bat, Some(&request)).unwrap();
         let h = o.history.unwrap();

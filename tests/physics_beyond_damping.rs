@@ -74,6 +74,7 @@ fn free_vibration_decays_at_omega_over_2q() {
         z: beam.z.clone(),
         precision: HistoryPrecision::F64,
         compression: Default::default(),
+        displacement: batstudy::model::outcome::HistoryDisplacement::Grid,
     };
     let o = simulate(&spec, &bat, Some(&request)).unwrap();
     let h = o.history.unwrap();

@@ -53,6 +53,7 @@ fn impact_at_60_cm_reaches_the_handle_after_a_delay() {
         z: vec![0.10, 0.60],
         precision: Default::default(),
         compression: Default::default(),
+        displacement: batstudy::model::outcome::HistoryDisplacement::Grid,
     };
     let o = simulate(&spec, &bat, Some(&request)).unwrap();
     let h = o.history.unwrap();

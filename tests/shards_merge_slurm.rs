@@ -183,7 +183,20 @@ fn split_is_a_balanced_deterministic_partition() {
 // per shard.
 #[test]
 fn merged_shards_equal_single_run() {
-    let (d, _) = setup();
+    merged_shards_equal_single_run_of(STUDY, "/history/modal_coordinate ");
+}
+
+/// The same with the displacement on the grid (the study's default is its modal form).
+#[test]
+fn merged_shards_equal_single_run_grid() {
+    let grid = STUDY.replace("z_step: 0.05}", "z_step: 0.05, displacement: grid}");
+    merged_shards_equal_single_run_of(&grid, "/history/displacement ");
+}
+
+/// Shards of `study` merged equal its single run in every dataset, `stored` among them.
+fn merged_shards_equal_single_run_of(study: &str, stored: &str) {
+    let (d, path) = setup();
+    std::fs::write(&path, study).unwrap();
     let dir = d.path();
     ok(&batstudy(
         dir,
@@ -240,6 +253,10 @@ fn merged_shards_equal_single_run() {
     let a = dump_all(&dir.join("single.h5"));
     let b = dump_all(&dir.join("merged.h5"));
     assert!(a.len() > 30, "{} datasets", a.len());
+    assert!(
+        a.iter().any(|(k, _)| k.starts_with(stored)),
+        "{stored} stored"
+    );
     assert_eq!(a, b);
     // and through the store's reader
     let ra = read_results(&dir.join("single.h5"));

@@ -39,6 +39,7 @@ fn summary_only_write_cost() {
             label: "b".into(),
             spec_json: "{}".into(),
             properties: BatProperties::default(),
+            shapes: None,
         }],
         allow_implausible: false,
     };

@@ -58,6 +58,7 @@ fn bat(label: &str, n_modes: usize) -> BatVariant {
             mode_nodes: (1..=n_modes).map(|k| grid(0.1, 0.7, k + 1)).collect(),
             metrics: Default::default(),
         },
+        shapes: None,
     }
 }
 
@@ -114,6 +115,7 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
             z: vec![0.2, 0.4, 0.6, 0.8, 1.0],
             precision,
             compression: Default::default(),
+            displacement: batstudy::model::outcome::HistoryDisplacement::Grid,
         }),
         bats: vec![bat("r161", 3), bat("r161, bat.material.density=700", 2)],
         allow_implausible: false,

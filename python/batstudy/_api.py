@@ -21,6 +21,8 @@ DEFAULT_HISTORY = {
     "interval": 1.0e-5,
     "duration": 3.0e-3,
     "z_step": 0.01,
+    # arrays in memory: the displacement on its z grid (a study's default is the modal form)
+    "displacement": "grid",
 }
 
 
@@ -62,7 +64,9 @@ def simulate(
     frequencies). With ``history=True`` (or a dict like a study's ``history`` block, e.g.
     ``{"fields": ["force"], "interval": 1e-6, "duration": 2e-3}``) the dict also holds
     ``history``: ``time`` (s), ``z`` (m) and each recorded variable as a NumPy array
-    (``displacement`` has shape (time, z)).
+    (``displacement`` has shape (time, z); with ``"displacement": "modal"`` in the dict,
+    the modal form instead: ``modal_coordinate`` (time, mode) in m, ``bat_load`` (time) in
+    N, ``static_shape`` (shape point) in m/N, docs/layout.md).
 
     The GIL is released while the collision runs, so threads can simulate in parallel.
     Raises :class:`StudyError` for a bad spec or a collision that fails.

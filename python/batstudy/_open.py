@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import posixpath
 import threading
 from typing import Any, Mapping, Union
 
@@ -12,6 +13,8 @@ import numpy as np
 import xarray as xr
 from xarray.backends import BackendArray
 from xarray.core import indexing
+
+from ._modal import ModalReader
 
 GROUPS = ("summary", "sweet_spot", "bat", "errors")
 HISTORY_DIM = "history"
@@ -69,7 +72,46 @@ class _SparseHistoryArray(BackendArray):
         return out[0] if scalar else out
 
 
-def _sparse_history(path: str, summary: xr.Dataset) -> xr.Dataset | None:
+class _ModalDisplacementArray(BackendArray):
+    """(history, time, z) displacement computed from the file's modal form, row by row as
+    asked for (``_modal``)."""
+
+    def __init__(self, path: str, positions: np.ndarray, n_time: int, z: np.ndarray):
+        self.path, self.positions, self.z = path, positions, np.asarray(z, dtype=float)
+        self.shape = (len(positions), n_time, len(self.z))
+        self.dtype = np.dtype("float64")
+        self._lock = threading.Lock()
+
+    def __getitem__(self, key):
+        return indexing.explicit_indexing_adapter(
+            key, self.shape, indexing.IndexingSupport.OUTER, self._read
+        )
+
+    def _read(self, key: tuple) -> np.ndarray:
+        rows = np.arange(self.shape[0])[key[0]]
+        scalar = np.ndim(rows) == 0
+        rows = np.atleast_1d(rows)
+        with self._lock, h5py.File(self.path, "r") as f:
+            reader = ModalReader(f)
+            parts = [reader.displacement(tuple(int(i) for i in self.positions[r]), self.z)[key[1:]]
+                     for r in rows]  # fmt: skip
+        if not parts:
+            tail_shape = np.empty(self.shape[1:])[tuple(key[1:])].shape
+            return np.empty((0,) + tail_shape, dtype=self.dtype)
+        out = np.stack(parts)
+        return out[0] if scalar else out
+
+
+def _tail_dims(ds: h5py.Dataset, rank: int) -> tuple:
+    """The names of a history variable's dims after the study's (its dimension scales)."""
+    names = []
+    for i in range(rank, ds.ndim):
+        scales = ds.dims[i]
+        names.append(posixpath.basename(scales[0].name) if len(scales) else f"dim_{i}")
+    return tuple(names)
+
+
+def _sparse_history(path: str, summary: xr.Dataset, z: Any = None) -> xr.Dataset | None:
     with h5py.File(path, "r") as f:
         if "history" not in f:
             return None
@@ -83,20 +125,37 @@ def _sparse_history(path: str, summary: xr.Dataset) -> xr.Dataset | None:
         ]
         if not names:
             return None
-        positions = _stored_positions(g[names[0]], rank)
+        # one chunk per history (the modal coordinates may take several)
+        one_chunk = [k for k in names if k != "modal_coordinate"] or names
+        positions = _stored_positions(g[one_chunk[0]], rank)
         time = g["time"][...]
         zs = g["z"][...]
-        meta = {k: (g[k].shape[rank:], g[k].dtype, dict(g[k].attrs)) for k in names}
+        meta = {k: (_tail_dims(g[k], rank), g[k].shape[rank:], g[k].dtype, dict(g[k].attrs))
+                for k in names}  # fmt: skip
+        extra = {k: g[k][...] for k in ("bat_mode", "shape_point") if k in g}
+    modal = "modal_coordinate" in meta
+    if z is not None and not modal:
+        raise ValueError("z= needs the displacement's modal form (history.displacement: modal); "
+                         "this file stores it on its grid")  # fmt: skip
     data_vars = {}
-    for k, (tail, dtype, attrs) in meta.items():
-        vdims = (HISTORY_DIM, "time") + (("z",) if len(tail) == 2 else ())
+    for k, (vdims, tail, dtype, attrs) in meta.items():
         arr = indexing.LazilyIndexedArray(_SparseHistoryArray(path, k, positions, tail, dtype))
         keep = {a: v for a, v in attrs.items() if a in ("units", "long_name", "description", "precision")}
-        data_vars[k] = xr.Variable(vdims, arr, attrs={a: _plain(v) for a, v in keep.items()})
+        data_vars[k] = xr.Variable((HISTORY_DIM,) + vdims, arr, attrs={a: _plain(v) for a, v in keep.items()})
+    if modal:
+        zs = zs if z is None else np.atleast_1d(np.asarray(z, dtype=float))
+        arr = indexing.LazilyIndexedArray(_ModalDisplacementArray(path, positions, len(time), zs))
+        data_vars["displacement"] = xr.Variable((HISTORY_DIM, "time", "z"), arr, attrs={
+            "units": "m", "long_name": "bat displacement",
+            "description": "bat transverse displacement, computed from the stored modal form "
+                           "(linear in z between the bat's shape points; NaN beyond the bat)",
+        })  # fmt: skip
     coords: dict[str, Any] = {
         "time": ("time", time, {"units": "s", "long_name": "time since first contact"}),
         "z": ("z", zs, {"units": "m", "long_name": "position from the knob"}),
     }
+    for k, v in extra.items():
+        coords[k] = (k, v, {"units": "1", "long_name": k.replace("_", " ")})
     # every coordinate of the summary, taken at each stored history's grid position
     for name, c in summary.coords.items():
         if not set(c.dims) <= set(dims):
@@ -123,7 +182,7 @@ def _plain(v):
     return v
 
 
-def open_results(path: Union[str, os.PathLike]) -> xr.DataTree:
+def open_results(path: Union[str, os.PathLike], z: Any = None) -> xr.DataTree:
     """Open a results file as an :class:`xarray.DataTree` (also ``batstudy.open``).
 
     Lazily: at open only metadata is read (attributes, dimension coordinates, and the
@@ -135,7 +194,10 @@ def open_results(path: Union[str, os.PathLike]) -> xr.DataTree:
     - ``/sweet_spot``, ``/bat``, ``/errors``: as in the file (``docs/layout.md``).
     - ``/history``: only the stored histories, along a dimension ``history``, each row
       with its point's coordinates (``impact_z``, ``case_label``, …); see
-      :func:`histories`.
+      :func:`histories`. A file that stores the bat's displacement in modal form
+      (``history.displacement: modal``) gets ``displacement(history, time, z)`` computed
+      from it, row by row as read, at the study's grid ``z`` or at the positions given as
+      `z` (m from the knob, any number of them; NaN beyond the bat).
 
     The root carries the file's attributes (study name and text, counts, version). Every
     numeric variable has a CF ``units`` attribute, every variable a ``long_name``.
@@ -149,7 +211,7 @@ def open_results(path: Union[str, os.PathLike]) -> xr.DataTree:
     for g in present:
         nodes[f"/{g}"] = xr.open_dataset(path, group=g, engine="h5netcdf")
     if "summary" in present:
-        hist = _sparse_history(path, nodes["/summary"])
+        hist = _sparse_history(path, nodes["/summary"], z)
         if hist is not None:
             nodes["/history"] = hist
     return xr.DataTree.from_dict(nodes)

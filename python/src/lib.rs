@@ -116,15 +116,17 @@ fn simulate<'py>(
             let time: Vec<f64> = (0..n).map(|k| k as f64 * req.interval).collect();
             d.set_item("time", (f64_bytes(py, &time), (n,)))?;
             d.set_item("z", (f64_bytes(py, &req.z), (req.z.len(),)))?;
-            for (k, (def, _, with_z)) in l::HISTORY_VARS.iter().enumerate() {
+            for (k, (def, _, dims)) in l::HISTORY_VARS.iter().enumerate() {
                 let a = l::history_array(h, k);
                 if a.is_empty() {
                     continue;
                 }
-                let shape: Vec<usize> = if *with_z {
-                    vec![n, req.z.len()]
-                } else {
-                    vec![n]
+                let shape: Vec<usize> = match dims {
+                    l::HistoryDims::Time => vec![n],
+                    l::HistoryDims::TimeZ => vec![n, req.z.len()],
+                    // the model's own order: (time, mode)
+                    l::HistoryDims::ModeTime => vec![n, h.modal.modes],
+                    l::HistoryDims::ShapePoint => vec![a.len()],
                 };
                 d.set_item(def.name, (f64_bytes(py, a), PyTuple::new(py, shape)?))?;
             }

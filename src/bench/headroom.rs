@@ -1,9 +1,10 @@
 //! The writer's headroom and the disk's: how many workers the one writer thread keeps up
 //! with on the history study (the points/s it absorbs, records computed and encoded
 //! beforehand, over the points/s one worker computes and encodes them, as in a run), and
-//! how many workers' results the disk can make durable.
+//! how many workers' results the disk can make durable; with the displacement on its grid,
+//! and in modal form (`modal_*`, issue 37).
 
-use super::cases::{curve_study_text, load_study, HISTORY_BLOCK};
+use super::cases::{curve_study_text, load_study, HISTORY_BLOCK, MODAL_HISTORY_BLOCK};
 use super::measure::err;
 use crate::model::outcome::HistoryRequest;
 use crate::results::PointRecord;
@@ -43,6 +44,29 @@ pub struct WriterHeadroom {
     /// disk / (file bytes per point × worker): the workers whose results the disk can make
     /// durable once each, the ceiling of any store on this disk.
     pub disk_headroom: f64,
+    /// The same history study with the displacement in modal form: the figures above.
+    pub modal_file_bytes_per_point: f64,
+    pub modal_worker_points_per_second: f64,
+    pub modal_worker_encode_share: f64,
+    pub modal_writer_points_per_second: f64,
+    pub modal_append_points_per_second: f64,
+    pub modal_finish_seconds: f64,
+    pub modal_headroom: f64,
+    pub modal_run_headroom: f64,
+    pub modal_disk_headroom: f64,
+}
+
+/// The writer's figures on one history study.
+struct WriterRun {
+    points: usize,
+    /// Points/s the writer absorbs (append and finish), and appends alone.
+    writer: f64,
+    append: f64,
+    finish: f64,
+    /// Points/s one worker computes and encodes, and the share spent encoding.
+    worker: f64,
+    encode_share: f64,
+    file_bytes_per_point: f64,
 }
 
 /// Seconds spent computing, encoding and appending (the worker's and the writer's sides
@@ -109,21 +133,14 @@ fn compute_encode_append(
     Ok(sides)
 }
 
-/// The history study with `omegas` swing speeds on one thread, then the disk probe.
-pub(super) fn bench_writer_headroom(
-    omegas: usize,
-    disk_mib: usize,
-    dir: &Path,
-) -> Result<WriterHeadroom, String> {
-    let study = load_study(
-        &curve_study_text("bench-writer", omegas, HISTORY_BLOCK),
-        "writer",
-    )?;
+/// The history study of `block` with `omegas` swing speeds on one thread, into `dir`.
+fn writer_run(name: &str, block: &str, omegas: usize, dir: &Path) -> Result<WriterRun, String> {
+    let study = load_study(&curve_study_text(name, omegas, block), name)?;
     let pool = run::build_pool(1).map_err(err("pool"))?;
     let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
     let history = study.history_request(bats.max_length());
     let info = study.info(bats.variants.clone(), history.clone());
-    let path = dir.join("writer-headroom.h5");
+    let path = dir.join(format!("{name}.h5"));
     let mut session =
         store::open(&path, &info, &store::StoreOptions::default()).map_err(err("open"))?;
     let s = compute_encode_append(&study, &bats, history.as_ref(), &mut session)?;
@@ -131,23 +148,51 @@ pub(super) fn bench_writer_headroom(
     session.finish().map_err(err("finish"))?;
     let finish = t0.elapsed().as_secs_f64();
     let n = study.plan.n_points() as f64;
-    let (writer, worker) = (n / (s.append + finish), n / (s.compute + s.encode));
     let file_bytes_per_point = std::fs::metadata(&path).map_err(err("stat"))?.len() as f64 / n;
     let _ = std::fs::remove_file(&path);
+    Ok(WriterRun {
+        points: study.plan.n_points(),
+        writer: n / (s.append + finish),
+        append: n / s.append,
+        finish,
+        worker: n / (s.compute + s.encode),
+        encode_share: s.encode / (s.compute + s.encode),
+        file_bytes_per_point,
+    })
+}
+
+/// The history study with `omegas` swing speeds on one thread, the displacement on its grid
+/// and in modal form; then the disk probe.
+pub(super) fn bench_writer_headroom(
+    omegas: usize,
+    disk_mib: usize,
+    dir: &Path,
+) -> Result<WriterHeadroom, String> {
+    let g = writer_run("bench-writer", HISTORY_BLOCK, omegas, dir)?;
+    let m = writer_run("bench-writer-modal", MODAL_HISTORY_BLOCK, omegas, dir)?;
     let disk = disk_write_rate(dir, disk_mib)?;
     Ok(WriterHeadroom {
-        points: study.plan.n_points(),
-        writer_points_per_second: writer,
-        append_points_per_second: n / s.append,
-        finish_seconds: finish,
-        run_headroom: n / s.append / worker,
-        worker_points_per_second: worker,
-        worker_encode_share: s.encode / (s.compute + s.encode),
-        headroom: writer / worker,
-        file_bytes_per_point,
+        points: g.points,
+        writer_points_per_second: g.writer,
+        append_points_per_second: g.append,
+        finish_seconds: g.finish,
+        run_headroom: g.append / g.worker,
+        worker_points_per_second: g.worker,
+        worker_encode_share: g.encode_share,
+        headroom: g.writer / g.worker,
+        file_bytes_per_point: g.file_bytes_per_point,
         disk_bytes_per_second: disk,
         disk_probe_mib: disk_mib,
-        disk_headroom: disk / (file_bytes_per_point * worker),
+        disk_headroom: disk / (g.file_bytes_per_point * g.worker),
+        modal_file_bytes_per_point: m.file_bytes_per_point,
+        modal_worker_points_per_second: m.worker,
+        modal_worker_encode_share: m.encode_share,
+        modal_writer_points_per_second: m.writer,
+        modal_append_points_per_second: m.append,
+        modal_finish_seconds: m.finish,
+        modal_headroom: m.writer / m.worker,
+        modal_run_headroom: m.append / m.worker,
+        modal_disk_headroom: disk / (m.file_bytes_per_point * m.worker),
     })
 }
 

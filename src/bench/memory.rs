@@ -40,6 +40,7 @@ pub struct MemoryBench {
     pub summary: RunMemory,
     pub history: RunMemory,
     pub history_scalar: RunMemory,
+    pub history_modal: RunMemory,
     /// The history study's histories, were they all held as f64 (what the store does not do).
     pub history_bytes_in_memory: u64,
     /// A summary-only study of many cheap points (rigid model) through the store.
@@ -87,6 +88,7 @@ pub(super) fn bench_memory(
         summary: (&peaks.summary).into(),
         history: (&peaks.history).into(),
         history_scalar: (&peaks.scalar).into(),
+        history_modal: (&peaks.modal).into(),
         history_bytes_in_memory: per_point * peaks.history.points as u64,
         large_summary: (&large_run).into(),
         build_memory: store::StoreOptions::default().build_memory,

@@ -42,7 +42,8 @@ mod store_run;
 
 pub use batted::Batted;
 pub use cases::{
-    base_spec, curve_positions, curve_study_text, load_study, HISTORY_BLOCK, SCALAR_HISTORY_BLOCK,
+    base_spec, curve_positions, curve_study_text, load_study, HISTORY_BLOCK, MODAL_HISTORY_BLOCK,
+    SCALAR_HISTORY_BLOCK,
 };
 pub use headroom::WriterHeadroom;
 pub use machine::Machine;

@@ -103,16 +103,17 @@ pub(super) fn print_scaling_head(out: &mut dyn Write, threads: &[usize]) {
     line(
         out,
         "summary: the summaries only; history: force, compression, ball velocity, rigid motion \
-         and the bat's displacement; scalar history: the same without displacement. The \
-         studies grow with the threads past a minimum. (%): parallel efficiency, points/s per \
-         thread against the first row"
+         and the bat's displacement on a 1 cm grid; modal history: the same with the \
+         displacement in modal form (the default); scalar history: the same without \
+         displacement. The studies grow with the threads past a minimum. (%): parallel \
+         efficiency, points/s per thread against the first row"
             .into(),
     );
     line(
         out,
         format!(
-            "{:>7}  {:>20}  {:>20}  {:>20}",
-            "threads", "summary", "history", "scalar history"
+            "{:>7}  {:>18}  {:>18}  {:>18}  {:>18}",
+            "threads", "summary", "history", "modal history", "scalar history"
         ),
     );
 }
@@ -122,10 +123,14 @@ pub(super) fn print_scaling_point(out: &mut dyn Write, p: &ScalingPoint) {
     line(
         out,
         format!(
-            "{:>7}  {:>20}  {:>20}  {:>20}",
+            "{:>7}  {:>18}  {:>18}  {:>18}  {:>18}",
             p.threads,
             cell(p.summary_points_per_second, p.summary_efficiency),
             cell(p.history_points_per_second, p.history_efficiency),
+            cell(
+                p.history_modal_points_per_second,
+                p.history_modal_efficiency
+            ),
             cell(
                 p.history_scalar_points_per_second,
                 p.history_scalar_efficiency
@@ -142,12 +147,17 @@ pub(super) fn print_scaling_end(out: &mut dyn Write, sc: &Scaling) {
         out,
         format!(
             "on {} threads: {} summary points, {} history points per run; a history point costs \
-             {:.1} summary points ({:.1} with scalar histories)",
+             {:.1} summary points ({:.1} in modal form, {:.1} with scalar histories): {:.2}, {:.2} \
+             and {:.2} of the summary study's points/s per core",
             sc.cores,
             sc.summary_points,
             sc.history_points,
             1.0 / sc.history_vs_summary_per_core,
-            1.0 / sc.history_scalar_vs_summary_per_core
+            1.0 / sc.history_modal_vs_summary_per_core,
+            1.0 / sc.history_scalar_vs_summary_per_core,
+            sc.history_vs_summary_per_core,
+            sc.history_modal_vs_summary_per_core,
+            sc.history_scalar_vs_summary_per_core
         ),
     );
     line(
@@ -164,55 +174,94 @@ pub(super) fn print_scaling_end(out: &mut dyn Write, sc: &Scaling) {
             sc.history_compute_points_per_second
         ),
     );
+    line(
+        out,
+        format!(
+            "modal history study on {} threads: {:.0} points/s stored ({:.1} MiB, {:.0} KB/point), \
+             {:.0} computed and not stored",
+            sc.cores,
+            sc.history_modal_points_per_second,
+            sc.history_modal_file_bytes as f64 / 1048576.0,
+            sc.history_modal_file_bytes as f64 / sc.history_points as f64 / 1e3,
+            sc.history_modal_compute_points_per_second
+        ),
+    );
 }
 
-/// The writer's and the disk's headroom, against the cores measured.
+/// The writer's and the disk's headroom, against the cores measured: the displacement on its
+/// grid, then in modal form.
 pub(super) fn print_headroom(out: &mut dyn Write, wh: &WriterHeadroom, cores: usize) {
     line(
         out,
         format!(
-            "\n== writer and disk: the history study ({} points)",
+            "\n== writer and disk: the history study ({} points), displacement on the grid / modal",
             wh.points
         ),
     );
-    line(
-        out,
-        format!(
-            "one worker computes and encodes {:.0} points/s ({:.0} % of it compressing); the \
-             one writer thread absorbs {:.0} points/s ({:.0} while the run computes, then {:.3} s \
-             to finish the file): it keeps up with {:.1} workers ({:.1} while the run computes)",
+    let forms = [
+        (
+            "grid ",
             wh.worker_points_per_second,
-            wh.worker_encode_share * 100.0,
+            wh.worker_encode_share,
             wh.writer_points_per_second,
             wh.append_points_per_second,
             wh.finish_seconds,
             wh.headroom,
-            wh.run_headroom
+            wh.run_headroom,
         ),
-    );
+        (
+            "modal",
+            wh.modal_worker_points_per_second,
+            wh.modal_worker_encode_share,
+            wh.modal_writer_points_per_second,
+            wh.modal_append_points_per_second,
+            wh.modal_finish_seconds,
+            wh.modal_headroom,
+            wh.modal_run_headroom,
+        ),
+    ];
+    for (form, worker, share, writer, append, finish, headroom, run) in forms {
+        line(
+            out,
+            format!(
+                "{form}: one worker computes and encodes {worker:.0} points/s ({:.0} % of it \
+                 compressing); the one writer thread absorbs {writer:.0} points/s ({append:.0} \
+                 while the run computes, then {finish:.3} s to finish the file): it keeps up with \
+                 {headroom:.1} workers ({run:.1} while the run computes)",
+                share * 100.0
+            ),
+        );
+    }
     line(
         out,
         format!(
             "the disk makes {:.0} MB/s durable (fdatasync of {} MiB); at {:.0} KB per history \
-             point, the output of {:.1} workers",
+             point on the grid, the output of {:.1} workers; at {:.0} KB in modal form, of {:.1}",
             wh.disk_bytes_per_second / 1e6,
             wh.disk_probe_mib,
             wh.file_bytes_per_point / 1e3,
-            wh.disk_headroom
+            wh.disk_headroom,
+            wh.modal_file_bytes_per_point / 1e3,
+            wh.modal_disk_headroom
         ),
     );
-    let bound = wh.headroom.min(wh.disk_headroom);
-    let verdict = if bound >= cores as f64 {
-        "the writer and the disk keep up with every thread"
-    } else if wh.disk_headroom < wh.headroom {
-        "the disk, not the cores, bounds full-history studies"
-    } else {
-        "the writer, not the cores, bounds full-history studies"
-    };
-    line(
-        out,
-        format!("on {cores} threads, {bound:.1} workers' worth of headroom: {verdict}"),
-    );
+    for (form, headroom, disk) in [
+        ("grid", wh.headroom, wh.disk_headroom),
+        ("modal", wh.modal_headroom, wh.modal_disk_headroom),
+    ] {
+        let bound = headroom.min(disk);
+        let verdict = if bound >= cores as f64 {
+            "the writer and the disk keep up with every thread"
+        } else if disk < headroom {
+            "the disk, not the cores, bounds full-history studies"
+        } else {
+            "the writer, not the cores, bounds full-history studies"
+        };
+        line(
+            out,
+            format!("{form}: on {cores} threads, {bound:.1} workers' worth of headroom: {verdict}"),
+        );
+    }
 }
 
 fn print_run_memory(out: &mut dyn Write, what: &str, r: &RunMemory) {
@@ -237,6 +286,7 @@ pub(super) fn print_memory(out: &mut dyn Write, mb: &MemoryBench) {
     print_run_memory(out, "summary study       ", &mb.summary);
     print_run_memory(out, "history study       ", &mb.history);
     print_run_memory(out, "scalar-history study", &mb.history_scalar);
+    print_run_memory(out, "modal-history study ", &mb.history_modal);
     print_run_memory(out, "large summary study ", &mb.large_summary);
     line(
         out,

@@ -1,9 +1,11 @@
-//! Points/s against threads: a summary-only study, a full-history study and a
-//! scalar-history study, each run through the driver and the real store at every thread
-//! count asked for; then, on the most threads, the history study with nothing stored and
-//! stored without compression.
+//! Points/s against threads: a summary-only study, a full-history study (the displacement on
+//! its grid, and in modal form) and a scalar-history study, each run through the driver and
+//! the real store at every thread count asked for; then, on the most threads, the history
+//! studies with nothing stored and the grid form stored without compression.
 
-use super::cases::{curve_study_text, load_study, Sizes, HISTORY_BLOCK, SCALAR_HISTORY_BLOCK};
+use super::cases::{
+    curve_study_text, load_study, Sizes, HISTORY_BLOCK, MODAL_HISTORY_BLOCK, SCALAR_HISTORY_BLOCK,
+};
 use super::measure::{err, median};
 use super::sinks::null_run;
 use super::store_run::{store_run, StoreRun};
@@ -19,6 +21,8 @@ pub struct ScalingPoint {
     pub summary_points_per_second: f64,
     pub history_points_per_second: f64,
     pub history_scalar_points_per_second: f64,
+    /// The history study with the displacement in modal form (`history` has it on the grid).
+    pub history_modal_points_per_second: f64,
     /// Points of each run's summary and history studies (they grow with the thread count).
     pub summary_points: usize,
     pub history_points: usize,
@@ -27,6 +31,7 @@ pub struct ScalingPoint {
     pub summary_efficiency: f64,
     pub history_efficiency: f64,
     pub history_scalar_efficiency: f64,
+    pub history_modal_efficiency: f64,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -60,6 +65,15 @@ pub struct Scaling {
     /// summary study's.
     pub history_scalar_points_per_second: f64,
     pub history_scalar_vs_summary_per_core: f64,
+    /// The history study with the displacement in modal form (issue 37) on every core: its
+    /// points/s, efficiency, points/s per core over the summary study's, file size, and the
+    /// points/s and ratio with its histories recorded but not stored.
+    pub history_modal_points_per_second: f64,
+    pub history_modal_efficiency: f64,
+    pub history_modal_vs_summary_per_core: f64,
+    pub history_modal_file_bytes: u64,
+    pub history_modal_compute_points_per_second: f64,
+    pub history_modal_vs_summary_ceiling: f64,
 }
 
 /// Peak memory of each study's run on the most threads.
@@ -67,6 +81,7 @@ pub(super) struct Peaks {
     pub(super) summary: StoreRun,
     pub(super) history: StoreRun,
     pub(super) scalar: StoreRun,
+    pub(super) modal: StoreRun,
 }
 
 /// 1, 2, 4, … below `cores`, and `cores` itself.
@@ -78,8 +93,8 @@ pub(super) fn thread_counts(cores: usize) -> Vec<usize> {
     t
 }
 
-/// The three studies at `threads`.
-fn studies(sz: &Sizes, threads: usize) -> Result<[Study; 3], String> {
+/// The four studies at `threads`: summary, history (grid), scalar history, modal history.
+fn studies(sz: &Sizes, threads: usize) -> Result<[Study; 4], String> {
     let s = Sizes::omegas(sz.summary_omegas, threads);
     let h = Sizes::omegas(sz.history_omegas, threads);
     Ok([
@@ -91,6 +106,10 @@ fn studies(sz: &Sizes, threads: usize) -> Result<[Study; 3], String> {
         load_study(
             &curve_study_text("bench-history-scalar", h, SCALAR_HISTORY_BLOCK),
             "history-scalar",
+        )?,
+        load_study(
+            &curve_study_text("bench-history-modal", h, MODAL_HISTORY_BLOCK),
+            "history-modal",
         )?,
     ])
 }
@@ -113,29 +132,32 @@ pub(super) fn rate(
     Ok((median(rates), last.ok_or("no run")?))
 }
 
-/// One thread count: the three studies' rates (efficiencies left at 1) and their last runs.
+/// One thread count: the four studies' rates (efficiencies left at 1) and their last runs.
 fn measure_point(
     sz: &Sizes,
     threads: usize,
     dir: &Path,
-) -> Result<(ScalingPoint, [StoreRun; 3]), String> {
-    let [summary, history, scalar] = studies(sz, threads)?;
+) -> Result<(ScalingPoint, [StoreRun; 4]), String> {
+    let [summary, history, scalar, modal] = studies(sz, threads)?;
     let pool = run::build_pool(threads).map_err(err("pool"))?;
     let (s, rs) = rate(&summary, "summary", dir, &pool, sz.repeats)?;
     let (h, rh) = rate(&history, "history", dir, &pool, sz.repeats)?;
     let (c, rc) = rate(&scalar, "history-scalar", dir, &pool, sz.repeats)?;
+    let (m, rm) = rate(&modal, "history-modal", dir, &pool, sz.repeats)?;
     let point = ScalingPoint {
         threads,
         summary_points_per_second: s,
         history_points_per_second: h,
         history_scalar_points_per_second: c,
+        history_modal_points_per_second: m,
         summary_points: summary.plan.n_points(),
         history_points: history.plan.n_points(),
         summary_efficiency: 1.0,
         history_efficiency: 1.0,
         history_scalar_efficiency: 1.0,
+        history_modal_efficiency: 1.0,
     };
-    Ok((point, [rs, rh, rc]))
+    Ok((point, [rs, rh, rc, rm]))
 }
 
 /// Efficiencies of `p` against the first point measured.
@@ -148,19 +170,37 @@ fn set_efficiency(p: &mut ScalingPoint, first: &ScalingPoint) {
         p.history_scalar_points_per_second,
         first.history_scalar_points_per_second,
     );
+    p.history_modal_efficiency = eff(
+        p.history_modal_points_per_second,
+        first.history_modal_points_per_second,
+    );
 }
 
-/// The history study on `threads` with nothing stored, and stored without compression:
-/// (compute-only points/s, uncompressed points/s, uncompressed file bytes).
-fn history_variants(sz: &Sizes, threads: usize, dir: &Path) -> Result<(f64, f64, u64), String> {
-    let [_, history, _] = studies(sz, threads)?;
-    let pool = run::build_pool(threads).map_err(err("pool"))?;
-    let bats = run::prepare_bats(&ModelSimulator, &history.plan, &pool);
-    let request = history.history_request(bats.max_length());
-    let walls = (0..sz.repeats.max(1))
-        .map(|_| null_run(&history, &bats, request.as_ref(), &pool).map(|(w, _)| w))
+/// What the history studies give on `threads` beyond their stored runs.
+struct Variants {
+    /// Points/s of the grid and the modal study with nothing stored.
+    compute: f64,
+    modal_compute: f64,
+    /// Points/s of the grid study stored without compression, and its file's bytes.
+    uncompressed: f64,
+    uncompressed_bytes: u64,
+}
+
+/// Points/s of `study` on `pool` with its histories recorded and not stored.
+fn compute_rate(study: &Study, pool: &rayon::ThreadPool, repeats: usize) -> Result<f64, String> {
+    let bats = run::prepare_bats(&ModelSimulator, &study.plan, pool);
+    let request = study.history_request(bats.max_length());
+    let walls = (0..repeats.max(1))
+        .map(|_| null_run(study, &bats, request.as_ref(), pool).map(|(w, _)| w))
         .collect::<Result<Vec<_>, _>>()?;
-    let compute = history.plan.n_points() as f64 / median(walls);
+    Ok(study.plan.n_points() as f64 / median(walls))
+}
+
+/// The history studies on `threads` with nothing stored, and the grid one stored without
+/// compression.
+fn history_variants(sz: &Sizes, threads: usize, dir: &Path) -> Result<Variants, String> {
+    let [_, history, _, modal] = studies(sz, threads)?;
+    let pool = run::build_pool(threads).map_err(err("pool"))?;
     let h = Sizes::omegas(sz.history_omegas, threads);
     let block = format!("{HISTORY_BLOCK}  compression: none\n");
     let uncompressed = load_study(
@@ -168,7 +208,12 @@ fn history_variants(sz: &Sizes, threads: usize, dir: &Path) -> Result<(f64, f64,
         "history-none",
     )?;
     let (rate, run) = rate(&uncompressed, "history-none", dir, &pool, sz.repeats)?;
-    Ok((compute, rate, run.file_bytes))
+    Ok(Variants {
+        compute: compute_rate(&history, &pool, sz.repeats)?,
+        modal_compute: compute_rate(&modal, &pool, sz.repeats)?,
+        uncompressed: rate,
+        uncompressed_bytes: run.file_bytes,
+    })
 }
 
 /// Every thread count in `threads` (ascending), `on_point` called as each is measured.
@@ -189,9 +234,9 @@ pub(super) fn bench_scaling(
         points.push(p);
         runs = Some(r);
     }
-    let [summary, history, scalar] = runs.ok_or("no thread count to measure")?;
+    let [summary, history, scalar, modal] = runs.ok_or("no thread count to measure")?;
     let last = points.last().ok_or("no thread count")?.clone();
-    let (compute, uncompressed, uncompressed_bytes) = history_variants(sz, last.threads, dir)?;
+    let v = history_variants(sz, last.threads, dir)?;
     let per_summary = |rate: f64| rate / last.summary_points_per_second;
     let scaling = Scaling {
         cores: last.threads,
@@ -200,19 +245,26 @@ pub(super) fn bench_scaling(
         summary_efficiency: last.summary_efficiency,
         history_efficiency: last.history_efficiency,
         history_vs_summary_per_core: per_summary(last.history_points_per_second),
-        history_compute_points_per_second: compute,
-        history_vs_summary_ceiling: per_summary(compute),
-        history_uncompressed_points_per_second: uncompressed,
-        history_uncompressed_file_bytes: uncompressed_bytes,
+        history_compute_points_per_second: v.compute,
+        history_vs_summary_ceiling: per_summary(v.compute),
+        history_uncompressed_points_per_second: v.uncompressed,
+        history_uncompressed_file_bytes: v.uncompressed_bytes,
         history_file_bytes: history.file_bytes,
         history_scalar_points_per_second: last.history_scalar_points_per_second,
         history_scalar_vs_summary_per_core: per_summary(last.history_scalar_points_per_second),
+        history_modal_points_per_second: last.history_modal_points_per_second,
+        history_modal_efficiency: last.history_modal_efficiency,
+        history_modal_vs_summary_per_core: per_summary(last.history_modal_points_per_second),
+        history_modal_file_bytes: modal.file_bytes,
+        history_modal_compute_points_per_second: v.modal_compute,
+        history_modal_vs_summary_ceiling: per_summary(v.modal_compute),
         points,
     };
     let peaks = Peaks {
         summary,
         history,
         scalar,
+        modal,
     };
     Ok((scaling, peaks))
 }

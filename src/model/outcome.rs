@@ -41,6 +41,24 @@ pub struct HistoryRequest {
     pub precision: HistoryPrecision,
     /// How the stored histories are compressed (`history.compression`).
     pub compression: HistoryCompression,
+    /// How the bat's displacement is recorded (`history.displacement`).
+    pub displacement: HistoryDisplacement,
+}
+
+/// How the bat's displacement is recorded and stored (`history.displacement`).
+#[derive(
+    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum HistoryDisplacement {
+    /// The modal integrator's own coordinates: per sample the coordinates of the modes it
+    /// steps and the force on the bat, per history the static shape of the other modes,
+    /// per bat the mode shapes (docs/layout.md). y(z, t) follows exactly, at any z, from
+    /// a quarter of the bytes of the grid. The modal integrator only.
+    #[default]
+    Modal,
+    /// y(z, t) on the `z` grid (`history.z_step`), computed while the collision runs.
+    Grid,
 }
 
 /// How stored histories are compressed.
@@ -89,6 +107,24 @@ pub struct History {
     pub rigid_rotation: Vec<f64>,
     /// Hoop mass displacement relative to the impact point, m.
     pub hoop_displacement: Vec<f64>,
+    /// The displacement's modal form (`HistoryDisplacement::Modal`; empty otherwise).
+    pub modal: ModalHistory,
+}
+
+/// The bat's displacement in modal form: y(z, t) = Σ_j φ_j(z) q_j(t) + s(z) p(t), with φ_j
+/// the bat's scaled mode shapes (`bat::shapes`), q_j the coordinates below, s the static
+/// shape and p the bat load.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ModalHistory {
+    /// Modes the collision stepped (the coordinates' columns).
+    pub modes: usize,
+    /// Scaled modal coordinates q_j, m, row-major [n_samples][modes].
+    pub coordinate: Vec<f64>,
+    /// The force on the bat p(t), N: the contact force, or the hoop spring's with a hoop.
+    pub bat_load: Vec<f64>,
+    /// Static displacement per unit bat load of the modes not stepped, m/N, at the bat's
+    /// shape points (`bat::shapes::shape_points`).
+    pub static_shape: Vec<f64>,
 }
 
 /// Where the collision's energy went, J (bat-CM frame; with a grip, the frame of the

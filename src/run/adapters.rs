@@ -2,13 +2,15 @@
 //! `Simulator`, and a results file (`store::Session`) as a `Sink`.
 
 use super::traits::{Encode, Simulator, Sink};
+use crate::model::bat::shapes;
 use crate::model::measures::metrics::bat_metrics_mapped;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
-use crate::results::PointRecord;
+use crate::results::{PointRecord, ShapeSource};
 use crate::store::{EncodedRecord, RecordEncoder, Session};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;
@@ -34,6 +36,19 @@ impl Simulator for ModelSimulator {
                 .map_err(|e| e.to_string())?;
         }
         Ok((properties, target))
+    }
+
+    fn shapes(&self, bat: &Arc<Target>) -> Option<ShapeSource> {
+        let b = bat.bat()?;
+        let target = Arc::clone(bat);
+        Some(ShapeSource {
+            z: shapes::shape_points(b),
+            modes: shapes::n_modes(b),
+            shapes: Arc::new(move |modes| match target.bat() {
+                Some(b) => shapes::scaled_shapes(b, modes),
+                None => Vec::new(),
+            }),
+        })
     }
 
     fn simulate(

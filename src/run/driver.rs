@@ -162,6 +162,7 @@ pub fn prepare_bats<S: Simulator>(
             label: b.label.clone(),
             spec_json: b.key.clone(),
             properties: props,
+            shapes: h.as_ref().ok().and_then(|bat| sim.shapes(bat)),
         });
         handles.push(h);
     }

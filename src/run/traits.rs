@@ -3,7 +3,8 @@
 
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
-use crate::results::PointRecord;
+use crate::results::{PointRecord, ShapeSource};
+use std::sync::Arc;
 
 /// Simulates collisions. Shared by all worker threads.
 pub trait Simulator: Sync {
@@ -16,6 +17,11 @@ pub trait Simulator: Sync {
         bat: &BatSpec,
         numerics: &NumericsSpec,
     ) -> Result<(BatProperties, Self::Bat), String>;
+    /// The bat's mode shapes, for the modal form of its displacement histories (None: it
+    /// has none to store).
+    fn shapes(&self, _bat: &Arc<Self::Bat>) -> Option<ShapeSource> {
+        None
+    }
     /// Simulate one collision with a prepared bat.
     fn simulate(
         &self,

@@ -1,6 +1,7 @@
 //! Points encoded as journal records on the worker that computed them: the summary, and
 //! each stored history variable converted to the stored precision, shuffled and deflated,
-//! exactly the chunk the results file will hold; then the checksum. The writer thread only
+//! exactly the chunk the results file will hold (the modal coordinates: one chunk per block
+//! of modes, as many as the point's modes need); then the checksum. The writer thread only
 //! appends the bytes (issue 22: serialising, checksumming and compressing histories on the
 //! one writer thread capped a history study at about 2 cores' worth of points).
 
@@ -8,7 +9,8 @@ use super::chunks;
 use super::error::StoreError;
 use super::header::history_vars;
 use super::journal;
-use super::layout;
+use super::layout::{self, HistoryDims};
+use super::modal::{coordinate_blocks, padded_points, ModalExtents};
 use crate::model::outcome::HistoryPrecision;
 use crate::results::{PointRecord, StudyInfo};
 use std::path::{Path, PathBuf};
@@ -29,11 +31,54 @@ pub struct EncodedRecord {
 /// What a study stores of a point's histories.
 #[derive(Debug)]
 struct StoredHistory {
-    /// (index into `layout::HISTORY_VARS`, samples expected), in the file's order.
-    vars: Vec<(usize, usize)>,
-    precision: HistoryPrecision,
+    /// (index into `layout::HISTORY_VARS`, its precision), in the file's order.
+    vars: Vec<(usize, HistoryPrecision)>,
+    n_samples: usize,
+    nz: usize,
+    modal: ModalExtents,
     /// Deflate level (0: no filters).
     level: u8,
+}
+
+/// One chunk's stored bytes: the values in `precision`, shuffled and deflated at `level`.
+fn chunk(values: &[f64], precision: HistoryPrecision, level: u8) -> Vec<u8> {
+    match precision {
+        HistoryPrecision::F64 => chunks::filtered_whole(values, level),
+        HistoryPrecision::F32 => {
+            let a: Vec<f32> = values.iter().map(|&x| x as f32).collect();
+            chunks::filtered_whole(&a, level)
+        }
+    }
+}
+
+impl StoredHistory {
+    /// The chunks of variable `k` of this point (`a`: its values), or why they do not fit:
+    /// one chunk, but a block of modes per chunk for the modal coordinates.
+    fn chunks_of(&self, k: usize, a: &[f64]) -> Result<Vec<Vec<f64>>, String> {
+        let (nt, ext) = (self.n_samples, &self.modal);
+        let fits = |want: usize| match a.len() == want {
+            true => Ok(vec![a.to_vec()]),
+            false => Err(format!("{} values, expected {want}", a.len())),
+        };
+        match layout::HISTORY_VARS[k].2 {
+            HistoryDims::Time => fits(nt),
+            HistoryDims::TimeZ => fits(nt * self.nz),
+            HistoryDims::ShapePoint if a.len() <= ext.points => {
+                Ok(vec![padded_points(a, ext.points)])
+            }
+            HistoryDims::ModeTime
+                if a.len() % nt.max(1) == 0 && a.len() / nt.max(1) <= ext.modes =>
+            {
+                Ok(coordinate_blocks(a, nt, ext.block))
+            }
+            HistoryDims::ShapePoint => Err(format!("{} values, at most {}", a.len(), ext.points)),
+            HistoryDims::ModeTime => Err(format!(
+                "{} values, not {nt} samples of at most {} modes",
+                a.len(),
+                ext.modes
+            )),
+        }
+    }
 }
 
 /// Turns finished points into journal records. Cheap to clone, shared by every worker.
@@ -57,12 +102,11 @@ impl RecordEncoder {
         let history = info.history.as_ref().map(|h| StoredHistory {
             vars: history_vars(h)
                 .into_iter()
-                .map(|k| {
-                    let with_z = layout::HISTORY_VARS[k].2;
-                    (k, h.n_samples * if with_z { h.z.len() } else { 1 })
-                })
+                .map(|k| (k, layout::history_precision(h, k)))
                 .collect(),
-            precision: h.precision,
+            n_samples: h.n_samples,
+            nz: h.z.len(),
+            modal: ModalExtents::of(info),
             level: layout::history_deflate_level(h),
         });
         RecordEncoder {
@@ -107,26 +151,17 @@ impl RecordEncoder {
         journal::begin_frame(&mut framed);
         journal::encode_summary(&rec, stored.is_some(), &mut framed);
         if let Some((h, st)) = stored {
-            for &(k, want) in &st.vars {
-                let a = layout::history_array(h, k);
-                if a.len() != want {
-                    return Err(self.reject(format!(
-                        "point {}: history {} has {} samples, expected {}",
+            for &(k, precision) in &st.vars {
+                let values = st.chunks_of(k, layout::history_array(h, k)).map_err(|e| {
+                    self.reject(format!(
+                        "point {}: history {} has {e}",
                         rec.index,
-                        layout::HISTORY_VARS[k].0.name,
-                        a.len(),
-                        want
-                    )));
+                        layout::HISTORY_VARS[k].0.name
+                    ))
+                })?;
+                for v in values {
+                    journal::put_history_chunk(&chunk(&v, precision, st.level), &mut framed);
                 }
-                let level = st.level;
-                let bytes = match st.precision {
-                    HistoryPrecision::F64 => chunks::filtered_whole(a, level),
-                    HistoryPrecision::F32 => {
-                        let a: Vec<f32> = a.iter().map(|&x| x as f32).collect();
-                        chunks::filtered_whole(&a, level)
-                    }
-                };
-                journal::put_history_chunk(&bytes, &mut framed);
             }
         }
         journal::end_frame(&mut framed);

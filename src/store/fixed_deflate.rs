@@ -37,6 +37,39 @@ pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
     out.extend_from_slice(block);
 }
 
+/// A run of `len` (≥ 1) zero bytes as a non-final block with the fixed codes (a literal,
+/// then copies at distance 1), then an empty non-final stored block, which brings the
+/// stream back to a byte boundary: about 2 bytes per 2 KB of zeros, and 5 more. `out` must
+/// end on a byte boundary (after a stored block or the zlib header). Issue 37: the zero rows
+/// that pad a block of modal coordinates end each of its byte planes.
+pub fn push_zero_run(out: &mut Vec<u8>, len: usize) {
+    let mut w = BitWriter {
+        out: std::mem::take(out),
+        acc: 0,
+        bits: 0,
+    };
+    w.put(0, 1); // BFINAL 0
+    w.put(1, 2); // BTYPE 01: fixed Huffman codes
+    put_symbol(&mut w, 0);
+    let mut left = len.saturating_sub(1);
+    while left >= MIN_MATCH {
+        // never leave 1 or 2 bytes, which no copy can take
+        let l = match left > MAX_MATCH && left - MAX_MATCH < MIN_MATCH {
+            true => left - MIN_MATCH,
+            false => left.min(MAX_MATCH),
+        };
+        put_match(&mut w, l, 1);
+        left -= l;
+    }
+    for _ in 0..left {
+        put_symbol(&mut w, 0);
+    }
+    put_symbol(&mut w, 256); // end of block
+    w.put(0, 3); // a stored block, not final: padded to the byte boundary by `finish`
+    *out = w.finish();
+    out.extend_from_slice(&[0, 0, 0xFF, 0xFF]); // LEN 0, NLEN
+}
+
 /// RFC 1951 §3.2.5: base length of length codes 257..=285 and their extra bits.
 const LENGTH_BASE: [u16; 29] = [
     3, 4, 5, 6, 7, 8, 9, 10, 11, 13, 15, 17, 19, 23, 27, 31, 35, 43, 51, 59, 67, 83, 99, 115, 131,
@@ -304,6 +337,33 @@ mod tests {
                 }
             }
             roundtrip(&v);
+        }
+    }
+
+    // A zero run between stored blocks, in a stream libdeflate reads back: every length
+    // around the copies' limits, after a header and between noise.
+    #[test]
+    fn zero_runs_between_stored_blocks_inflate_back() {
+        let mut x = 7u64;
+        for len in [
+            1usize, 2, 3, 4, 257, 258, 259, 260, 261, 516, 517, 518, 5000,
+        ] {
+            let noise: Vec<u8> = (0..100).map(|_| xorshift::next(&mut x) as u8).collect();
+            let mut stream = ZLIB_HEADER.to_vec();
+            push_zero_run(&mut stream, len);
+            push_stored_block(&mut stream, &noise, false);
+            push_zero_run(&mut stream, len);
+            push_stored_block(&mut stream, &noise, true);
+            let mut whole = vec![0u8; len];
+            whole.extend_from_slice(&noise);
+            whole.extend(std::iter::repeat_n(0u8, len));
+            whole.extend_from_slice(&noise);
+            stream.extend_from_slice(&libdeflater::adler32(&whole).to_be_bytes());
+            assert_eq!(inflate(&stream, whole.len()), whole, "{len}");
+            assert!(
+                stream.len() < 2 * 100 + 2 * 12 + 16 + 2 * len / 100,
+                "{len}"
+            );
         }
     }
 

@@ -15,7 +15,7 @@ pub const HEADER_ATTR: &str = "batstudy_store_header";
 /// Indices into [`HISTORY_VARS`] of the variables a request stores.
 pub fn history_vars(h: &HistoryRequest) -> Vec<usize> {
     (0..HISTORY_VARS.len())
-        .filter(|&k| h.fields.contains(&HISTORY_VARS[k].1))
+        .filter(|&k| layout::history_stored(h, k))
         .collect()
 }
 

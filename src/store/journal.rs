@@ -6,7 +6,9 @@
 //! - then records, each: u32 magic `REC2`, u32 payload length, u32 CRC-32 of the payload, the
 //!   payload: the point's summary ([`encode_summary`]) followed, when it has histories, by
 //!   each stored history variable's chunk exactly as the results file stores it (u32 length,
-//!   then the shuffled and deflated bytes; `store::encode` makes them on the workers).
+//!   then the shuffled and deflated bytes; `store::encode` makes them on the workers); the
+//!   modal coordinates are as many chunks as the point has blocks of modes (the record's
+//!   chunks beyond one per variable).
 //!
 //! Records are only appended. A run killed mid-write leaves at worst a torn last record; a
 //! record whose magic, length or checksum is wrong ends the journal (it and everything after it
@@ -99,19 +101,19 @@ pub fn put_history_chunk(bytes: &[u8], out: &mut Vec<u8>) {
     out.extend_from_slice(bytes);
 }
 
-/// The history chunks of a payload (after its summary part), `n` of them, or `None` if they
-/// do not add up to the payload.
-pub fn history_chunks(payload: &[u8], n: usize) -> Option<Vec<&[u8]>> {
+/// Every history chunk of a payload (after its summary part), or `None` if they do not add
+/// up to the payload.
+pub fn history_chunks(payload: &[u8]) -> Option<Vec<&[u8]>> {
     let mut c = Cursor {
         b: payload,
         p: OK_SUMMARY_LEN,
     };
-    let mut out = Vec::with_capacity(n);
-    for _ in 0..n {
+    let mut out = Vec::new();
+    while c.p < payload.len() {
         let len = c.u32()? as usize;
         out.push(c.take(len)?);
     }
-    (c.p == payload.len()).then_some(out)
+    Some(out)
 }
 
 struct Cursor<'a> {

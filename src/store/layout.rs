@@ -1,7 +1,10 @@
 //! The layout's names, units and long names, in one place (see docs/layout.md).
 //! Renaming anything here is a layout change: bump [`LAYOUT_VERSION`].
 
-use crate::model::outcome::{History, HistoryCompression, HistoryField, HistoryRequest, Outcome};
+use crate::model::outcome::{
+    History, HistoryCompression, HistoryDisplacement, HistoryField, HistoryPrecision,
+    HistoryRequest, Outcome,
+};
 
 /// Version of the file layout documented in docs/layout.md.
 pub const LAYOUT_VERSION: u32 = 4;
@@ -460,18 +463,33 @@ pub const SWEET_AT_EDGE: VarDef = v(
 pub const TIME: VarDef = v("time", "s", "time", "time since first contact");
 pub const HIST_Z: VarDef = v("z", "m", "z", "position along the bat from the knob");
 
-/// The history variables: public name, units, long name, the field that requests it,
-/// whether it has a `z` dim.
-pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
+/// The dims a history variable has after the study's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HistoryDims {
+    /// (time)
+    Time,
+    /// (time, z): the grid form of the displacement
+    TimeZ,
+    /// (bat_mode, time): the modal coordinates, mode-major so that the zero rows that pad a
+    /// point's last block of modes are one run per byte plane (`store::chunks`)
+    ModeTime,
+    /// (shape_point): one value per shape point of the bat
+    ShapePoint,
+}
+
+/// The history variables: public name, units, long name, the field that requests it, its
+/// dims after the study's. `displacement` is the grid form; the last three are the modal
+/// form of the same field (`history.displacement`, [`history_stored`]).
+pub const HISTORY_VARS: [(VarDef, HistoryField, HistoryDims); 10] = [
     (
         v("force", "N", "force", "contact force between ball and bat"),
         HistoryField::Force,
-        false,
+        HistoryDims::Time,
     ),
     (
         v("compression", "m", "compression", "ball compression"),
         HistoryField::Compression,
-        false,
+        HistoryDims::Time,
     ),
     (
         v(
@@ -481,7 +499,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
             "ball velocity, positive toward the bat, bat-CM frame",
         ),
         HistoryField::BallVelocity,
-        false,
+        HistoryDims::Time,
     ),
     (
         v(
@@ -491,7 +509,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
             "bat transverse displacement",
         ),
         HistoryField::Displacement,
-        true,
+        HistoryDims::TimeZ,
     ),
     (
         v(
@@ -501,7 +519,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
             "rigid translation of the bat's centre of mass",
         ),
         HistoryField::RigidMotion,
-        false,
+        HistoryDims::Time,
     ),
     (
         v(
@@ -511,7 +529,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
             "rigid rotation of the bat about its centre of mass",
         ),
         HistoryField::RigidMotion,
-        false,
+        HistoryDims::Time,
     ),
     (
         v(
@@ -521,9 +539,75 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, bool); 7] = [
             "hoop mass displacement relative to the impact point",
         ),
         HistoryField::HoopDisplacement,
-        false,
+        HistoryDims::Time,
+    ),
+    (
+        v(
+            "modal_coordinate",
+            "m",
+            "modal coordinate",
+            "coordinate of the bat's mode, scaled so that its shape (bat/mode_shape) is dimensionless; 0 for the modes the collision does not step",
+        ),
+        HistoryField::Displacement,
+        HistoryDims::ModeTime,
+    ),
+    (
+        v(
+            "bat_load",
+            "N",
+            "bat load",
+            "force on the bat: the contact force, or the hoop spring's force with a hoop mode",
+        ),
+        HistoryField::Displacement,
+        HistoryDims::Time,
+    ),
+    (
+        v(
+            "static_shape",
+            "m/N",
+            "static shape",
+            "static displacement per unit bat load of the modes the collision does not step, at the bat's shape points",
+        ),
+        HistoryField::Displacement,
+        HistoryDims::ShapePoint,
     ),
 ];
+
+/// Index of `modal_coordinate` in [`HISTORY_VARS`].
+pub const MODAL_COORDINATE: usize = 7;
+
+/// Whether history variable `k` belongs to the displacement's modal form.
+pub fn is_modal(k: usize) -> bool {
+    k >= MODAL_COORDINATE
+}
+
+/// Whether a request stores history variable `k`: its field is requested, and a
+/// displacement variable is of the requested form.
+pub fn history_stored(h: &HistoryRequest, k: usize) -> bool {
+    let field = HISTORY_VARS[k].1;
+    let form_ok = match field {
+        HistoryField::Displacement => is_modal(k) == (h.displacement == HistoryDisplacement::Modal),
+        _ => true,
+    };
+    h.fields.contains(&field) && form_ok
+}
+
+/// The precision variable `k` is stored in: the request's, but f64 for the modal form. The
+/// modal sum cancels (far from the impact and near a zero of y, the modes' terms are much
+/// larger than their sum), so coordinates in f32 would give y to f32 rounding of each
+/// history's largest displacement only; in f64 every value equals the grid form's to f32
+/// rounding (issue 37, docs/layout.md).
+pub fn history_precision(h: &HistoryRequest, k: usize) -> HistoryPrecision {
+    match is_modal(k) {
+        true => HistoryPrecision::F64,
+        false => h.precision,
+    }
+}
+
+/// Modes per chunk of `modal_coordinate` (and of `bat/mode_shape`): most collisions step
+/// 12 to 34 modes, so one chunk holds a history's coordinates; the zero rows that pad it
+/// cost a few bytes (`store::chunks`), or nothing at all beyond the modes a collision steps.
+pub const MODE_BLOCK: usize = 32;
 
 /// The samples of history variable `k` (index into [`HISTORY_VARS`]).
 pub fn history_array(h: &History, k: usize) -> &Vec<f64> {
@@ -534,7 +618,10 @@ pub fn history_array(h: &History, k: usize) -> &Vec<f64> {
         3 => &h.displacement,
         4 => &h.rigid_translation,
         5 => &h.rigid_rotation,
-        _ => &h.hoop_displacement,
+        6 => &h.hoop_displacement,
+        7 => &h.modal.coordinate,
+        8 => &h.modal.bat_load,
+        _ => &h.modal.static_shape,
     }
 }
 
@@ -547,9 +634,38 @@ pub fn history_array_mut(h: &mut History, k: usize) -> &mut Vec<f64> {
         3 => &mut h.displacement,
         4 => &mut h.rigid_translation,
         5 => &mut h.rigid_rotation,
-        _ => &mut h.hoop_displacement,
+        6 => &mut h.hoop_displacement,
+        7 => &mut h.modal.coordinate,
+        8 => &mut h.modal.bat_load,
+        _ => &mut h.modal.static_shape,
     }
 }
+
+/// The modal form's dims: the bat's modes, and its shape points.
+pub const BAT_MODE_DIM: VarDef = v(
+    "bat_mode",
+    "1",
+    "bat mode",
+    "mode of the bat as the collision sees it (its grip and ends, rigid modes included), lowest first, from 0",
+);
+pub const SHAPE_POINT_DIM: VarDef = v(
+    "shape_point",
+    "1",
+    "shape point",
+    "shape point of the bat: its knob end, every node of its beam, its barrel end",
+);
+pub const BAT_SHAPE_Z: VarDef = v(
+    "shape_z",
+    "m",
+    "shape point z",
+    "position of the shape point, from the knob",
+);
+pub const BAT_MODE_SHAPE: VarDef = v(
+    "mode_shape",
+    "1",
+    "mode shape",
+    "shape of the bat's mode at the shape points, scaled to be dimensionless (mass-normalised shape times the square root of the bat's mass); 0 for modes no stored history of the bat steps",
+);
 
 pub const BAT_DIM: VarDef = v("bat", "", "bat", "bat variant label");
 pub const MODE_DIM: VarDef = v(

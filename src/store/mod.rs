@@ -12,7 +12,7 @@
 //! Modules, from the bottom up: [`layout`] (names, units), [`error`], [`header`] (what
 //! identifies a study's journal and file), [`journal`] (the append-only record file),
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
-//! parallel), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
+//! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
 //! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
 //! [`session`] (an open output), [`merge`](mod@merge) (shards → one file), [`lock`] (one
 //! process per output).
@@ -29,6 +29,7 @@ pub mod journal;
 pub mod layout;
 pub mod lock;
 pub mod merge;
+pub mod modal;
 pub mod options;
 pub mod paths;
 pub mod placer;

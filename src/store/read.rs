@@ -5,6 +5,7 @@ use super::dimscale::block;
 use super::error::{H5Ctx, StoreError};
 use super::header::{JournalHeader, HEADER_ATTR};
 use super::layout::{self as l, N_SUMMARY_FLOATS};
+use super::modal;
 use crate::model::outcome::History;
 use crate::pointset::PointSet;
 use crate::results::PointRecord;
@@ -330,9 +331,10 @@ fn history_arrays(
     path: &Path,
     header: &JournalHeader,
 ) -> Result<Option<Vec<HistoryArray>>, StoreError> {
-    let Some((names, nt, nz)) = &header.history else {
+    let Some((names, _, _)) = &header.history else {
         return Ok(None);
     };
+    let rank = header.dims.len();
     let hg = f.group(l::GROUP_HISTORY).ctx(path, "open group history")?;
     let mut v = Vec::new();
     for name in names {
@@ -343,10 +345,7 @@ fn history_arrays(
         let ds = hg
             .dataset(name)
             .ctx(path, &format!("open history/{name}"))?;
-        let tail = match l::HISTORY_VARS[k].2 {
-            true => vec![*nt, *nz],
-            false => vec![*nt],
-        };
+        let tail = ds.shape().get(rank..).unwrap_or_default().to_vec();
         v.push((k, ds, tail));
     }
     Ok(Some(v))
@@ -366,7 +365,16 @@ fn read_history(
             start.push(0);
             count.push(t);
         }
-        *l::history_array_mut(&mut h, *k) = read_slab::<f64>(ds, &start, &count, path)?;
+        let values = read_slab::<f64>(ds, &start, &count, path)?;
+        *l::history_array_mut(&mut h, *k) = match *k == l::MODAL_COORDINATE {
+            // stored mode-major (bat_mode, time): back to the model's [time][mode]
+            true => {
+                let nt = tail.last().copied().unwrap_or(1);
+                h.modal.modes = tail.first().copied().unwrap_or(0);
+                modal::coordinates_from_mode_major(&values, nt)
+            }
+            false => values,
+        };
     }
     Ok(h)
 }

@@ -364,7 +364,7 @@ impl Session {
             return Ok(());
         };
         struct IntoFile<'a> {
-            skeleton: &'a build::Skeleton,
+            skeleton: &'a mut build::Skeleton,
             info: &'a StudyInfo,
         }
         impl Place for IntoFile<'_> {
@@ -376,7 +376,7 @@ impl Session {
         let mut file = IntoFile {
             skeleton: self
                 .skeleton
-                .as_ref()
+                .as_mut()
                 .expect("prepared with the first record"),
             info: &self.info,
         };

@@ -565,6 +565,7 @@ fn check_every_point(
             && plan.records_history(&spec)
         {
             histories += 1;
+            check_displacement_form(cx, file, plan, flat, &spec)?;
         }
         unused.add(&plan.value_at(&m));
     }
@@ -572,6 +573,38 @@ fn check_every_point(
         plan.history_count = Some(histories);
     }
     Ok(())
+}
+
+/// The displacement's modal form is the modal integrator's state (issue 37): a point that
+/// records it with the Verlet integrator is refused, naming the point.
+fn check_displacement_form(
+    cx: &Ctx,
+    file: &StudyFile,
+    plan: &Plan,
+    flat: usize,
+    spec: &crate::model::spec::CollisionSpec,
+) -> Result<(), StudyError> {
+    use crate::model::outcome::{HistoryDisplacement, HistoryField};
+    let Some(h) = &file.history else {
+        return Ok(());
+    };
+    if h.displacement != HistoryDisplacement::Modal
+        || !h.fields.contains(&HistoryField::Displacement)
+        || spec.numerics.integrator != crate::model::spec::Integrator::Verlet
+    {
+        return Ok(());
+    }
+    Err(cx
+        .err(
+            &keys(&["history"]),
+            format!(
+                "point {} records the displacement in modal form with the Verlet integrator, which has no modes",
+                plan.describe(flat)
+            ),
+        )
+        .field("history.displacement")
+        .value("modal")
+        .allowed("grid, for a study with the Verlet integrator (`history.displacement: grid`)"))
 }
 
 /// A field set where no point uses it is an error (it would silently do nothing).

@@ -28,6 +28,7 @@ pub(super) const HISTORY_KEYS: &[&str] = &[
     "duration",
     "precision",
     "compression",
+    "displacement",
     "z_step",
     "only",
 ];

@@ -1,7 +1,9 @@
 //! The study file as written: serde + schemars types. `batstudy schema` prints the JSON
 //! Schema generated from these types (committed as `schemas/study.schema.json`).
 
-use crate::model::outcome::{HistoryCompression, HistoryField, HistoryPrecision};
+use crate::model::outcome::{
+    HistoryCompression, HistoryDisplacement, HistoryField, HistoryPrecision,
+};
 use crate::model::spec::{CollisionSpec, ModelKind};
 use indexmap::IndexMap;
 use schemars::{JsonSchema, Schema, SchemaGenerator};
@@ -392,6 +394,13 @@ pub struct HistorySpec {
     /// when the disk keeps up, i.e. with few cores per disk). The data are the same.
     #[serde(default)]
     pub compression: HistoryCompression,
+    /// How the bat's `displacement` is stored: `modal` (default: the modal integrator's
+    /// coordinates per sample, the force on the bat and a static shape per history, the
+    /// mode shapes once per bat; y(z, t) follows exactly at any z, from about a quarter of
+    /// the bytes, docs/layout.md) or `grid` (y(z, t) on the `z_step` grid, computed while
+    /// the collision runs). The Verlet integrator records `grid` only.
+    #[serde(default)]
+    pub displacement: HistoryDisplacement,
     /// Spacing in m of the z grid on which `displacement` is sampled (from the knob).
     /// Default 0.01.
     #[serde(default = "default_z_step")]
@@ -430,6 +439,7 @@ impl HistorySpec {
             n_samples: self.n_samples(),
             precision: self.precision,
             compression: self.compression,
+            displacement: self.displacement,
             z: if self.fields.contains(&HistoryField::Displacement) {
                 self.z(max_length)
             } else {

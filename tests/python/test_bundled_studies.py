@@ -5,7 +5,12 @@ The bundled studies also keep what the figure scripts need, beyond what the layo
 of any study (docs/layout.md, "/summary"): named `swing_omega` and `impact_z` dims (a fixed
 swing is a one-value grid axis) and a `/history` group with `force` and `displacement`
 (several studies once wrote no /history and no swing_omega dim). Needs BATSTUDY_BIN (set by
-scripts/test.sh); skipped without it."""
+scripts/test.sh); skipped without it.
+
+Issue 37: the bundled studies store the displacement in modal form (the default); each is
+run again with `history.displacement: grid`, and the displacement `batstudy.open` computes
+from the modal form equals the grid's, value by value, to float32 rounding (at most one ulp
+of the grid's f32 value apart; NaN at the same places)."""
 import os
 import subprocess
 import sys
@@ -16,6 +21,9 @@ import pytest
 xr = pytest.importorskip("xarray")
 
 from conftest import assert_layout_ok  # noqa: E402
+
+np = pytest.importorskip("numpy")
+import batstudy  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = os.environ.get("BATSTUDY_BIN")
@@ -46,4 +54,38 @@ def test_bundled_study_has_the_public_layout(study, tmp_path):
         swept = {"impact_offset"} if "batter:" in study.read_text() else {"swing_omega", "impact_z"}
         assert swept <= set(s.exit_speed.dims), s.exit_speed.dims
     with xr.open_dataset(out, engine="h5netcdf", group="history") as h:
-        assert {"force", "displacement"} <= set(h.data_vars), list(h.data_vars)
+        modal = {"modal_coordinate", "bat_load", "static_shape"}
+        assert {"force"} | modal <= set(h.data_vars), list(h.data_vars)
+        assert "displacement" not in h.data_vars, "the modal form is the default"
+    grid = tmp_path / f"{study.stem}-grid.yaml"
+    text = study.read_text()
+    assert "\nhistory:\n" in text
+    grid.write_text(text.replace("\nhistory:\n", "\nhistory:\n  displacement: grid\n"))
+    out_grid = tmp_path / f"{study.stem}-grid.h5"
+    r = subprocess.run([BIN, "run", str(grid), "-o", str(out_grid), "--jobs", "2", "--quiet"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert_layout_ok(out_grid)
+    assert_same_displacement(out, out_grid)
+    with pytest.raises(ValueError, match="modal form"):
+        batstudy.open(out_grid, z=[0.5])
+
+
+def assert_same_displacement(modal, grid):
+    """The displacement computed from the modal form equals the grid form's (f32) value by
+    value to f32 rounding: within one ulp of the grid's value, NaN at the same places."""
+    hm = batstudy.open(modal)["history"].to_dataset()
+    hg = batstudy.open(grid)["history"].to_dataset()
+    assert hg.displacement.dtype == np.float32
+    assert hm.sizes["history"] == hg.sizes["history"] > 0
+    for name in ("impact_z", "swing_omega", "time", "z"):
+        np.testing.assert_array_equal(hm[name].values, hg[name].values)
+    y, g = hm.displacement.values, hg.displacement.values
+    assert y.shape == g.shape
+    np.testing.assert_array_equal(np.isfinite(y), np.isfinite(g))
+    ok = np.isfinite(g)
+    assert ok.any()
+    y32, g32 = y[ok].astype(np.float32), g[ok]
+    off = np.abs(y32.astype(np.float64) - g32) > np.spacing(np.abs(g32)).astype(np.float64)
+    assert not off.any(), (f"{off.sum()} of {off.size} values more than one ulp apart, e.g. "
+                           f"{y[ok][off][:3]} against {g32[off][:3]}")

@@ -14,6 +14,9 @@ xr = pytest.importorskip("xarray")
 
 from conftest import assert_layout_ok  # noqa: E402
 
+import batstudy  # noqa: E402
+from batstudy._open import history_grid_index  # noqa: E402
+
 SMOKE = os.environ.get("SMOKE_H5")
 pytestmark = pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
 
@@ -45,7 +48,11 @@ def test_xarray_dims_coordinates_and_units():
     base = s.exit_speed.sel(model="wave", swing_omega=0, case=0)
     assert base.sizes == {"impact_z": 4}
     h = open_group("history")
-    assert {"time", "z"} <= set(h.displacement.dims)
+    # the displacement in modal form (the default): batstudy.open computes y(z, t) from it
+    assert h.modal_coordinate.dims[-2:] == ("bat_mode", "time")
+    assert h.static_shape.dims[-1] == "shape_point" and "z" in h.coords
+    d = batstudy.open(SMOKE)["history"]["displacement"]
+    assert d.dims == ("history", "time", "z") and np.isfinite(d.isel(history=0).values).any()
 
 
 def test_rigid_points_match_brody_closed_form():
@@ -79,3 +86,31 @@ def test_histories_only_where_asked():
     assert not bool(recorded.sel(model="rigid").any())
     assert not bool(recorded.sel(model="wave", impact_z=0.5).any())
     assert not bool(recorded.sel(model="wave", swing_omega=-30).any())
+
+
+def test_displacement_at_any_z_is_the_documented_reconstruction():
+    """open(path, z=...) computes the modal form's displacement at any positions: the two
+    lines of docs/layout.md (h5py and np.interp between the bat's shape points), NaN beyond
+    the bat; and at the study's grid by default."""
+    zq = np.array([0.0, 0.0013, 0.1, 0.4567, 0.6, 0.83, 0.84, 0.95, 1.2])
+    tree = batstudy.open(SMOKE, z=zq)
+    h = tree["history"].to_dataset()
+    np.testing.assert_array_equal(h.z.values, zq)
+    index = history_grid_index(tree)  # each row's position along the summary's dims
+    dims = list(tree["summary"]["status"].dims)
+    with h5py.File(SMOKE, "r") as f:
+        hg, bat = f["history"], f["bat"]
+        for row in range(0, h.sizes["history"], 5):
+            i = tuple(int(index[d][row]) for d in dims)
+            b = f["summary/bat_index"][i]
+            k = np.isfinite(bat["shape_z"][b])
+            y = hg["modal_coordinate"][i].T @ bat["mode_shape"][b][:, k] + np.outer(hg["bat_load"][i], hg["static_shape"][i][k])
+            want = np.array([np.interp(zq, bat["shape_z"][b][k], r, left=np.nan, right=np.nan) for r in y])
+            got = h.displacement.isel(history=row).values
+            np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-15)
+            assert np.isnan(got[:, zq > bat["length"][b]]).all()
+    default = batstudy.open(SMOKE)["history"].to_dataset()
+    again = batstudy.open(SMOKE, z=default.z.values)["history"].to_dataset()
+    np.testing.assert_array_equal(default.displacement.isel(history=0).values,
+                                  again.displacement.isel(history=0).values)
+

@@ -1,6 +1,7 @@
 //! The bat: outer profile R(z) (`profile`), resolved cross-sections and material
 //! (`section`), the lumped beam (`beam`), its modes (`modal`, solved by `band_eigen`), all of it prepared once per
-//! distinct bat (`prepared`), and the motion of a bat state (`motion`).
+//! distinct bat (`prepared`), the motion of a bat state (`motion`), and the mode shapes at the
+//! bat's shape points for the modal form of its histories (`shapes`).
 
 pub mod band_eigen;
 pub mod beam;
@@ -9,5 +10,6 @@ pub mod motion;
 pub mod prepared;
 pub mod profile;
 pub mod section;
+pub mod shapes;
 
 pub use prepared::*;

@@ -35,6 +35,8 @@ pub struct PreparedBat {
     /// the integrator).
     pub(crate) z_cm: f64,
     pub(crate) inertia_cm: f64,
+    /// The lumped beam's mass (`Beam::total_mass`), kg: summed once, not per history sample.
+    pub(crate) total_mass: f64,
     /// Modal damping ratio of the flexible modes (0: undamped).
     pub(crate) damping_ratio: f64,
     /// Grip damper, N·s/m (0: none).
@@ -100,6 +102,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
     let roll_inertia = geometry.integrate(0.0, geometry.length, |z| {
         2.0 * geometry.rotary_inertia_per_length(z)
     });
+    let total_mass = beam.total_mass();
     Ok(PreparedBat {
         roll_inertia,
         damping_ratio: geometry.damping_ratio,
@@ -111,6 +114,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         angular_weight,
         z_cm,
         inertia_cm,
+        total_mass,
         properties,
     })
 }

@@ -2,7 +2,7 @@
 //! by linear interpolation between the states at the ends of each step.
 
 use crate::model::error::ModelError;
-use crate::model::outcome::{History, HistoryField, HistoryRequest};
+use crate::model::outcome::{History, HistoryDisplacement, HistoryField, HistoryRequest};
 
 /// The recordable quantities at one instant.
 #[derive(Debug, Clone, Default)]
@@ -19,7 +19,7 @@ pub(crate) struct Sample {
     /// Or the modal coordinates and the force on the bat, from which the recorder's
     /// [`Projector`] computes the displacement of each emitted sample only: half the
     /// states, and no interpolation of every z (issue 22: the displacement was a fifth of
-    /// a history point's time).
+    /// a history point's time); or which it records as they are (the modal form, issue 37).
     pub modal: Vec<f64>,
     pub modal_force: f64,
 }
@@ -36,7 +36,15 @@ pub(crate) struct Recorder<'r> {
     history: History,
     pub wants_displacement: bool,
     pub wants_rigid: bool,
+    /// Samples carry modal coordinates ([`Sample::modal`]).
+    pub wants_modal: bool,
     projector: Option<Projector>,
+    /// The modal form's scale: coordinates are recorded divided by it (`bat::shapes`).
+    modal_scale: f64,
+    /// The buffer of the last state dropped (for [`Self::modal_buffer`]), and the
+    /// interpolated coordinates handed to the projector.
+    spare: Vec<f64>,
+    scratch: Vec<f64>,
 }
 
 impl<'r> Recorder<'r> {
@@ -64,10 +72,14 @@ impl<'r> Recorder<'r> {
             force: room(HistoryField::Force, 1)?,
             compression: room(HistoryField::Compression, 1)?,
             ball_velocity: room(HistoryField::BallVelocity, 1)?,
-            displacement: room(HistoryField::Displacement, request.z.len())?,
+            displacement: match request.displacement {
+                HistoryDisplacement::Grid => room(HistoryField::Displacement, request.z.len())?,
+                HistoryDisplacement::Modal => Vec::new(),
+            },
             rigid_translation: room(HistoryField::RigidMotion, 1)?,
             rigid_rotation: room(HistoryField::RigidMotion, 1)?,
             hoop_displacement: room(HistoryField::HoopDisplacement, 1)?,
+            ..History::default()
         };
         Ok(Self {
             request,
@@ -76,14 +88,52 @@ impl<'r> Recorder<'r> {
             history,
             wants_displacement: has(HistoryField::Displacement),
             wants_rigid: has(HistoryField::RigidMotion),
+            wants_modal: false,
             projector: None,
+            modal_scale: 1.0,
+            spare: Vec::new(),
+            scratch: Vec::new(),
         })
+    }
+
+    /// Whether the displacement is recorded in modal form (`history.displacement: modal`).
+    pub fn modal_form(&self) -> bool {
+        self.wants_displacement && self.request.displacement == HistoryDisplacement::Modal
     }
 
     /// Samples carry modal coordinates ([`Sample::modal`]); `p` turns each emitted one
     /// into displacements.
     pub fn project_with(&mut self, p: Projector) {
         self.projector = Some(p);
+        self.wants_modal = true;
+    }
+
+    /// Samples carry the coordinates of `modes` modes, recorded divided by `scale` with
+    /// the force on the bat; `static_shape` (m/N at the bat's shape points) is the static
+    /// response of the modes not stepped (the modal form).
+    pub fn record_modes(
+        &mut self,
+        modes: usize,
+        scale: f64,
+        static_shape: Vec<f64>,
+    ) -> Result<(), ModelError> {
+        let n = self.request.n_samples.saturating_mul(modes);
+        let m = &mut self.history.modal;
+        for (v, len) in [
+            (&mut m.coordinate, n),
+            (&mut m.bat_load, self.request.n_samples),
+        ] {
+            v.try_reserve_exact(len)
+                .map_err(|_| ModelError::OutOfMemory {
+                    what: "the time histories",
+                    bytes: len as f64 * 8.0,
+                })?;
+        }
+        m.modes = modes;
+        m.static_shape = static_shape;
+        self.modal_scale = scale;
+        self.wants_modal = true;
+        Ok(())
     }
 
     pub fn request(&self) -> &'r HistoryRequest {
@@ -110,57 +160,79 @@ impl<'r> Recorder<'r> {
             if ts > t * (1.0 + 1e-12) {
                 break;
             }
-            let interpolated = match &self.previous {
-                Some((t0, s0)) if t > *t0 => {
-                    let w = ((ts - t0) / (t - t0)).clamp(0.0, 1.0);
-                    lerp(s0, &sample, w)
-                }
-                _ => sample.clone(),
+            let w = match &self.previous {
+                Some((t0, _)) if t > *t0 => Some(((ts - t0) / (t - t0)).clamp(0.0, 1.0)),
+                _ => None,
             };
-            self.emit(&interpolated);
+            self.emit(&sample, w);
             self.next += 1;
         }
-        self.previous = Some((t, sample));
+        if let Some((_, old)) = self.previous.replace((t, sample)) {
+            self.spare = old.modal;
+        }
     }
 
-    fn emit(&mut self, s: &Sample) {
-        let h = &mut self.history;
-        for field in &self.request.fields {
+    /// An empty buffer for the next sample's modal coordinates: the one of the state the
+    /// recorder no longer needs (a history records hundreds of states; allocating each
+    /// one's coordinates was a tenth of a history point's time, issue 37).
+    pub fn modal_buffer(&mut self) -> Vec<f64> {
+        let mut v = std::mem::take(&mut self.spare);
+        v.clear();
+        v
+    }
+
+    /// Emit the sample at weight `w` between the previous state and `s` (None: `s` itself),
+    /// each value interpolated as x + w (y − x).
+    fn emit(&mut self, s: &Sample, w: Option<f64>) {
+        let Recorder {
+            request,
+            previous,
+            history: h,
+            projector,
+            modal_scale,
+            scratch,
+            ..
+        } = self;
+        let prev = previous.as_ref().map(|(_, a)| a).filter(|_| w.is_some());
+        let w = w.unwrap_or(0.0);
+        let l = |x: f64, y: f64| x + w * (y - x);
+        let at = |f: fn(&Sample) -> f64| prev.map_or(f(s), |a| l(f(a), f(s)));
+        let each = |out: &mut Vec<f64>, f: fn(&Sample) -> &[f64], scale: f64| match prev {
+            Some(a) => out.extend(f(a).iter().zip(f(s)).map(|(x, y)| l(*x, *y) * scale)),
+            None => out.extend(f(s).iter().map(|x| x * scale)),
+        };
+        for field in &request.fields {
             match field {
-                HistoryField::Force => h.force.push(s.force),
-                HistoryField::Compression => h.compression.push(s.compression),
-                HistoryField::BallVelocity => h.ball_velocity.push(s.ball_velocity),
-                HistoryField::Displacement => match &self.projector {
-                    Some(p) => p(&s.modal, s.modal_force, &mut h.displacement),
-                    None => h.displacement.extend_from_slice(&s.displacement),
+                HistoryField::Force => h.force.push(at(|s| s.force)),
+                HistoryField::Compression => h.compression.push(at(|s| s.compression)),
+                HistoryField::BallVelocity => h.ball_velocity.push(at(|s| s.ball_velocity)),
+                HistoryField::Displacement
+                    if request.displacement == HistoryDisplacement::Modal =>
+                {
+                    let m = &mut h.modal;
+                    each(&mut m.coordinate, |s| &s.modal, 1.0 / *modal_scale);
+                    m.bat_load.push(at(|s| s.modal_force));
+                }
+                HistoryField::Displacement => match projector {
+                    Some(p) => {
+                        scratch.clear();
+                        each(scratch, |s| &s.modal, 1.0);
+                        p(scratch, at(|s| s.modal_force), &mut h.displacement)
+                    }
+                    None => each(&mut h.displacement, |s| &s.displacement, 1.0),
                 },
                 HistoryField::RigidMotion => {
-                    h.rigid_translation.push(s.rigid_translation);
-                    h.rigid_rotation.push(s.rigid_rotation);
+                    h.rigid_translation.push(at(|s| s.rigid_translation));
+                    h.rigid_rotation.push(at(|s| s.rigid_rotation));
                 }
-                HistoryField::HoopDisplacement => h.hoop_displacement.push(s.hoop_displacement),
+                HistoryField::HoopDisplacement => {
+                    h.hoop_displacement.push(at(|s| s.hoop_displacement))
+                }
             }
         }
     }
 
     pub fn finish(self) -> History {
         self.history
-    }
-}
-
-fn lerp(a: &Sample, b: &Sample, w: f64) -> Sample {
-    let l = |x: f64, y: f64| x + w * (y - x);
-    let lerp_each =
-        |x: &[f64], y: &[f64]| -> Vec<f64> { x.iter().zip(y).map(|(x, y)| l(*x, *y)).collect() };
-    Sample {
-        force: l(a.force, b.force),
-        compression: l(a.compression, b.compression),
-        ball_velocity: l(a.ball_velocity, b.ball_velocity),
-        hoop_displacement: l(a.hoop_displacement, b.hoop_displacement),
-        rigid_translation: l(a.rigid_translation, b.rigid_translation),
-        rigid_rotation: l(a.rigid_rotation, b.rigid_rotation),
-        displacement: lerp_each(&a.displacement, &b.displacement),
-        modal: lerp_each(&a.modal, &b.modal),
-        modal_force: l(a.modal_force, b.modal_force),
     }
 }

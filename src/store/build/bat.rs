@@ -1,11 +1,13 @@
 //! `/bat`: each bat variant's profile, mass, centre of mass, moments of inertia, free-free
 //! modes and metrics, along the `bat` dim.
 
+use super::shapes::{create_shapes, BatShapes};
 use crate::model::outcome::{BatMetrics, BatProperties};
 use crate::results::StudyInfo;
 use crate::store::dimscale::{self as h5u, describe, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::layout::{self as l, VarDef};
+use crate::store::modal::stores_modal;
 use hdf5::types::VarLenUnicode;
 use hdf5::Dataset;
 use std::path::Path;
@@ -20,13 +22,15 @@ fn padded<T: Clone>(rows: &[Vec<T>], fill: T) -> (Vec<T>, usize) {
     (v, w)
 }
 
-/// `/bat` with its dims (`bat`, `mode`, `node`, `profile_point`, `bbcor_point`) and variables.
+/// `/bat` with its dims (`bat`, `mode`, `node`, `profile_point`, `bbcor_point`) and variables;
+/// with the displacement's modal form also the shape points and the (empty) mode shapes
+/// (`shapes`), which it returns.
 pub(super) fn write_bats(
     f: &hdf5::File,
     info: &StudyInfo,
     att: &Attacher,
     out: &Path,
-) -> Result<(), StoreError> {
+) -> Result<Option<BatShapes>, StoreError> {
     let g = f.create_group(l::GROUP_BAT).ctx(out, "create group bat")?;
     let labels: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.label)).collect();
     let bat =
@@ -42,11 +46,15 @@ pub(super) fn write_bats(
     w.modes(&p)?;
     w.profiles(&p)?;
     w.metrics(&p)?;
+    let shapes = match info.history.as_ref().filter(|h| stores_modal(h)) {
+        Some(h) => Some(create_shapes(&g, &w.bat, info, h, att, out)?),
+        None => None,
+    };
     let spec: Vec<VarLenUnicode> = info.bats.iter().map(|b| h5u::vlstr(&b.spec_json)).collect();
     let ds = h5u::write_1d(&g, l::BAT_SPEC.name, &spec).ctx(out, &e("spec"))?;
     describe(&ds, &l::BAT_SPEC).ctx(out, &e("spec"))?;
     att.add(&ds, &[&w.bat]);
-    Ok(())
+    Ok(shapes)
 }
 
 fn e(what: &str) -> String {

@@ -45,7 +45,7 @@ fn read_window(
 /// built window by window, its journal first split into one spill file per window), one
 /// history, the failed points' messages; nothing else grows with the study.
 pub fn fill(
-    sk: Skeleton,
+    mut sk: Skeleton,
     journal: &Path,
     scan: &Scan,
     info: &StudyInfo,
@@ -57,14 +57,15 @@ pub fn fill(
         mut gathered,
         histories,
     } = run;
-    let out = sk.out.as_path();
+    let out_path = sk.out.clone();
+    let out = out_path.as_path();
     let n_points = info.shape.n_points();
     let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
     let chunk = summary_chunk(&info.shape.dims);
     // ---- /history first: its chunks follow those placed while the run went on, so that the
     // file's layout is the same however far the placer got (issue 22)
     if info.history.is_some() {
-        write_histories(&sk.history, info, journal, scan, out, histories)?;
+        write_histories(&mut sk, info, journal, scan, out, histories)?;
     }
 
     let mut tally = Tally::default();

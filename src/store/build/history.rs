@@ -2,6 +2,7 @@
 //! copied into them in flat-index order: during the run (`store::placer`), the rest at the
 //! finish.
 
+use super::shapes::BatShapes;
 use super::skeleton::Skeleton;
 use super::vars::{new_var_level, study_dims};
 use crate::model::outcome::{HistoryPrecision, HistoryRequest};
@@ -12,13 +13,17 @@ use crate::store::dimscale::{self as h5u, attr_str, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::header::history_vars;
 use crate::store::journal::{
-    history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
+    decode_summary, history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
 };
-use crate::store::layout as l;
+use crate::store::layout::{self as l, HistoryDims};
+use crate::store::modal::ModalExtents;
 use hdf5::Dataset;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::Path;
+
+/// The stored history variables: index into [`l::HISTORY_VARS`], dataset, full shape.
+pub type HistoryVars = Vec<(usize, Dataset, Vec<usize>)>;
 
 /// The `/history` group and its (empty) variables.
 pub(super) fn create_history(
@@ -27,52 +32,108 @@ pub(super) fn create_history(
     info: &StudyInfo,
     att: &Attacher,
     out: &Path,
-) -> Result<Vec<(usize, Dataset, Vec<usize>)>, StoreError> {
+) -> Result<HistoryVars, StoreError> {
     let dims = &info.shape.dims;
     let g = f
         .create_group(l::GROUP_HISTORY)
         .ctx(out, "create group history")?;
     let (scales, aux) = study_dims(&g, dims, att, out)?;
-    let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
-    let tscale = h5u::scale_coord(&g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
-    let zscale = h5u::scale_coord(&g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
-    let shape: Vec<usize> = dims.iter().map(|d| d.size).collect();
     let vars = history_vars(h);
+    let tails = Tails::create(&g, h, info, vars.iter().any(|&k| l::is_modal(k)), out)?;
     let level = l::history_deflate_level(h);
-    let mut created: Vec<(usize, Dataset, Vec<usize>)> = Vec::new();
+    let mut created = Vec::new();
     for &k in &vars {
-        let (def, _, with_z) = &l::HISTORY_VARS[k];
-        let mut s = shape.clone();
-        let mut c = vec![1; shape.len()];
+        let (def, _, tail) = &l::HISTORY_VARS[k];
+        let mut s: Vec<usize> = dims.iter().map(|d| d.size).collect();
+        let mut c = vec![1; s.len()];
         let mut sc: Vec<&Dataset> = scales.iter().collect();
-        s.push(h.n_samples);
-        c.push(h.n_samples.max(1));
-        sc.push(&tscale);
-        if *with_z {
-            s.push(h.z.len());
-            c.push(h.z.len().max(1));
-            sc.push(&zscale);
+        for (size, chunk, scale) in tails.of(*tail) {
+            s.push(size);
+            c.push(chunk.max(1));
+            sc.extend(scale);
         }
-        let ds = match h.precision {
-            HistoryPrecision::F64 => {
-                new_var_level(&g, def, (&s, &c), f64::NAN, (&sc, &aux, att), level, out)?
-            }
-            HistoryPrecision::F32 => {
-                new_var_level(&g, def, (&s, &c), f32::NAN, (&sc, &aux, att), level, out)?
-            }
+        // an unwritten block of coordinates is a block of modes the point did not step: 0
+        let fill = match tail {
+            HistoryDims::ModeTime => 0.0,
+            _ => f64::NAN,
         };
-        attr_str(
-            &ds,
-            "precision",
-            match h.precision {
-                HistoryPrecision::F64 => "f64",
-                HistoryPrecision::F32 => "f32",
-            },
-        )
-        .ctx(out, "describe history")?;
+        let links = (&sc[..], &aux[..], att);
+        let (ds, precision) = match l::history_precision(h, k) {
+            HistoryPrecision::F64 => (
+                new_var_level(&g, def, (&s, &c), fill, links, level, out)?,
+                "f64",
+            ),
+            HistoryPrecision::F32 => (
+                new_var_level(&g, def, (&s, &c), fill as f32, links, level, out)?,
+                "f32",
+            ),
+        };
+        attr_str(&ds, "precision", precision).ctx(out, "describe history")?;
         created.push((k, ds, s));
     }
     Ok(created)
+}
+
+/// The dimension scales of `/history` after the study's, and their sizes: `time`, `z`, and
+/// with the displacement's modal form `bat_mode` and `shape_point` (index coordinates).
+struct Tails {
+    time: (usize, Dataset),
+    z: (usize, Dataset),
+    modal: Option<(ModalExtents, Dataset, Dataset)>,
+}
+
+impl Tails {
+    fn create(
+        g: &hdf5::Group,
+        h: &HistoryRequest,
+        info: &StudyInfo,
+        modal: bool,
+        out: &Path,
+    ) -> Result<Tails, StoreError> {
+        let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
+        let time = h5u::scale_coord(g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
+        let z = h5u::scale_coord(g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
+        let modal = match modal {
+            true => {
+                let ext = ModalExtents::of(info);
+                let index = |n: usize| (0..n as i64).collect::<Vec<i64>>();
+                let (m, p) = (&l::BAT_MODE_DIM, &l::SHAPE_POINT_DIM);
+                let modes =
+                    h5u::scale_coord(g, m.name, &index(ext.modes), m).ctx(out, "write bat_mode")?;
+                let points = h5u::scale_coord(g, p.name, &index(ext.points), p)
+                    .ctx(out, "write shape_point")?;
+                Some((ext, modes, points))
+            }
+            false => None,
+        };
+        Ok(Tails {
+            time: (h.n_samples, time),
+            z: (h.z.len(), z),
+            modal,
+        })
+    }
+
+    /// (size, chunk size, dimension scale) of each dim after the study's.
+    fn of(&self, dims: HistoryDims) -> Vec<(usize, usize, Option<&Dataset>)> {
+        let (nt, time) = (self.time.0, Some(&self.time.1));
+        let m = self.modal.as_ref();
+        let ext = m.map_or(
+            ModalExtents {
+                modes: 0,
+                block: 1,
+                points: 0,
+            },
+            |m| m.0,
+        );
+        match dims {
+            HistoryDims::Time => vec![(nt, nt, time)],
+            HistoryDims::TimeZ => vec![(nt, nt, time), (self.z.0, self.z.0, Some(&self.z.1))],
+            HistoryDims::ModeTime => {
+                vec![(ext.modes, ext.block, m.map(|m| &m.1)), (nt, nt, time)]
+            }
+            HistoryDims::ShapePoint => vec![(ext.points, ext.points, m.map(|m| &m.2))],
+        }
+    }
 }
 
 /// The histories still to write when the run finishes (the placer's, `store::placer`).
@@ -89,53 +150,82 @@ pub enum HistoryTail {
 /// `store::encode` on the worker), as they are. `store::placer` calls this in flat-index
 /// order while the run goes on; [`write_histories`] continues from where it stopped.
 pub fn place_history(
-    sk: &Skeleton,
+    sk: &mut Skeleton,
     info: &StudyInfo,
     index: usize,
     framed: &[u8],
 ) -> Result<(), StoreError> {
-    write_point(
-        &sk.history,
+    let out = sk.out.clone();
+    let mut into = Into {
+        created: &sk.history,
+        block: ModalExtents::of(info).block,
+        shapes: sk.shapes.as_mut(),
         info,
-        index,
-        &framed[REC_PREFIX..],
-        &sk.out,
-        &sk.out,
-        0,
-    )
+        out: &out,
+    };
+    into.point(index, &framed[REC_PREFIX..], &out, 0)
 }
 
-/// One point's history chunks (`payload`: its journal record's) into the variables of
-/// [`create_history`]. `source` and `at` name where the record came from, for errors.
-fn write_point(
-    created: &[(usize, Dataset, Vec<usize>)],
-    info: &StudyInfo,
-    index: usize,
-    payload: &[u8],
-    source: &Path,
-    out: &Path,
-    at: u64,
-) -> Result<(), StoreError> {
-    let rank = info.shape.dims.len();
-    let pieces = history_chunks(payload, created.len()).ok_or_else(|| StoreError::BadJournal {
-        path: source.to_path_buf(),
-        what: format!(
-            "record of point {index} at byte {at} does not hold the study's {} histories",
-            created.len()
-        ),
-    })?;
-    let mut start = info.shape.unravel(index);
-    for ((_, ds, shape), bytes) in created.iter().zip(pieces) {
-        let tail = &shape[rank..];
-        if tail.iter().product::<usize>() == 0 {
-            continue;
+/// Where a point's histories go: the variables of [`create_history`], and the bats' mode
+/// shapes, written with the first history that steps them.
+struct Into<'a> {
+    created: &'a [(usize, Dataset, Vec<usize>)],
+    /// Modes per chunk of the modal coordinates.
+    block: usize,
+    shapes: Option<&'a mut BatShapes>,
+    info: &'a StudyInfo,
+    out: &'a Path,
+}
+
+impl Into<'_> {
+    /// One point's history chunks (`payload`: its journal record's) into the variables.
+    /// `source` and `at` name where the record came from, for errors.
+    fn point(
+        &mut self,
+        index: usize,
+        payload: &[u8],
+        source: &Path,
+        at: u64,
+    ) -> Result<(), StoreError> {
+        let bad = || StoreError::BadJournal {
+            path: source.to_path_buf(),
+            what: format!(
+                "record of point {index} at byte {at} does not hold the study's {} histories",
+                self.created.len()
+            ),
+        };
+        let pieces = history_chunks(payload).ok_or_else(bad)?;
+        // every variable one chunk, the modal coordinates the rest (their blocks of modes)
+        let blocks = (pieces.len() + 1)
+            .checked_sub(self.created.len())
+            .filter(|&b| b == 1 || self.created.iter().any(|v| v.0 == l::MODAL_COORDINATE))
+            .ok_or_else(bad)?;
+        let rank = self.info.shape.dims.len();
+        let idx = self.info.shape.unravel(index);
+        let mut pieces = pieces.into_iter();
+        for (k, ds, shape) in self.created {
+            let count = if *k == l::MODAL_COORDINATE { blocks } else { 1 };
+            let tail = &shape[rank..];
+            for (b, bytes) in pieces.by_ref().take(count).enumerate() {
+                if tail.iter().product::<usize>() == 0 {
+                    continue;
+                }
+                let mut start = idx.clone();
+                start.extend(std::iter::repeat_n(0, tail.len()));
+                if *k == l::MODAL_COORDINATE {
+                    start[rank] = b * self.block;
+                }
+                chunks::write_chunk(ds, &start, bytes)
+                    .ctx(self.out, &format!("write a history of {}", ds.name()))?;
+            }
         }
-        start.truncate(rank);
-        start.extend(std::iter::repeat_n(0, tail.len()));
-        chunks::write_chunk(ds, &start, bytes)
-            .ctx(out, &format!("write a history of {}", ds.name()))?;
+        if let (Some(shapes), Some((rec, _))) =
+            (self.shapes.as_deref_mut(), decode_summary(payload))
+        {
+            shapes.ensure(self.info, rec.bat as usize, blocks, self.out)?;
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 /// Write the stored histories not yet in the file (`tail`) into the variables of
@@ -145,17 +235,24 @@ fn write_point(
 /// how far the placer got, so a study's file is the same whatever the thread count (issue 22).
 /// Memory: one record, and 32 bytes per point with histories (where its record is).
 pub(super) fn write_histories(
-    created: &[(usize, Dataset, Vec<usize>)],
+    sk: &mut Skeleton,
     info: &StudyInfo,
     journal: &Path,
     scan: &Scan,
     out: &Path,
     tail: HistoryTail,
 ) -> Result<(), StoreError> {
+    let mut into = Into {
+        created: &sk.history,
+        block: ModalExtents::of(info).block,
+        shapes: sk.shapes.as_mut(),
+        info,
+        out,
+    };
     let from = match tail {
         HistoryTail::Held(held) => {
             for (index, framed) in held {
-                write_point(created, info, index, &framed[REC_PREFIX..], journal, out, 0)?;
+                into.point(index, &framed[REC_PREFIX..], journal, 0)?;
             }
             return Ok(());
         }
@@ -180,7 +277,7 @@ pub(super) fn write_histories(
     let mut payload = Vec::new();
     for (index, place) in places {
         read_payload(&file, journal, place, &mut payload)?;
-        write_point(created, info, index, &payload, journal, out, place.at)?;
+        into.point(index, &payload, journal, place.at)?;
     }
     Ok(())
 }

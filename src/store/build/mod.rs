@@ -11,8 +11,9 @@
 //! - `sweet`: the sweet spots of a block's curves;
 //! - `pieces`: blocks → pieces, compressed on all cores and written in order;
 //! - `vars`: coordinates, dimension scales and empty variables of a group;
-//! - `attrs` (root attributes), `errors` (`/errors`), `history` (`/history`), `bat`
-//!   (`/bat`): one part of the file each;
+//! - `attrs` (root attributes), `errors` (`/errors`), `shapes` (`/bat`'s mode shapes for
+//!   the displacement's modal form, written as histories need them), `history`
+//!   (`/history`), `bat` (`/bat`): one part of the file each;
 //! - `skeleton`: the file with everything but the results;
 //! - `fill`: the results written into the skeleton, window by window.
 
@@ -23,6 +24,7 @@ mod fill;
 mod grid;
 mod history;
 mod pieces;
+mod shapes;
 mod skeleton;
 mod spill;
 mod sweet;

@@ -5,7 +5,8 @@ use super::attrs::root_attrs;
 use super::bat::write_bats;
 use super::errors::{create_errors, Errors};
 use super::grid::{summary_chunk, without};
-use super::history::create_history;
+use super::history::{create_history, HistoryVars};
+use super::shapes::BatShapes;
 use super::vars::{new_var, study_dims};
 use crate::results::{CoordValues, Dim, ResultShape, StudyInfo};
 use crate::store::dimscale::{attr_str, attr_vec, Attacher};
@@ -36,7 +37,9 @@ pub struct Skeleton {
     pub(super) sweet: Option<(usize, Vec<Dataset>, Vec<f64>)>,
     pub(super) errors: Errors,
     /// Stored history variables: index into [`l::HISTORY_VARS`], dataset, full shape.
-    pub(super) history: Vec<(usize, Dataset, Vec<usize>)>,
+    pub(super) history: HistoryVars,
+    /// The bats' mode shapes, with the displacement's modal form.
+    pub(super) shapes: Option<BatShapes>,
 }
 
 /// Create `out` with everything but the results (see [`Skeleton`]).
@@ -95,6 +98,7 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
         sweet,
         errors,
         history: Vec::new(),
+        shapes: None,
     })
 }
 
@@ -213,7 +217,7 @@ pub fn complete_skeleton(
     if let Some(h) = &info.history {
         sk.history = create_history(f, h, info, &att, out)?;
     }
-    write_bats(f, info, &att, out)?;
+    sk.shapes = write_bats(f, info, &att, out)?;
     att.write().ctx(out, "attach the dimension scales")?;
     // hand the metadata to the OS now, not on the critical path at the end
     f.flush().ctx(out, "flush the results file")?;

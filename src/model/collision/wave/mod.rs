@@ -21,7 +21,9 @@ use crate::model::bat::PreparedBat;
 use crate::model::collision::history::Recorder;
 use crate::model::collision::oblique::Oblique;
 use crate::model::error::ModelError;
-use crate::model::outcome::{BattedBall, EnergyPartition, HistoryRequest, Outcome};
+use crate::model::outcome::{
+    BattedBall, EnergyPartition, HistoryDisplacement, HistoryField, HistoryRequest, Outcome,
+};
 use crate::model::protocol::KNOB6;
 use crate::model::spec::{BeamTheory, CollisionSpec, Integrator};
 
@@ -140,6 +142,7 @@ pub fn simulate_wave(
         });
     }
     check_integrator(spec, bat)?;
+    check_history_form(spec, history)?;
     let collision = collision_of(spec, bat, approach)?;
     let mut recorder = history.map(Recorder::new).transpose()?;
     let mut contact = Contact::started();
@@ -180,6 +183,24 @@ fn check_integrator(spec: &CollisionSpec, bat: &PreparedBat) -> Result<(), Model
         ));
     }
     Ok(())
+}
+
+/// The displacement's modal form is the modal integrator's own state: Verlet records the
+/// grid form only.
+fn check_history_form(
+    spec: &CollisionSpec,
+    history: Option<&HistoryRequest>,
+) -> Result<(), ModelError> {
+    let modal = history.is_some_and(|h| {
+        h.displacement == HistoryDisplacement::Modal
+            && h.fields.contains(&HistoryField::Displacement)
+    });
+    match modal && spec.numerics.integrator == Integrator::Verlet {
+        true => Err(ModelError::Unsupported(
+            "history.displacement: modal needs the modal integrator (set history.displacement: grid)",
+        )),
+        false => Ok(()),
+    }
 }
 
 /// The collision as the integrators see it: ball, frame, hoop, impact point, step, budget.

@@ -34,14 +34,17 @@ pub(super) fn run_modal(
     let setup = Setup::new(c, bat);
     let mut state = State::first_contact(c, bat, setup.n);
     let points = displacement_points(bat, spec_history(recorder));
-    if let Some(rec) = recorder
+    if let Some(rec) = recorder.as_mut().filter(|r| r.modal_form()) {
+        record::install_modal(rec, &setup, bat)?;
+    } else if let Some(rec) = recorder
         .as_mut()
         .filter(|r| r.wants_displacement && !points.is_empty())
     {
         record::install_projector(rec, &setup, bat, &points);
     }
+    let modal = recorder.as_ref().is_some_and(|r| r.wants_modal);
     if let Some(rec) = recorder.as_mut() {
-        let first = record::sample(rec, bat, &state, 0.0, 0.0, 0.0, points.len());
+        let first = record::sample(rec, bat, &state, 0.0, 0.0, 0.0, modal);
         rec.push(0.0, first);
     }
     loop {
@@ -50,7 +53,7 @@ pub(super) fn run_modal(
             let p_bat = state.bat_force(c);
             let hoop_rel = state.hoop_stretch(c);
             let force = state.contact_force();
-            let smp = record::sample(rec, bat, &state, force, p_bat, hoop_rel, points.len());
+            let smp = record::sample(rec, bat, &state, force, p_bat, hoop_rel, modal);
             rec.push(state.t, smp);
         }
         if contact.stop_after(state.t, state.steps, setup.h, c.budget, recorder)? {

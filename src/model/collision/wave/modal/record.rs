@@ -1,11 +1,40 @@
 //! What the modal integrator hands the history recorder: a projector from the modal
-//! coordinates to the bat's displacement at every requested z, and one sample per step.
+//! coordinates to the bat's displacement at every requested z (the grid form) or the
+//! static shape of the modes it does not step (the modal form), and one sample per step.
 
 use super::super::project::project;
 use super::setup::{shapes_at, Setup};
 use super::state::State;
+use crate::model::bat::shapes::{modal_scale, shape_point_weights};
 use crate::model::bat::PreparedBat;
 use crate::model::collision::history::{Recorder, Sample};
+use crate::model::error::ModelError;
+
+/// The modal form: the recorder keeps the stepped modes' coordinates and the force on the
+/// bat; the modes not stepped respond statically to that force, with this shape (m/N) at
+/// the bat's shape points: Σ_j φ_j w_j over the modes not stepped, first at every node, a
+/// mode's column at a time (the shapes are stored by mode: one pass in memory order, where
+/// a node at a time strides across every column), then linear between nodes.
+pub(super) fn install_modal(
+    rec: &mut Recorder,
+    setup: &Setup,
+    bat: &PreparedBat,
+) -> Result<(), ModelError> {
+    let n = setup.n;
+    let nodes = bat.beam.len();
+    let mut at_nodes = vec![0.0; nodes];
+    for (j, w) in (n..).zip(&setup.static_weight) {
+        let column = &bat.modes.shapes.column(j);
+        for (u, phi) in at_nodes.iter_mut().zip(column.iter()) {
+            *u += phi * w;
+        }
+    }
+    let static_shape = shape_point_weights(bat)
+        .iter()
+        .map(|&(k, a)| (1.0 - a) * at_nodes[k] + a * at_nodes[k + 1])
+        .collect();
+    rec.record_modes(n, modal_scale(bat), static_shape)
+}
 
 /// Give the recorder the displacement of the bat at its requested positions (`points`:
 /// node pair, weight, inside the bat) as a function of the modal coordinates and the force
@@ -55,13 +84,13 @@ pub(super) fn install_projector(
 /// The sample of the state now: contact force, compression, ball velocity, the hoop's
 /// displacement, the rigid motion and the modal coordinates (projected by the recorder).
 pub(super) fn sample(
-    rec: &Recorder,
+    rec: &mut Recorder,
     bat: &PreparedBat,
     state: &State,
     force: f64,
     p_bat: f64,
     hoop_rel: f64,
-    n_positions: usize,
+    wants_modal: bool,
 ) -> Sample {
     let q = &state.q;
     let dot = |x: &[f64]| x.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
@@ -74,10 +103,12 @@ pub(super) fn sample(
         compression: state.s.max(0.0),
         ball_velocity: state.v,
         hoop_displacement: hoop_rel,
-        rigid_translation: rigid(&bat.momentum_weight, bat.beam.total_mass()),
+        rigid_translation: rigid(&bat.momentum_weight, bat.total_mass),
         rigid_rotation: rigid(&bat.angular_weight, bat.inertia_cm),
-        modal: if rec.wants_displacement && n_positions > 0 {
-            q[..q.len()].to_vec()
+        modal: if wants_modal {
+            let mut v = rec.modal_buffer();
+            v.extend_from_slice(q);
+            v
         } else {
             Vec::new()
         },

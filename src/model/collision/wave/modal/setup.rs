@@ -3,6 +3,7 @@
 
 use super::super::{Collision, MIN_MODES};
 use super::propagator::ModalStep;
+use crate::model::bat::shapes::shape_at;
 use crate::model::bat::PreparedBat;
 
 /// The grip damper (a force −c·v_grip at the grip point), linear over the step like the
@@ -79,10 +80,7 @@ pub(super) fn shapes_at(
     a: f64,
     modes: std::ops::Range<usize>,
 ) -> Vec<f64> {
-    let shapes = &bat.modes.shapes;
-    modes
-        .map(|m| (1.0 - a) * shapes[(k, m)] + a * shapes[(k + 1, m)])
-        .collect()
+    modes.map(|m| shape_at(bat, k, a, m)).collect()
 }
 
 impl<'b> Setup<'b> {
