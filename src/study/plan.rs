@@ -17,6 +17,8 @@ pub enum DimOrigin {
     Zip { group: usize },
     /// The `points` list.
     Points,
+    /// The `sample` block: drawn values.
+    Sample,
 }
 
 /// One dimension: its name and, per parameter path, one value per index.
