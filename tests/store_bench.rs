@@ -41,6 +41,7 @@ fn summary_only_write_cost() {
             properties: BatProperties::default(),
         }],
         allow_implausible: false,
+        sample_dim: None,
     };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bench.h5");
