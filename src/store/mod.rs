@@ -29,6 +29,7 @@ pub mod journal;
 pub mod layout;
 pub mod lock;
 pub mod merge;
+pub mod optimize;
 pub mod options;
 pub mod paths;
 pub mod placer;

@@ -18,8 +18,9 @@ pub struct OptimizeBlock {
     /// Most candidates evaluated (1 to 100000). Default 300.
     #[serde(default = "default_max_evaluations")]
     pub max_evaluations: usize,
-    /// Stop when the standard deviation of the objective over the simplex falls below this
-    /// (in the objective's units). Default 1e-6.
+    /// Stop when the standard deviation over the simplex of what the search minimises (the
+    /// objective over its magnitude at the start design, plus the penalties) falls below
+    /// this. Default 1e-6.
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
     /// Numeric parameters varied: dotted path → `{min, max, start}` (`start` defaults to
@@ -122,13 +123,22 @@ fn default_over() -> Aggregate {
 pub enum Constraint {
     /// `{rules: ncaa_bbcor}` or `{rules: mlb_wood}`: the rule book's limits
     /// (docs/study-files.md, "Rule sets").
-    Rules {
-        rules: RuleSet,
-    },
+    Rules(RulesConstraint),
     /// `{quantity: NAME, min: a, max: b, over: max}`: the quantity (as in the objective)
     /// within [min, max] (either may be left out). `over` defaults to the worst case: the
     /// grid's largest value against `max`, its smallest against `min`.
     Bound(QuantityBound),
+}
+
+/// A rule set by name.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RulesConstraint {
+    pub rules: RuleSet,
+    /// `ncaa_bbcor`: the minimum moment of inertia about the 6-in point of the bat's length
+    /// class, kg·m² (the BBCOR standard's table). Default: no MOI limit.
+    #[serde(default)]
+    pub moi_min: Option<f64>,
 }
 
 /// A bound on a quantity.
