@@ -23,8 +23,9 @@ pub struct Variable {
     pub max: f64,
     pub start: f64,
     pub units: String,
-    /// The knot it is the radius of (profile variables).
+    /// The knot it is the radius (or, `wall`, the wall thickness) of.
     knot: Option<usize>,
+    wall: bool,
 }
 
 /// The objective: a quantity, maximised or minimised, over the grid.
@@ -42,8 +43,9 @@ pub struct Design {
     pub objective: Objective,
     pub limits: Vec<Limit>,
     pub block: OptimizeBlock,
-    /// The profile's knot positions and fixed radii (NaN where a variable).
-    profile: Option<(Vec<f64>, Vec<f64>)>,
+    /// The profile's knot positions, fixed radii and fixed wall thicknesses (NaN where a
+    /// variable; no thicknesses: the study's shell).
+    profile: Option<(Vec<f64>, Vec<f64>, Option<Vec<f64>>)>,
 }
 
 impl Design {
@@ -55,21 +57,21 @@ impl Design {
                 let _ = set_path(&mut v, &var.name, Value::from(xi));
             }
         }
-        if let Some((z, fixed)) = &self.profile {
-            let mut r = fixed.clone();
+        if let Some((z, radius, wall)) = &self.profile {
+            let (mut r, mut t) = (radius.clone(), wall.clone());
             for (var, &xi) in self.variables.iter().zip(x) {
-                if let Some(k) = var.knot {
-                    r[k] = xi;
+                match (var.knot, var.wall, t.as_mut()) {
+                    (Some(k), false, _) => r[k] = xi,
+                    (Some(k), true, Some(t)) => t[k] = xi,
+                    _ => {}
                 }
             }
-            let knots: Vec<Value> = z
-                .iter()
-                .zip(&r)
-                .map(|(&z, &r)| Value::Sequence(vec![Value::from(z), Value::from(r)]))
-                .collect();
             let mut m = Mapping::new();
-            m.insert("knots".into(), Value::Sequence(knots));
+            m.insert("knots".into(), knots(z, &r));
             let _ = set_path(&mut v, "bat.profile", Value::Mapping(m));
+            if let Some(t) = t {
+                let _ = set_path(&mut v, "bat.shell.thickness_knots", knots(z, &t));
+            }
         }
         v
     }
@@ -78,6 +80,12 @@ impl Design {
     pub fn start(&self) -> Vec<f64> {
         self.variables.iter().map(|v| v.start).collect()
     }
+}
+
+/// `[[z, r], ...]` as a value.
+fn knots(z: &[f64], r: &[f64]) -> Value {
+    let k = z.iter().zip(r);
+    Value::Sequence(k.map(|(&z, &r)| Value::Sequence(vec![Value::from(z), Value::from(r)])).collect())
 }
 
 /// A located error in the `optimize` block.
@@ -176,17 +184,20 @@ fn path_variables(study: &Study, block: &OptimizeBlock) -> Result<Vec<Variable>,
             start,
             units: meta(path).units.to_string(),
             knot: None,
+            wall: false,
         });
     }
     Ok(out)
 }
 
 /// `profile`: knots increasing from 0, one radius each, fixed (> 0) or bounded.
+type ProfileValues = (Vec<f64>, Vec<f64>, Option<Vec<f64>>);
+
 fn profile_variables(
     study: &Study,
     p: &crate::study::optimize_block::ProfileDesign,
     vars: &mut Vec<Variable>,
-) -> Result<(Vec<f64>, Vec<f64>), StudyError> {
+) -> Result<ProfileValues, StudyError> {
     let bad = |part: &str, msg: &str, value: String, allowed: &str| {
         located(study, &at(&["profile", part]), msg.to_string())
             .field(format!("optimize.profile.{part}"))
@@ -203,25 +214,45 @@ fn profile_variables(
     if let Some(d) = study.plan.dims().iter().find(|d| d.params.iter().any(|(q, _)| related(q, "bat.profile"))) {
         return Err(bad("z", &format!("the profile is also varied by dimension `{}`", d.name), String::new(), "a profile no grid, zip or points block sets"));
     }
+    let radius = knot_values(&p.radius, false, vars).map_err(|(k, r)| {
+        bad("radius", &format!("bad radius of knot {k}"), r, "a radius > 0, or {min, max, start} with 0 < min < max and start within")
+    })?;
+    let wall = match &p.thickness {
+        None => None,
+        Some(t) if t.len() != p.z.len() => {
+            return Err(bad("thickness", "one wall thickness per knot position", format!("{} thicknesses", t.len()), &format!("{} thicknesses", p.z.len())))
+        }
+        Some(t) => Some(knot_values(t, true, vars).map_err(|(k, r)| {
+            bad("thickness", &format!("bad wall thickness of knot {k}"), r, "a thickness > 0, or {min, max, start} with 0 < min < max and start within")
+        })?),
+    };
+    Ok((p.z.clone(), radius, wall))
+}
+
+/// A profile's fixed values (NaN where a variable), its variables pushed to `vars`; the
+/// bad knot and its text on error.
+fn knot_values(list: &[Knot], wall: bool, vars: &mut Vec<Variable>) -> Result<Vec<f64>, (usize, String)> {
     let mut fixed = Vec::new();
-    for (k, r) in p.radius.iter().enumerate() {
+    for (k, r) in list.iter().enumerate() {
         match r {
             Knot::Fixed(r) if *r > 0.0 => fixed.push(*r),
             Knot::Free(b) if b.min > 0.0 && bounds_ok(b).is_ok() => {
                 fixed.push(f64::NAN);
+                let what = if wall { "shell.thickness" } else { "profile.radius" };
                 vars.push(Variable {
-                    name: format!("bat.profile.radius[{k}]"),
+                    name: format!("bat.{what}[{k}]"),
                     min: b.min,
                     max: b.max,
                     start: bounds_ok(b).unwrap_or(b.min),
                     units: "m".into(),
                     knot: Some(k),
+                    wall,
                 });
             }
-            _ => return Err(bad("radius", &format!("bad radius of knot {k}"), format!("{r:?}"), "a radius > 0, or {min, max, start} with 0 < min < max and start within")),
+            _ => return Err((k, format!("{r:?}"))),
         }
     }
-    Ok((p.z.clone(), fixed))
+    Ok(fixed)
 }
 
 fn quantity_of(study: &Study, name: &str, here: Vec<Seg>, field: &str) -> Result<Quantity, StudyError> {

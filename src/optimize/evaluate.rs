@@ -166,12 +166,13 @@ impl<'a> Evaluator<'a> {
                     Sweet::Carry | Sweet::CarryPosition => {
                         order.iter().map(|&q| summary_floats(at(q))[carry]).collect()
                     }
+                    Sweet::ExitSpeedLab => order.iter().map(|&q| at(q).exit_speed_lab).collect(),
                     _ => order.iter().map(|&q| at(q).exit_speed).collect(),
                 };
                 let spot = find_sweet_spot(&zs, &curve);
                 out.push(spot.map_or(f64::NAN, |p| match s {
                     Sweet::Position | Sweet::CarryPosition => p.position,
-                    Sweet::ExitSpeed | Sweet::Carry => p.exit_speed,
+                    Sweet::ExitSpeed | Sweet::ExitSpeedLab | Sweet::Carry => p.exit_speed,
                     Sweet::Width => p.width,
                 }));
             }

@@ -10,6 +10,9 @@ use crate::study::optimize_block::Aggregate;
 pub enum Sweet {
     Position,
     ExitSpeed,
+    /// The largest lab-frame exit speed along the barrel (with a `batter`, the one that
+    /// compares bats swung at different speeds).
+    ExitSpeedLab,
     Width,
     Carry,
     CarryPosition,
@@ -45,6 +48,7 @@ pub enum Quantity {
 const SWEET: &[(&str, Sweet, &str)] = &[
     ("sweet_spot.position", Sweet::Position, "m"),
     ("sweet_spot.exit_speed", Sweet::ExitSpeed, "m/s"),
+    ("sweet_spot.exit_speed_lab", Sweet::ExitSpeedLab, "m/s"),
     ("sweet_spot.width", Sweet::Width, "m"),
     ("sweet_spot.carry", Sweet::Carry, "m"),
     ("sweet_spot.carry_position", Sweet::CarryPosition, "m"),

@@ -82,6 +82,10 @@ pub struct ProfileDesign {
     pub z: Vec<f64>,
     /// Outer radius at each knot, m: a number (fixed) or `{min, max, start}` (a variable).
     pub radius: Vec<Knot>,
+    /// A hollow bat's wall thickness at each knot, m (fixed or a variable), linear between
+    /// knots (`bat.shell.thickness_knots` of every candidate). Default: the study's shell.
+    #[serde(default)]
+    pub thickness: Option<Vec<Knot>>,
 }
 
 /// How a quantity over the study's grid becomes one number.
