@@ -11,6 +11,8 @@
 - :func:`ball_rig` gives what a ball certification reports (COR, peak force, contact time,
   dynamic stiffness) from a study of balls fired at ``bat.preset: wall``.
 - :func:`report` writes a results file's explorer, one HTML file.
+- :func:`optimize` searches a study's design (its ``optimize`` block) within its rules;
+  :func:`sobol_indices` gives the global sensitivity of a ``sample`` study's answers.
 - :mod:`batstudy.plot` draws the paper's figures, or any figure of a results file
   (matplotlib: ``pip install 'batstudy[plot]'``).
 
@@ -27,6 +29,7 @@ from importlib.util import find_spec as _find_spec
 from ._ball_rig import ball_rig
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
+from ._sensitivity import sobol_indices
 
 __all__ = [
     "simulate",
@@ -38,6 +41,8 @@ __all__ = [
     "histories",
     "ball_rig",
     "report",
+    "sobol_indices",
+    "optimize",
     "StudyError",
     "RunError",
     "__version__",
@@ -50,6 +55,7 @@ _ON_FIRST_USE = {
     "merge": "._api",
     "plan": "._api",
     "validate": "._api",
+    "optimize": "._optimize",
     "StudyError": "._api",
     "RunError": "._api",
     "__version__": "._native",
