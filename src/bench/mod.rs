@@ -16,6 +16,7 @@
 //!   computes and encodes: the workers it keeps up with; and the disk's durable write rate
 //!   (`fdatasync`) over the bytes one worker produces: the workers any store on this disk
 //!   keeps up with;
+//! - `optimize`: design candidates per second of a 6-variable profile search (issue 36);
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before
 //!   each run) of the scaling studies on the most threads and of a large summary-only study.
 //!
@@ -34,6 +35,7 @@ mod headroom;
 mod machine;
 mod measure;
 mod memory;
+mod optimize;
 mod report;
 mod scaling;
 mod sinks;
@@ -103,6 +105,9 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     let memory = memory::bench_memory(&sz, scaling.cores, dir.path(), &peaks)?;
     report::print_memory(out, &memory);
 
+    let optimize = optimize::bench_optimize(if opts.quick { 8 } else { 120 }, scaling.cores)?;
+    optimize::print(out, &optimize);
+
     machine.loadavg_end = machine::loadavg();
     report::print_end(out, &machine);
     Ok(BenchReport {
@@ -110,6 +115,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         scaling,
         writer_headroom: headroom,
         memory,
+        optimize,
     })
 }
 

@@ -19,6 +19,8 @@ pub struct BenchReport {
     pub writer_headroom: WriterHeadroom,
     /// Peak resident memory of the runs.
     pub memory: MemoryBench,
+    /// Design candidates per second of a profile search (issue 36).
+    pub optimize: super::optimize::OptimizeBench,
 }
 
 fn mib(b: Option<u64>) -> String {
