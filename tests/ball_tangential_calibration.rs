@@ -76,7 +76,10 @@ fn the_outgoing_spin_depends_on_the_incident_spin_more_than_measured() {
         let (_, with_back) = shot(46.0, degrees, 200.0);
         let (_, with_top) = shot(46.0, degrees, -200.0);
         let share = (with_back - with_top) / 400.0;
-        assert!(share > 0.15 && (lo..hi).contains(&share), "{degrees}°: share {share}");
+        assert!(
+            share > 0.15 && (lo..hi).contains(&share),
+            "{degrees}°: share {share}"
+        );
     }
 }
 

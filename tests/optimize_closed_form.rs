@@ -30,15 +30,30 @@ fn best(text: &str) -> (f64, Vec<f64>, Vec<f64>) {
     let s = load_str(text, Path::new("best.yaml"), &LoadOptions::default()).unwrap();
     let design = design_of(&s).unwrap().unwrap();
     let ev = Evaluator::new(&s, &design);
-    let out = search(&design, &|x| ev.evaluate(x), &|_| Ok(()), Vec::new(), &AtomicBool::new(false));
+    let out = search(
+        &design,
+        &|x| ev.evaluate(x),
+        &|_| Ok(()),
+        Vec::new(),
+        &AtomicBool::new(false),
+    );
     let feasible = out.candidates.iter().filter(|c| {
         c.evaluation.error.is_none()
-            && design.limits.iter().zip(&c.evaluation.constraints).all(|(l, &v)| l.margin(v) >= 0.0)
+            && design
+                .limits
+                .iter()
+                .zip(&c.evaluation.constraints)
+                .all(|(l, &v)| l.margin(v) >= 0.0)
     });
     let b = feasible
         .max_by(|a, b| a.evaluation.objective.total_cmp(&b.evaluation.objective))
         .expect("a feasible candidate");
-    let margins = design.limits.iter().zip(&b.evaluation.constraints).map(|(l, &v)| l.margin(v)).collect();
+    let margins = design
+        .limits
+        .iter()
+        .zip(&b.evaluation.constraints)
+        .map(|(l, &v)| l.margin(v))
+        .collect();
     (b.x[0], b.evaluation.constraints.clone(), margins)
 }
 
@@ -46,8 +61,13 @@ fn best(text: &str) -> (f64, Vec<f64>, Vec<f64>) {
 fn closed_form() -> (f64, f64) {
     let s = load_str(&study(""), Path::new("best.yaml"), &LoadOptions::default()).unwrap();
     let spec = s.plan.point(0).unwrap().spec;
-    let p = Target::prepare(&spec.bat, &spec.numerics).unwrap().properties();
-    let (a, b) = (spec.ball.mass / p.mass, spec.ball.mass / p.moment_of_inertia);
+    let p = Target::prepare(&spec.bat, &spec.numerics)
+        .unwrap()
+        .properties();
+    let (a, b) = (
+        spec.ball.mass / p.mass,
+        spec.ball.mass / p.moment_of_inertia,
+    );
     let l = (b * V - (b * b * V * V + OMEGA * OMEGA * b * (1.0 + a)).sqrt()) / (OMEGA * b);
     (p.z_cm, l)
 }
@@ -57,7 +77,10 @@ fn finds_the_rigid_bats_best_impact_point() {
     let (z_cm, l) = closed_form();
     let (z, _, _) = best(&study(""));
     eprintln!("best impact point {z:.6} m, closed form {:.6} m", z_cm + l);
-    assert!(l > 0.05, "the swing moves the best point toward the barrel ({l})");
+    assert!(
+        l > 0.05,
+        "the swing moves the best point toward the barrel ({l})"
+    );
     assert!((z - (z_cm + l)).abs() < 1e-4, "{z} vs {}", z_cm + l);
 }
 
@@ -68,8 +91,18 @@ fn a_constraint_is_honoured_and_the_optimum_sits_on_it() {
     let limit = V - OMEGA * l / 2.0;
     let extra = format!("  constraints:\n    - {{quantity: approach_speed, max: {limit}}}\n");
     let (z, values, margins) = best(&study(&extra));
-    eprintln!("best {z:.6} m, approach speed {:.6} <= {limit:.6}, margin {:.3e}", values[0], margins[0]);
-    assert!(margins[0] >= 0.0, "the reported optimum violates its limit: {margins:?}");
-    assert!((z - (z_cm + l / 2.0)).abs() < 1e-3, "{z} vs the limit at {}", z_cm + l / 2.0);
+    eprintln!(
+        "best {z:.6} m, approach speed {:.6} <= {limit:.6}, margin {:.3e}",
+        values[0], margins[0]
+    );
+    assert!(
+        margins[0] >= 0.0,
+        "the reported optimum violates its limit: {margins:?}"
+    );
+    assert!(
+        (z - (z_cm + l / 2.0)).abs() < 1e-3,
+        "{z} vs the limit at {}",
+        z_cm + l / 2.0
+    );
     assert!(margins[0] < 1e-3 * limit, "not on the limit: {margins:?}");
 }

@@ -39,11 +39,24 @@ fn search_record(path: &Path) -> Vec<String> {
     let mut names = g.member_names().unwrap();
     names.sort();
     let mut out = Vec::new();
-    for n in names.iter().filter(|n| !["variable", "constraint", "message"].contains(&n.as_str())) {
+    for n in names
+        .iter()
+        .filter(|n| !["variable", "constraint", "message"].contains(&n.as_str()))
+    {
         let d = g.dataset(n).unwrap();
         let v: Vec<String> = match d.dtype().unwrap().size() {
-            1 => d.read_raw::<i8>().unwrap().iter().map(|x| x.to_string()).collect(),
-            _ => d.read_raw::<f64>().unwrap().iter().map(|x| format!("{:?}", x.to_bits())).collect(),
+            1 => d
+                .read_raw::<i8>()
+                .unwrap()
+                .iter()
+                .map(|x| x.to_string())
+                .collect(),
+            _ => d
+                .read_raw::<f64>()
+                .unwrap()
+                .iter()
+                .map(|x| format!("{:?}", x.to_bits()))
+                .collect(),
         };
         out.push(format!("{n}: {}", v.join(" ")));
     }
@@ -59,14 +72,30 @@ fn a_killed_search_resumes_to_the_same_record() {
     std::fs::write(&study, STUDY).unwrap();
     let (full, cut) = (dir.path().join("full.h5"), dir.path().join("cut.h5"));
     let s = study.to_str().unwrap();
-    batstudy_ok(&["optimize", s, "-o", full.to_str().unwrap(), "-j", "2", "--quiet"]);
+    batstudy_ok(&[
+        "optimize",
+        s,
+        "-o",
+        full.to_str().unwrap(),
+        "-j",
+        "2",
+        "--quiet",
+    ]);
     let total = search_record(&full).len();
     assert!(total > 5);
 
     // kill -9 once a dozen candidates are in the journal
-    let mut child = batstudy_command(&["optimize", s, "-o", cut.to_str().unwrap(), "-j", "1", "--quiet"])
-        .spawn()
-        .unwrap();
+    let mut child = batstudy_command(&[
+        "optimize",
+        s,
+        "-o",
+        cut.to_str().unwrap(),
+        "-j",
+        "1",
+        "--quiet",
+    ])
+    .spawn()
+    .unwrap();
     let t0 = Instant::now();
     while journal_lines(&cut) < 13 && t0.elapsed() < Duration::from_secs(120) {
         std::thread::sleep(Duration::from_millis(5));
@@ -74,12 +103,27 @@ fn a_killed_search_resumes_to_the_same_record() {
     child.kill().unwrap();
     let _ = child.wait();
     let kept = journal_lines(&cut);
-    assert!(kept >= 13 && !cut.exists(), "killed too late: {kept} lines, finished {}", cut.exists());
+    assert!(
+        kept >= 13 && !cut.exists(),
+        "killed too late: {kept} lines, finished {}",
+        cut.exists()
+    );
     // without --resume the interrupted search is not overwritten
-    let refused = batstudy_command(&["optimize", s, "-o", cut.to_str().unwrap()]).output().unwrap();
+    let refused = batstudy_command(&["optimize", s, "-o", cut.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(refused.status.code(), Some(2));
 
-    batstudy_ok(&["optimize", s, "-o", cut.to_str().unwrap(), "--resume", "-j", "2", "--quiet"]);
+    batstudy_ok(&[
+        "optimize",
+        s,
+        "-o",
+        cut.to_str().unwrap(),
+        "--resume",
+        "-j",
+        "2",
+        "--quiet",
+    ]);
     assert!(!batstudy::store::optimize::journal_path(&cut).exists());
     assert_eq!(search_record(&full), search_record(&cut));
     assert_eq!(stored_records(&full), stored_records(&cut));

@@ -100,7 +100,10 @@ fn a_uniform_cor_converges_as_n_to_the_minus_three_halves() {
     let (a, b) = (slope(&NS, &em), slope(&NS, &ev));
     eprintln!("uniform: rms errors of the mean {em:?} (slope {a:.2}), variance {ev:?} ({b:.2})");
     assert!((-1.7..=-1.3).contains(&a), "mean converges as N^{a:.2}");
-    assert!((-1.75..=-1.25).contains(&b), "variance converges as N^{b:.2}");
+    assert!(
+        (-1.75..=-1.25).contains(&b),
+        "variance converges as N^{b:.2}"
+    );
     assert!(em[4] < 1e-6 * var.sqrt(), "{em:?}");
 }
 

@@ -45,8 +45,12 @@ pub struct OptimizeBench {
 /// Run the search (`candidates` of them) on `threads` threads.
 pub fn bench_optimize(candidates: usize, threads: usize) -> Result<OptimizeBench, String> {
     let text = STUDY.replace("MAX", &candidates.to_string());
-    let study = crate::study::load_str(&text, std::path::Path::new("bench_optimize.yaml"), &Default::default())
-        .map_err(|e| e.to_string())?;
+    let study = crate::study::load_str(
+        &text,
+        std::path::Path::new("bench_optimize.yaml"),
+        &Default::default(),
+    )
+    .map_err(|e| e.to_string())?;
     let design = crate::optimize::design_of(&study)
         .map_err(|e| e.to_string())?
         .ok_or("no optimize block")?;
@@ -54,7 +58,13 @@ pub fn bench_optimize(candidates: usize, threads: usize) -> Result<OptimizeBench
     let ev = crate::optimize::Evaluator::new(&study, &design);
     let t0 = std::time::Instant::now();
     let out = pool.install(|| {
-        crate::optimize::search(&design, &|x| ev.evaluate(x), &|_| Ok(()), Vec::new(), &AtomicBool::new(false))
+        crate::optimize::search(
+            &design,
+            &|x| ev.evaluate(x),
+            &|_| Ok(()),
+            Vec::new(),
+            &AtomicBool::new(false),
+        )
     });
     let seconds = t0.elapsed().as_secs_f64();
     Ok(OptimizeBench {

@@ -102,11 +102,19 @@ fn failure(code: i32, message: String) -> RunFailure {
 
 /// The study, its design problem, the output and the threads, all checked.
 fn settings(a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFailure> {
-    let study = study::load(&a.study, &LoadOptions { max_points: a.max_points }).map_err(bad)?;
+    let study = study::load(
+        &a.study,
+        &LoadOptions {
+            max_points: a.max_points,
+        },
+    )
+    .map_err(bad)?;
     let design = design_of(&study).map_err(bad)?.ok_or_else(|| {
-        bad(StudyError::new(&study.path, "the study has no `optimize` block")
-            .field("optimize")
-            .allowed("a study with an `optimize` block (docs/study-files.md, \"Optimize\")"))
+        bad(
+            StudyError::new(&study.path, "the study has no `optimize` block")
+                .field("optimize")
+                .allowed("a study with an `optimize` block (docs/study-files.md, \"Optimize\")"),
+        )
     })?;
     let jobs = jobs_or_all(a.jobs, &study.path).map_err(bad)?;
     let output = study.output_path(a.output.as_deref());
@@ -116,10 +124,13 @@ fn settings(a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFail
     };
     check_output_of(&study, &output, a.output.is_some(), existing).map_err(bad)?;
     if journal_path(&output).exists() && !a.resume && !a.force {
-        return Err(bad(StudyError::new(&study.path, "an interrupted search of this output exists")
-            .field("--output")
-            .value(journal_path(&output).display().to_string())
-            .allowed("--resume to continue it, or --force to start over")));
+        return Err(bad(StudyError::new(
+            &study.path,
+            "an interrupted search of this output exists",
+        )
+        .field("--output")
+        .value(journal_path(&output).display().to_string())
+        .allowed("--resume to continue it, or --force to start over")));
     }
     Ok((study, design, output, jobs))
 }
@@ -131,16 +142,25 @@ pub fn optimize_study(a: &OptimizeArgs, stop: &AtomicBool) -> Result<FinishedSea
     let started = std::time::Instant::now();
     let io = |e: crate::store::StoreError| failure(EXIT_RUN_FAILED, format!("error: {e}"));
     let (journal, recorded) = match a.resume && journal_path(&output).exists() {
-        true => OptimizeJournal::resume(&output, &study.sha256).map_err(|e| failure(EXIT_BAD_INPUT, format!("error: {e}")))?,
-        false => (OptimizeJournal::create(&output, &study.sha256).map_err(io)?, Vec::new()),
+        true => OptimizeJournal::resume(&output, &study.sha256)
+            .map_err(|e| failure(EXIT_BAD_INPUT, format!("error: {e}")))?,
+        false => (
+            OptimizeJournal::create(&output, &study.sha256).map_err(io)?,
+            Vec::new(),
+        ),
     };
-    let pool = crate::run::build_pool(jobs).map_err(|e| failure(EXIT_RUN_FAILED, format!("error: {e}")))?;
+    let pool = crate::run::build_pool(jobs)
+        .map_err(|e| failure(EXIT_RUN_FAILED, format!("error: {e}")))?;
     let evaluator = Evaluator::new(&study, &design);
     let journal = Mutex::new(journal);
     let computed = std::sync::atomic::AtomicUsize::new(0);
     let record = |c: &Candidate| {
         computed.fetch_add(1, Ordering::Relaxed);
-        journal.lock().expect("journal").append(&row_of(c)).map_err(|e| e.to_string())
+        journal
+            .lock()
+            .expect("journal")
+            .append(&row_of(c))
+            .map_err(|e| e.to_string())
     };
     let eval = |x: &[f64]| evaluator.evaluate(x);
     let recorded: Vec<Candidate> = recorded.into_iter().map(candidate_of).collect();
@@ -157,10 +177,17 @@ pub fn optimize_study(a: &OptimizeArgs, stop: &AtomicBool) -> Result<FinishedSea
     };
     match outcome.stopped {
         Some(Stop::Interrupted) => return Ok(finished(true, 0)),
-        Some(Stop::Record) => return Err(failure(EXIT_RUN_FAILED, format!("error: cannot write {}", journal_path(&output).display()))),
+        Some(Stop::Record) => {
+            return Err(failure(
+                EXIT_RUN_FAILED,
+                format!("error: cannot write {}", journal_path(&output).display()),
+            ))
+        }
         _ => {}
     }
-    let best = table.best.map_or_else(|| design.start(), |b| table.rows[b].x.clone());
+    let best = table
+        .best
+        .map_or_else(|| design.start(), |b| table.rows[b].x.clone());
     let failed_points = write_results(&study, &design, &best, &output, jobs, &table, a, stop)?;
     journal.remove().map_err(io)?;
     Ok(finished(false, failed_points))
@@ -208,17 +235,30 @@ fn write_results(
 
 /// The study as a plain study at design `x`: its base with the design applied, without the
 /// `optimize` block and `output` (the results file's `study_yaml`).
-pub fn study_at(study: &Study, design: &Design, x: &[f64], max_points: usize) -> Result<Study, StudyError> {
+pub fn study_at(
+    study: &Study,
+    design: &Design,
+    x: &[f64],
+    max_points: usize,
+) -> Result<Study, StudyError> {
     let mut root: yaml_serde::Value = yaml_serde::from_str(&study.text)
         .map_err(|e| StudyError::new(&study.path, e.to_string()))?;
     if let Some(m) = root.as_mapping_mut() {
-        let base = m.get("base").cloned().filter(|b| b.is_mapping()).unwrap_or_else(|| yaml_serde::Value::Mapping(Default::default()));
+        let base = m
+            .get("base")
+            .cloned()
+            .filter(|b| b.is_mapping())
+            .unwrap_or_else(|| yaml_serde::Value::Mapping(Default::default()));
         m.insert("base".into(), design.apply(x, &base));
         m.remove("optimize");
         m.remove("output");
     }
-    let body = yaml_serde::to_string(&root).map_err(|e| StudyError::new(&study.path, e.to_string()))?;
-    let text = format!("# `{}` at the best design `batstudy optimize` found\n{body}", study.file.name);
+    let body =
+        yaml_serde::to_string(&root).map_err(|e| StudyError::new(&study.path, e.to_string()))?;
+    let text = format!(
+        "# `{}` at the best design `batstudy optimize` found\n{body}",
+        study.file.name
+    );
     study::load_str(&text, &study.path, &LoadOptions { max_points })
 }
 
@@ -250,7 +290,14 @@ fn candidate_of(r: CandidateRow) -> Candidate {
 fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> OptimizeTable {
     let margins: Vec<Vec<f64>> = cands
         .iter()
-        .map(|c| design.limits.iter().zip(&c.evaluation.constraints).map(|(l, &v)| l.margin(v)).collect())
+        .map(|c| {
+            design
+                .limits
+                .iter()
+                .zip(&c.evaluation.constraints)
+                .map(|(l, &v)| l.margin(v))
+                .collect()
+        })
         .collect();
     let status: Vec<i8> = cands
         .iter()
@@ -264,13 +311,22 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
     let sign = if design.objective.maximize { 1.0 } else { -1.0 };
     let best = (0..cands.len())
         .filter(|&i| status[i] == FEASIBLE)
-        .max_by(|&a, &b| (sign * cands[a].evaluation.objective).total_cmp(&(sign * cands[b].evaluation.objective)).then(b.cmp(&a)));
+        .max_by(|&a, &b| {
+            (sign * cands[a].evaluation.objective)
+                .total_cmp(&(sign * cands[b].evaluation.objective))
+                .then(b.cmp(&a))
+        });
     let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
     OptimizeTable {
         method: "nelder_mead (argmin 0.11)".into(),
         objective: design.objective.quantity.name().into(),
         objective_units: design.objective.quantity.units().into(),
-        sense: if design.objective.maximize { "maximize" } else { "minimize" }.into(),
+        sense: if design.objective.maximize {
+            "maximize"
+        } else {
+            "minimize"
+        }
+        .into(),
         over: format!("{:?}", design.objective.over).to_lowercase(),
         stopped: match stopped {
             Some(Stop::Budget) => "max_evaluations",
@@ -282,7 +338,12 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
         variables: design
             .variables
             .iter()
-            .map(|v| VariableInfo { name: v.name.clone(), units: v.units.clone(), min: v.min, max: v.max })
+            .map(|v| VariableInfo {
+                name: v.name.clone(),
+                units: v.units.clone(),
+                min: v.min,
+                max: v.max,
+            })
             .collect(),
         constraints: design
             .limits
@@ -316,7 +377,11 @@ fn report_text(d: &FinishedSearch, a: &OptimizeArgs) -> String {
         t.rows.len(),
         d.computed,
         d.computed as f64 / secs.max(1e-9),
-        if d.interrupted { "interrupted" } else { &t.stopped }
+        if d.interrupted {
+            "interrupted"
+        } else {
+            &t.stopped
+        }
     );
     match t.best {
         None => {
@@ -324,7 +389,11 @@ fn report_text(d: &FinishedSearch, a: &OptimizeArgs) -> String {
         }
         Some(b) => {
             let r = &t.rows[b];
-            let _ = writeln!(s, "best feasible: candidate {b}, {} = {:.6} {} ({})", t.objective, r.objective, t.objective_units, t.sense);
+            let _ = writeln!(
+                s,
+                "best feasible: candidate {b}, {} = {:.6} {} ({})",
+                t.objective, r.objective, t.objective_units, t.sense
+            );
             for (v, x) in t.variables.iter().zip(&r.x) {
                 let _ = writeln!(s, "  {} = {x:.6} {}", v.name, v.units);
             }
@@ -335,7 +404,12 @@ fn report_text(d: &FinishedSearch, a: &OptimizeArgs) -> String {
     }
     if d.interrupted {
         let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());
-        let _ = writeln!(s, "stopped early; to finish the search run:\n  {program} optimize {} --resume -o {}", a.study.display(), d.output.display());
+        let _ = writeln!(
+            s,
+            "stopped early; to finish the search run:\n  {program} optimize {} --resume -o {}",
+            a.study.display(),
+            d.output.display()
+        );
     }
     s
 }

@@ -45,7 +45,7 @@ pub struct Design {
     pub block: OptimizeBlock,
     /// The profile's knot positions, fixed radii and fixed wall thicknesses (NaN where a
     /// variable; no thicknesses: the study's shell).
-    profile: Option<(Vec<f64>, Vec<f64>, Option<Vec<f64>>)>,
+    profile: Option<ProfileValues>,
 }
 
 impl Design {
@@ -85,7 +85,10 @@ impl Design {
 /// `[[z, r], ...]` as a value.
 fn knots(z: &[f64], r: &[f64]) -> Value {
     let k = z.iter().zip(r);
-    Value::Sequence(k.map(|(&z, &r)| Value::Sequence(vec![Value::from(z), Value::from(r)])).collect())
+    Value::Sequence(
+        k.map(|(&z, &r)| Value::Sequence(vec![Value::from(z), Value::from(r)]))
+            .collect(),
+    )
 }
 
 /// A located error in the `optimize` block.
@@ -106,21 +109,33 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
         return Ok(None);
     };
     if study.file.sample.is_some() {
-        return Err(located(study, &keys(&["sample"]), "a study cannot both sample and optimize".into())
-            .field("sample")
-            .allowed("either a `sample` block or an `optimize` block"));
+        return Err(located(
+            study,
+            &keys(&["sample"]),
+            "a study cannot both sample and optimize".into(),
+        )
+        .field("sample")
+        .allowed("either a `sample` block or an `optimize` block"));
     }
     if block.max_evaluations == 0 || block.max_evaluations > 100_000 {
-        return Err(located(study, &at(&["max_evaluations"]), "`optimize.max_evaluations` out of range".into())
-            .field("optimize.max_evaluations")
-            .value(block.max_evaluations.to_string())
-            .allowed("1 to 100000 candidates"));
+        return Err(located(
+            study,
+            &at(&["max_evaluations"]),
+            "`optimize.max_evaluations` out of range".into(),
+        )
+        .field("optimize.max_evaluations")
+        .value(block.max_evaluations.to_string())
+        .allowed("1 to 100000 candidates"));
     }
     if block.tolerance.is_nan() || block.tolerance < 0.0 {
-        return Err(located(study, &at(&["tolerance"]), "`optimize.tolerance` must be >= 0".into())
-            .field("optimize.tolerance")
-            .value(block.tolerance.to_string())
-            .allowed("a number >= 0"));
+        return Err(located(
+            study,
+            &at(&["tolerance"]),
+            "`optimize.tolerance` must be >= 0".into(),
+        )
+        .field("optimize.tolerance")
+        .value(block.tolerance.to_string())
+        .allowed("a number >= 0"));
     }
     let mut variables = path_variables(study, &block)?;
     let profile = match &block.profile {
@@ -149,7 +164,7 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
 fn bounds_ok(b: &Bounds) -> Result<f64, &'static str> {
     let start = b.start.unwrap_or(0.5 * (b.min + b.max));
     match () {
-        _ if !(b.min < b.max) => Err("min < max"),
+        _ if b.min.partial_cmp(&b.max) != Some(std::cmp::Ordering::Less) => Err("min < max"),
         _ if !(b.min..=b.max).contains(&start) => Err("min <= start <= max"),
         _ => Ok(start),
     }
@@ -162,14 +177,27 @@ fn path_variables(study: &Study, block: &OptimizeBlock) -> Result<Vec<Variable>,
         let here = at(&["variables", path]);
         let numeric = known_paths().contains_key(path) && !meta(path).units.is_empty();
         if !numeric {
-            return Err(located(study, &here, format!("`{path}` is not a numeric parameter"))
-                .field(format!("optimize.variables.{path}"))
-                .allowed("a dotted path of a number, e.g. bat.shell.thickness, bat.material.density"));
+            return Err(
+                located(study, &here, format!("`{path}` is not a numeric parameter"))
+                    .field(format!("optimize.variables.{path}"))
+                    .allowed(
+                        "a dotted path of a number, e.g. bat.shell.thickness, bat.material.density",
+                    ),
+            );
         }
-        if let Some(d) = study.plan.dims().iter().find(|d| d.params.iter().any(|(p, _)| related(p, path))) {
-            return Err(located(study, &here, format!("`{path}` is also varied by dimension `{}`", d.name))
-                .field(format!("optimize.variables.{path}"))
-                .allowed("a parameter no grid, zip or points block sets"));
+        if let Some(d) = study
+            .plan
+            .dims()
+            .iter()
+            .find(|d| d.params.iter().any(|(p, _)| related(p, path)))
+        {
+            return Err(located(
+                study,
+                &here,
+                format!("`{path}` is also varied by dimension `{}`", d.name),
+            )
+            .field(format!("optimize.variables.{path}"))
+            .allowed("a parameter no grid, zip or points block sets"));
         }
         let start = bounds_ok(b).map_err(|allowed| {
             located(study, &here, format!("bad bounds of `{path}`"))
@@ -206,24 +234,59 @@ fn profile_variables(
     };
     let increasing = p.z.first() == Some(&0.0) && p.z.windows(2).all(|w| w[1] > w[0]);
     if p.z.len() < 2 || !increasing {
-        return Err(bad("z", "bad knot positions", format!("{:?}", p.z), "at least 2 positions, increasing from 0 (m from the knob)"));
+        return Err(bad(
+            "z",
+            "bad knot positions",
+            format!("{:?}", p.z),
+            "at least 2 positions, increasing from 0 (m from the knob)",
+        ));
     }
     if p.radius.len() != p.z.len() {
-        return Err(bad("radius", "one radius per knot position", format!("{} radii", p.radius.len()), &format!("{} radii", p.z.len())));
+        return Err(bad(
+            "radius",
+            "one radius per knot position",
+            format!("{} radii", p.radius.len()),
+            &format!("{} radii", p.z.len()),
+        ));
     }
-    if let Some(d) = study.plan.dims().iter().find(|d| d.params.iter().any(|(q, _)| related(q, "bat.profile"))) {
-        return Err(bad("z", &format!("the profile is also varied by dimension `{}`", d.name), String::new(), "a profile no grid, zip or points block sets"));
+    if let Some(d) = study
+        .plan
+        .dims()
+        .iter()
+        .find(|d| d.params.iter().any(|(q, _)| related(q, "bat.profile")))
+    {
+        return Err(bad(
+            "z",
+            &format!("the profile is also varied by dimension `{}`", d.name),
+            String::new(),
+            "a profile no grid, zip or points block sets",
+        ));
     }
     let radius = knot_values(&p.radius, false, vars).map_err(|(k, r)| {
-        bad("radius", &format!("bad radius of knot {k}"), r, "a radius > 0, or {min, max, start} with 0 < min < max and start within")
+        bad(
+            "radius",
+            &format!("bad radius of knot {k}"),
+            r,
+            "a radius > 0, or {min, max, start} with 0 < min < max and start within",
+        )
     })?;
     let wall = match &p.thickness {
         None => None,
         Some(t) if t.len() != p.z.len() => {
-            return Err(bad("thickness", "one wall thickness per knot position", format!("{} thicknesses", t.len()), &format!("{} thicknesses", p.z.len())))
+            return Err(bad(
+                "thickness",
+                "one wall thickness per knot position",
+                format!("{} thicknesses", t.len()),
+                &format!("{} thicknesses", p.z.len()),
+            ))
         }
         Some(t) => Some(knot_values(t, true, vars).map_err(|(k, r)| {
-            bad("thickness", &format!("bad wall thickness of knot {k}"), r, "a thickness > 0, or {min, max, start} with 0 < min < max and start within")
+            bad(
+                "thickness",
+                &format!("bad wall thickness of knot {k}"),
+                r,
+                "a thickness > 0, or {min, max, start} with 0 < min < max and start within",
+            )
         })?),
     };
     Ok((p.z.clone(), radius, wall))
@@ -231,14 +294,22 @@ fn profile_variables(
 
 /// A profile's fixed values (NaN where a variable), its variables pushed to `vars`; the
 /// bad knot and its text on error.
-fn knot_values(list: &[Knot], wall: bool, vars: &mut Vec<Variable>) -> Result<Vec<f64>, (usize, String)> {
+fn knot_values(
+    list: &[Knot],
+    wall: bool,
+    vars: &mut Vec<Variable>,
+) -> Result<Vec<f64>, (usize, String)> {
     let mut fixed = Vec::new();
     for (k, r) in list.iter().enumerate() {
         match r {
             Knot::Fixed(r) if *r > 0.0 => fixed.push(*r),
             Knot::Free(b) if b.min > 0.0 && bounds_ok(b).is_ok() => {
                 fixed.push(f64::NAN);
-                let what = if wall { "shell.thickness" } else { "profile.radius" };
+                let what = if wall {
+                    "shell.thickness"
+                } else {
+                    "profile.radius"
+                };
                 vars.push(Variable {
                     name: format!("bat.{what}[{k}]"),
                     min: b.min,
@@ -255,7 +326,12 @@ fn knot_values(list: &[Knot], wall: bool, vars: &mut Vec<Variable>) -> Result<Ve
     Ok(fixed)
 }
 
-fn quantity_of(study: &Study, name: &str, here: Vec<Seg>, field: &str) -> Result<Quantity, StudyError> {
+fn quantity_of(
+    study: &Study,
+    name: &str,
+    here: Vec<Seg>,
+    field: &str,
+) -> Result<Quantity, StudyError> {
     let q = Quantity::parse(name).ok_or_else(|| {
         located(study, &here, format!("unknown quantity `{name}`"))
             .field(field.to_string())
@@ -264,10 +340,14 @@ fn quantity_of(study: &Study, name: &str, here: Vec<Seg>, field: &str) -> Result
     })?;
     let has_z = study.plan.dims().iter().any(|d| d.name == "impact_z");
     if matches!(q, Quantity::Sweet(_)) && !has_z {
-        return Err(located(study, &here, format!("`{name}` needs an `impact_z` dimension"))
-            .field(field.to_string())
-            .value(name.to_string())
-            .allowed("a sweet-spot quantity in a study with a grid axis `impact.z`"));
+        return Err(located(
+            study,
+            &here,
+            format!("`{name}` needs an `impact_z` dimension"),
+        )
+        .field(field.to_string())
+        .value(name.to_string())
+        .allowed("a sweet-spot quantity in a study with a grid axis `impact.z`"));
     }
     Ok(q)
 }
@@ -278,12 +358,21 @@ fn objective_of(study: &Study, block: &OptimizeBlock) -> Result<Objective, Study
         (Some(n), None) => (n, true, "maximize"),
         (None, Some(n)) => (n, false, "minimize"),
         _ => {
-            return Err(located(study, &at(&["objective"]), "the objective needs exactly one of `maximize` and `minimize`".into())
-                .field("optimize.objective")
-                .allowed("{maximize: QUANTITY} or {minimize: QUANTITY}"))
+            return Err(located(
+                study,
+                &at(&["objective"]),
+                "the objective needs exactly one of `maximize` and `minimize`".into(),
+            )
+            .field("optimize.objective")
+            .allowed("{maximize: QUANTITY} or {minimize: QUANTITY}"))
         }
     };
-    let quantity = quantity_of(study, name, at(&["objective", key]), &format!("optimize.objective.{key}"))?;
+    let quantity = quantity_of(
+        study,
+        name,
+        at(&["objective", key]),
+        &format!("optimize.objective.{key}"),
+    )?;
     Ok(Objective {
         quantity,
         maximize,
@@ -298,7 +387,7 @@ fn limits_of(study: &Study, block: &OptimizeBlock) -> Result<Vec<Limit>, StudyEr
         here.push(Seg::Index(i));
         match c {
             Constraint::Rules(r) => {
-                if r.moi_min.is_some_and(|m| !(m > 0.0)) {
+                if r.moi_min.is_some_and(|m| m.is_nan() || m <= 0.0) {
                     return Err(located(study, &here, "`moi_min` must be > 0".into())
                         .field(format!("optimize.constraints[{i}].moi_min"))
                         .allowed("a moment of inertia in kg m^2, > 0"));
@@ -310,16 +399,26 @@ fn limits_of(study: &Study, block: &OptimizeBlock) -> Result<Vec<Limit>, StudyEr
                 qat.push(Seg::Key("quantity".into()));
                 let field = format!("optimize.constraints[{i}]");
                 let quantity = quantity_of(study, &b.quantity, qat, &field)?;
-                if b.min.is_none() && b.max.is_none() || b.min.zip(b.max).is_some_and(|(a, m)| a > m) {
-                    return Err(located(study, &here, format!("the constraint on `{}` needs a bound", b.quantity))
-                        .field(field)
-                        .allowed("`min`, `max` or both (min <= max)"));
+                if b.min.is_none() && b.max.is_none()
+                    || b.min.zip(b.max).is_some_and(|(a, m)| a > m)
+                {
+                    return Err(located(
+                        study,
+                        &here,
+                        format!("the constraint on `{}` needs a bound", b.quantity),
+                    )
+                    .field(field)
+                    .allowed("`min`, `max` or both (min <= max)"));
                 }
                 out.push(Limit {
                     quantity,
                     min: b.min,
                     max: b.max,
-                    over: b.over.unwrap_or(if b.max.is_some() { Aggregate::Max } else { Aggregate::Min }),
+                    over: b.over.unwrap_or(if b.max.is_some() {
+                        Aggregate::Max
+                    } else {
+                        Aggregate::Min
+                    }),
                     source: "study".into(),
                 });
             }
@@ -335,17 +434,23 @@ fn check_solid_wood(study: &Study, block: &OptimizeBlock) -> Result<(), StudyErr
     });
     let Some(i) = mlb else { return Ok(()) };
     let zero = vec![0; study.plan.dims().len()];
-    let Ok(spec) = study.plan.resolve(&zero) else { return Ok(()) };
+    let Ok(spec) = study.plan.resolve(&zero) else {
+        return Ok(());
+    };
     let geometry = crate::model::bat::section::BatGeometry::resolve(&spec.bat);
     let hollow = geometry.is_ok_and(|g| g.shell.is_some() || g.bore.is_some());
     let wood = spec.bat.preset == crate::model::spec::BatPreset::R161;
     if hollow || !wood || get_path(study.plan.base(), "bat.fill").is_some_and(|f| !f.is_null()) {
         let mut here = at(&["constraints"]);
         here.push(Seg::Index(i));
-        return Err(located(study, &here, "`mlb_wood` needs a bat of one piece of solid wood".into())
-            .field("base.bat")
-            .value(format!("{:?}", spec.bat.preset).to_lowercase())
-            .allowed("bat.preset r161 (wood) without shell, bore or fill"));
+        return Err(located(
+            study,
+            &here,
+            "`mlb_wood` needs a bat of one piece of solid wood".into(),
+        )
+        .field("base.bat")
+        .value(format!("{:?}", spec.bat.preset).to_lowercase())
+        .allowed("bat.preset r161 (wood) without shell, bore or fill"));
     }
     Ok(())
 }
@@ -357,9 +462,13 @@ fn check_start(study: &Study, design: &Design) -> Result<(), StudyError> {
     for flat in 0..n {
         let m = study.plan.shape().unravel(flat);
         if let Err(e) = study.plan.resolve_over(&base, &m) {
-            return Err(located(study, &at(&["variables"]), format!("the start design does not make a valid collision: {e}"))
-                .field("optimize")
-                .allowed("start values (and fixed knots) that give a valid bat at every point"));
+            return Err(located(
+                study,
+                &at(&["variables"]),
+                format!("the start design does not make a valid collision: {e}"),
+            )
+            .field("optimize")
+            .allowed("start values (and fixed knots) that give a valid bat at every point"));
         }
     }
     Ok(())

@@ -37,8 +37,11 @@ pub struct Evaluation {
 pub struct Evaluator<'a> {
     pub study: &'a Study,
     pub design: &'a Design,
-    bats: Mutex<(HashMap<String, Arc<Target>>, Vec<String>)>,
+    bats: Mutex<BatCache>,
 }
+
+/// Prepared bats by key, and the keys oldest first.
+type BatCache = (HashMap<String, Arc<Target>>, Vec<String>);
 
 /// The points of one candidate: resolved specs, and each one's bat.
 struct Grid {
@@ -79,7 +82,10 @@ impl<'a> Evaluator<'a> {
         let o = &self.design.objective;
         let objective = self.value(o.quantity, o.over, &grid, &outcomes);
         if !objective.is_finite() {
-            return Err(format!("the objective {} is not a number", o.quantity.name()));
+            return Err(format!(
+                "the objective {} is not a number",
+                o.quantity.name()
+            ));
         }
         let constraints = self
             .design
@@ -157,15 +163,19 @@ impl<'a> Evaluator<'a> {
         let zs: Vec<f64> = order.iter().map(|&q| z[q]).collect();
         let stride: usize = dims[iz + 1..].iter().map(|d| d.size).product();
         let outer = plan.n_points() / (z.len() * stride);
-        let carry = SUMMARY_FLOATS.iter().position(|d| d.name == "carry").expect("carry");
+        let carry = SUMMARY_FLOATS
+            .iter()
+            .position(|d| d.name == "carry")
+            .expect("carry");
         let mut out = Vec::new();
         for hi in 0..outer {
             for lo in 0..stride {
                 let at = |q: usize| &outcomes[hi * z.len() * stride + q * stride + lo];
                 let curve: Vec<f64> = match s {
-                    Sweet::Carry | Sweet::CarryPosition => {
-                        order.iter().map(|&q| summary_floats(at(q))[carry]).collect()
-                    }
+                    Sweet::Carry | Sweet::CarryPosition => order
+                        .iter()
+                        .map(|&q| summary_floats(at(q))[carry])
+                        .collect(),
                     Sweet::ExitSpeedLab => order.iter().map(|&q| at(q).exit_speed_lab).collect(),
                     _ => order.iter().map(|&q| at(q).exit_speed).collect(),
                 };

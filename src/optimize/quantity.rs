@@ -58,9 +58,21 @@ const BAT: &[(&str, BatQuantity, &str)] = &[
     ("bat.mass", BatQuantity::Mass, "kg"),
     ("bat.length", BatQuantity::Length, "m"),
     ("bat.z_cm", BatQuantity::CentreOfMass, "m"),
-    ("bat.moment_of_inertia", BatQuantity::MomentOfInertia, "kg m^2"),
-    ("bat.moment_of_inertia_knob6", BatQuantity::MomentOfInertiaKnob6, "kg m^2"),
-    ("bat.moment_of_inertia_knob", BatQuantity::MomentOfInertiaKnob, "kg m^2"),
+    (
+        "bat.moment_of_inertia",
+        BatQuantity::MomentOfInertia,
+        "kg m^2",
+    ),
+    (
+        "bat.moment_of_inertia_knob6",
+        BatQuantity::MomentOfInertiaKnob6,
+        "kg m^2",
+    ),
+    (
+        "bat.moment_of_inertia_knob",
+        BatQuantity::MomentOfInertiaKnob,
+        "kg m^2",
+    ),
     ("bat.barrel_diameter", BatQuantity::BarrelDiameter, "m"),
     ("bat.drop", BatQuantity::Drop, "1"),
     ("bat.bbcor", BatQuantity::Bbcor, "1"),
@@ -72,7 +84,10 @@ impl Quantity {
         if let Some(k) = SUMMARY_FLOATS.iter().position(|d| d.name == name) {
             return Some(Quantity::Summary(k));
         }
-        let sweet = SWEET.iter().find(|s| s.0 == name).map(|s| Quantity::Sweet(s.1));
+        let sweet = SWEET
+            .iter()
+            .find(|s| s.0 == name)
+            .map(|s| Quantity::Sweet(s.1));
         sweet.or_else(|| BAT.iter().find(|b| b.0 == name).map(|b| Quantity::Bat(b.1)))
     }
 

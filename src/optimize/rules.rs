@@ -74,7 +74,11 @@ fn bat_limit(q: BatQuantity, min: Option<f64>, max: Option<f64>, source: &str) -
         quantity: Quantity::Bat(q),
         min,
         max,
-        over: if max.is_some() { Aggregate::Max } else { Aggregate::Min },
+        over: if max.is_some() {
+            Aggregate::Max
+        } else {
+            Aggregate::Min
+        },
         source: source.to_string(),
     }
 }
@@ -92,7 +96,12 @@ pub fn rule_limits(rules: RuleSet, moi_min: Option<f64>) -> Vec<Limit> {
                 bat_limit(BatQuantity::BarrelDiameter, None, Some(2.625 * INCH), NCAA),
             ];
             if let Some(m) = moi_min {
-                v.push(bat_limit(BatQuantity::MomentOfInertiaKnob6, Some(m), None, NCAA));
+                v.push(bat_limit(
+                    BatQuantity::MomentOfInertiaKnob6,
+                    Some(m),
+                    None,
+                    NCAA,
+                ));
             }
             v
         }

@@ -85,7 +85,12 @@ pub fn penalized(design: &Design, u: &[f64], e: &Evaluation, scale: f64) -> f64 
     let mut f = sign * e.objective / scale;
     for (l, &v) in design.limits.iter().zip(&e.constraints) {
         let m = l.margin(v);
-        f += PENALTY * if m.is_nan() { 1.0 } else { (-m).max(0.0) / l.scale() };
+        f += PENALTY
+            * if m.is_nan() {
+                1.0
+            } else {
+                (-m).max(0.0) / l.scale()
+            };
     }
     let outside: f64 = u.iter().map(|&x| (-x).max(0.0) + (x - 1.0).max(0.0)).sum();
     f + PENALTY * outside
@@ -169,7 +174,11 @@ fn simplex(design: &Design) -> Vec<Vec<f64>> {
     let mut s = vec![u0.clone()];
     for k in 0..u0.len() {
         let mut u = u0.clone();
-        u[k] += if u0[k] + SIMPLEX_STEP <= 1.0 { SIMPLEX_STEP } else { -SIMPLEX_STEP };
+        u[k] += if u0[k] + SIMPLEX_STEP <= 1.0 {
+            SIMPLEX_STEP
+        } else {
+            -SIMPLEX_STEP
+        };
         s.push(u);
     }
     s
@@ -186,7 +195,9 @@ pub fn search(
     recorded: Vec<Candidate>,
     stop: &AtomicBool,
 ) -> Outcome {
-    let scale = recorded.first().map_or(1.0, |c| objective_scale(&c.evaluation));
+    let scale = recorded
+        .first()
+        .map_or(1.0, |c| objective_scale(&c.evaluation));
     let replay = recorded.into_iter().map(|c| (key(&c.u), c)).collect();
     let problem = Problem {
         design,

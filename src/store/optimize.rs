@@ -95,14 +95,17 @@ impl OptimizeJournal {
         if head["format"] != JOURNAL_FORMAT || head["study_sha256"] != id {
             return Err(StoreError::BadRecord {
                 path: path.clone(),
-                what: "it is not the journal of this study's search (start over with --force)".into(),
+                what: "it is not the journal of this study's search (start over with --force)"
+                    .into(),
             });
         }
         let mut rows = Vec::new();
         let mut keep = head.to_string().len() as u64 + 1;
         for line in lines {
             let Ok(line) = line else { break };
-            let Ok(l) = serde_json::from_str::<Line>(&line) else { break };
+            let Ok(l) = serde_json::from_str::<Line>(&line) else {
+                break;
+            };
             keep += line.len() as u64 + 1;
             rows.push(CandidateRow {
                 u: floats(&l.u),
@@ -213,28 +216,100 @@ pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> 
         h5u::scale_coord(&g, name, &i, &def).ctx(path, "write an index coordinate")
     };
     let cand = idx("candidate", n)?;
-    let var = labels(&g, "variable", t.variables.iter().map(|v| v.name.as_str()), path)?;
-    let con = labels(&g, "constraint", t.constraints.iter().map(|c| c.label.as_str()), path)?;
-    let col = |rows: &dyn Fn(&CandidateRow) -> f64| -> Vec<f64> { t.rows.iter().map(rows).collect() };
+    let var = labels(
+        &g,
+        "variable",
+        t.variables.iter().map(|v| v.name.as_str()),
+        path,
+    )?;
+    let con = labels(
+        &g,
+        "constraint",
+        t.constraints.iter().map(|c| c.label.as_str()),
+        path,
+    )?;
+    let col =
+        |rows: &dyn Fn(&CandidateRow) -> f64| -> Vec<f64> { t.rows.iter().map(rows).collect() };
     let one = |def: VarDef, data: Vec<f64>| write_f64(&g, &def, &[n], &data, &[&cand], &att, path);
-    one(v("objective", &t.objective_units, "objective", &format!("{} ({} over the grid) of each candidate", t.objective, t.over)), col(&|r| r.objective))?;
+    one(
+        v(
+            "objective",
+            &t.objective_units,
+            "objective",
+            &format!(
+                "{} ({} over the grid) of each candidate",
+                t.objective, t.over
+            ),
+        ),
+        col(&|r| r.objective),
+    )?;
     one(v("penalized", "1", "penalized objective", "what the search minimised: the objective over its magnitude at the start (negated to maximise) plus the penalties"), col(&|r| r.penalized))?;
     for (k, vi) in t.variables.iter().enumerate() {
-        one(v(&format!("design_{k}"), &vi.units, &vi.name, &format!("design variable {} of each candidate", vi.name)), col(&|r| r.x[k]))?;
+        one(
+            v(
+                &format!("design_{k}"),
+                &vi.units,
+                &vi.name,
+                &format!("design variable {} of each candidate", vi.name),
+            ),
+            col(&|r| r.x[k]),
+        )?;
     }
     for (k, ci) in t.constraints.iter().enumerate() {
-        one(v(&format!("constraint_{k}"), &ci.units, &ci.quantity, &format!("{} of each candidate (limit: {})", ci.quantity, ci.label)), col(&|r| r.constraints[k]))?;
+        one(
+            v(
+                &format!("constraint_{k}"),
+                &ci.units,
+                &ci.quantity,
+                &format!("{} of each candidate (limit: {})", ci.quantity, ci.label),
+            ),
+            col(&|r| r.constraints[k]),
+        )?;
         let m: Vec<f64> = t.margins.iter().map(|m| m[k]).collect();
-        one(v(&format!("margin_{k}"), &ci.units, &format!("margin {}", ci.label), "how far inside the limit (negative: outside)"), m)?;
+        one(
+            v(
+                &format!("margin_{k}"),
+                &ci.units,
+                &format!("margin {}", ci.label),
+                "how far inside the limit (negative: outside)",
+            ),
+            m,
+        )?;
     }
     let scaled: Vec<f64> = t.rows.iter().flat_map(|r| r.u.iter().copied()).collect();
     let def = v("design_scaled", "1", "design (scaled)", "each variable as the search saw it: (x - min)/(max - min), outside [0, 1] where the search asked beyond a bound");
-    write_f64(&g, &def, &[n, t.variables.len()], &scaled, &[&cand, &var], &att, path)?;
+    write_f64(
+        &g,
+        &def,
+        &[n, t.variables.len()],
+        &scaled,
+        &[&cand, &var],
+        &att,
+        path,
+    )?;
     let rel: Vec<f64> = (0..n)
-        .flat_map(|r| t.constraints.iter().enumerate().map(move |(k, c)| t.margins[r][k] / c.scale))
+        .flat_map(|r| {
+            t.constraints
+                .iter()
+                .enumerate()
+                .map(move |(k, c)| t.margins[r][k] / c.scale)
+        })
         .collect();
-    let def = v("margin_scaled", "1", "margin (relative)", "each limit's margin over the bound's magnitude (negative: outside)");
-    write_f64(&g, &def, &[n, t.constraints.len()], &rel, &[&cand, &con], &att, path)?;
+    let def = v(
+        "margin_scaled",
+        "1",
+        "margin (relative)",
+        "each limit's margin over the bound's magnitude (negative: outside)",
+    );
+    write_f64(
+        &g,
+        &def,
+        &[n, t.constraints.len()],
+        &rel,
+        &[&cand, &con],
+        &att,
+        path,
+    )?;
     write_status(&g, t, &cand, &att, path)?;
     attrs(&g, t, path)?;
     att.write().ctx(path, "attach the dimension scales")?;
@@ -271,23 +346,59 @@ fn write_f64(
     path: &Path,
 ) -> Result<Dataset, StoreError> {
     let what = format!("write optimize/{}", def.name);
-    let ds = g.new_dataset::<f64>().shape(shape.to_vec()).create(def.name).ctx(path, &what)?;
+    let ds = g
+        .new_dataset::<f64>()
+        .shape(shape.to_vec())
+        .create(def.name)
+        .ctx(path, &what)?;
     h5u::write_small(&ds, data).ctx(path, &what)?;
     describe(&ds, def).ctx(path, &what)?;
     att.add(&ds, scales);
     Ok(ds)
 }
 
-fn write_status(g: &Group, t: &OptimizeTable, cand: &Dataset, att: &Attacher, path: &Path) -> Result<(), StoreError> {
-    let ds = g.new_dataset::<i8>().shape(t.status.len()).create("status").ctx(path, "write optimize/status")?;
+fn write_status(
+    g: &Group,
+    t: &OptimizeTable,
+    cand: &Dataset,
+    att: &Attacher,
+    path: &Path,
+) -> Result<(), StoreError> {
+    let ds = g
+        .new_dataset::<i8>()
+        .shape(t.status.len())
+        .create("status")
+        .ctx(path, "write optimize/status")?;
     h5u::write_small(&ds, &t.status).ctx(path, "write optimize/status")?;
-    describe(&ds, &v("status", "1", "status", "0 feasible (within every limit), 1 infeasible, 2 failed")).ctx(path, "describe status")?;
+    describe(
+        &ds,
+        &v(
+            "status",
+            "1",
+            "status",
+            "0 feasible (within every limit), 1 infeasible, 2 failed",
+        ),
+    )
+    .ctx(path, "describe status")?;
     attr_vec(&ds, "flag_values", &[FEASIBLE, INFEASIBLE, FAILED]).ctx(path, "describe status")?;
     attr_str(&ds, "flag_meanings", "feasible infeasible failed").ctx(path, "describe status")?;
     att.add(&ds, &[cand]);
-    let msg: Vec<VarLenUnicode> = t.rows.iter().map(|r| h5u::vlstr(r.error.as_deref().unwrap_or(""))).collect();
+    let msg: Vec<VarLenUnicode> = t
+        .rows
+        .iter()
+        .map(|r| h5u::vlstr(r.error.as_deref().unwrap_or("")))
+        .collect();
     let m = h5u::write_1d(g, "message", &msg).ctx(path, "write optimize/message")?;
-    describe(&m, &v("message", "", "message", "why a candidate failed (empty otherwise)")).ctx(path, "describe message")?;
+    describe(
+        &m,
+        &v(
+            "message",
+            "",
+            "message",
+            "why a candidate failed (empty otherwise)",
+        ),
+    )
+    .ctx(path, "describe message")?;
     att.add(&m, &[cand]);
     Ok(())
 }
@@ -306,7 +417,11 @@ fn attrs(g: &Group, t: &OptimizeTable, path: &Path) -> Result<(), StoreError> {
         attr_str(g, k, s).ctx(path, ctx)?;
     }
     attr_num(g, "evaluations", t.rows.len() as i64).ctx(path, ctx)?;
-    let sources: Vec<String> = t.constraints.iter().map(|c| format!("{}: {}", c.label, c.source)).collect();
+    let sources: Vec<String> = t
+        .constraints
+        .iter()
+        .map(|c| format!("{}: {}", c.label, c.source))
+        .collect();
     attr_str(g, "constraint_sources", &sources.join("; ")).ctx(path, ctx)?;
     attr_num(g, "best_candidate", t.best.map_or(-1, |b| b as i64)).ctx(path, ctx)?;
     let Some(b) = t.best else { return Ok(()) };
@@ -317,10 +432,16 @@ fn attrs(g: &Group, t: &OptimizeTable, path: &Path) -> Result<(), StoreError> {
     attr_vec(g, "best_margins", &t.margins[b]).ctx(path, ctx)?;
     let mut best = serde_json::Map::new();
     for (vi, x) in t.variables.iter().zip(&r.x) {
-        best.insert(vi.name.clone(), serde_json::json!({ "value": x, "units": vi.units }));
+        best.insert(
+            vi.name.clone(),
+            serde_json::json!({ "value": x, "units": vi.units }),
+        );
     }
     for ((ci, x), m) in t.constraints.iter().zip(&r.constraints).zip(&t.margins[b]) {
-        best.insert(ci.label.clone(), serde_json::json!({ "value": x, "margin": m, "units": ci.units, "source": ci.source }));
+        best.insert(
+            ci.label.clone(),
+            serde_json::json!({ "value": x, "margin": m, "units": ci.units, "source": ci.source }),
+        );
     }
     attr_str(g, "best", &serde_json::Value::Object(best).to_string()).ctx(path, ctx)
 }

@@ -209,7 +209,11 @@ impl Plan {
 
     /// The resolved collision at this multi-index over another base: an optimiser's
     /// candidate design with the study's dimensions (issue 36).
-    pub fn resolve_over(&self, base: &Value, multi: &[usize]) -> Result<CollisionSpec, ResolveError> {
+    pub fn resolve_over(
+        &self,
+        base: &Value,
+        multi: &[usize],
+    ) -> Result<CollisionSpec, ResolveError> {
         let mut v = self.value_over(base, multi);
         self.resolve_value(&mut v)
     }

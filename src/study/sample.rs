@@ -137,7 +137,12 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
         .params
         .keys()
         .zip(values)
-        .map(|(p, v)| (p.clone(), v.into_iter().map(yaml_serde::Value::from).collect()))
+        .map(|(p, v)| {
+            (
+                p.clone(),
+                v.into_iter().map(yaml_serde::Value::from).collect(),
+            )
+        })
         .collect();
     Ok(Some(PlanDim {
         name: block.name.clone().unwrap_or_else(|| "sample".into()),
@@ -162,7 +167,12 @@ impl Distribution {
     fn normal_form(&self) -> (f64, f64, Option<f64>, Option<f64>, bool) {
         match *self {
             Distribution::Normal { mean, sd, min, max } => (mean, sd, min, max, false),
-            Distribution::Lognormal { mean, cov, min, max } => {
+            Distribution::Lognormal {
+                mean,
+                cov,
+                min,
+                max,
+            } => {
                 let s2 = (1.0 + cov * cov).ln();
                 (mean.ln() - s2 / 2.0, s2.sqrt(), min, max, true)
             }
@@ -298,7 +308,10 @@ fn check(block: &SampleBlock) -> Result<(), SampleError> {
         if let Some((field, value, allowed)) = dist.problem() {
             return Err(err(
                 keys(&["sample", "params", path, dist.kind(), field]),
-                format!("the {} distribution of `{path}` has a bad `{field}`", dist.kind()),
+                format!(
+                    "the {} distribution of `{path}` has a bad `{field}`",
+                    dist.kind()
+                ),
                 &format!("sample.params.{path}.{}.{field}", dist.kind()),
                 value.to_string(),
                 allowed,
@@ -344,7 +357,11 @@ fn correlation_matrix(block: &SampleBlock) -> Result<Vec<f64>, SampleError> {
                 false => (pair.rho.to_string(), "-1 < rho < 1"),
             };
             return Err(err(
-                at(if a == b || c[a * d + b] != 0.0 { "between" } else { "rho" }),
+                at(if a == b || c[a * d + b] != 0.0 {
+                    "between"
+                } else {
+                    "rho"
+                }),
                 "bad correlated pair".into(),
                 "sample.correlation",
                 value,

@@ -413,7 +413,10 @@ fn shell_knots(spec: Option<&ShellSpec>) -> Result<Vec<[f64; 2]>, ModelError> {
         return Ok(Vec::new());
     };
     let increasing = k.windows(2).all(|w| w[1][0] > w[0][0]);
-    match k.iter().find(|p| !(p[1] > 0.0 && p[1].is_finite() && p[0].is_finite())) {
+    match k
+        .iter()
+        .find(|p| !(p[1] > 0.0 && p[1].is_finite() && p[0].is_finite()))
+    {
         _ if k.is_empty() || !increasing => Err(out_of_range(
             "bat.shell.thickness_knots",
             f64::NAN,
@@ -436,13 +439,17 @@ fn shell_of(
         .thickness_knots
         .as_ref()
         .map(|k| k.iter().map(|p| p[1]).fold(0.0, f64::max));
-    let thickness = s.thickness.or(from_knots).or(preset.map(|p| p.0)).ok_or_else(|| {
-        out_of_range(
-            "bat.shell.thickness",
-            f64::NAN,
-            "a wall thickness in m (required: this preset is solid)",
-        )
-    })?;
+    let thickness = s
+        .thickness
+        .or(from_knots)
+        .or(preset.map(|p| p.0))
+        .ok_or_else(|| {
+            out_of_range(
+                "bat.shell.thickness",
+                f64::NAN,
+                "a wall thickness in m (required: this preset is solid)",
+            )
+        })?;
     Ok(Some((
         thickness,
         s.from.or(preset.map(|p| p.1)).unwrap_or(0.0),

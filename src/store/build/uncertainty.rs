@@ -127,7 +127,10 @@ pub(super) fn write_uncertainty(
     let all: Vec<usize> = (0..dims.len()).collect();
     let mut qs = Vec::new();
     for var in ["exit_speed", "bbcor"] {
-        let def = l::SUMMARY_FLOATS.iter().find(|d| d.name == var).expect("a summary var");
+        let def = l::SUMMARY_FLOATS
+            .iter()
+            .find(|d| d.name == var)
+            .expect("a summary var");
         let data = read(f, &format!("{}/{var}", l::GROUP_SUMMARY), out)?;
         qs.push(Quantity {
             def: *def,
@@ -161,7 +164,10 @@ fn sweet_quantities(
         ("position", "sweet_spot_position"),
         ("exit_speed", "sweet_spot_exit_speed"),
     ] {
-        let def = l::SWEET_FLOATS.iter().find(|d| d.name == var).expect("a sweet var");
+        let def = l::SWEET_FLOATS
+            .iter()
+            .find(|d| d.name == var)
+            .expect("a sweet var");
         let data = read(f, &format!("{}/{var}", l::GROUP_SWEET_SPOT), out)?;
         qs.push(Quantity {
             def: VarDef {
@@ -255,10 +261,28 @@ fn write_group(
         let mut pshape = shape.clone();
         pshape.push(PERCENTILES.len());
         let desc = |what: &str| leak(format!("{what} of {} over the sample", q.def.name));
-        let parts: [(VarDef, &[&Dataset], &[usize], Vec<f64>); 3] = [
-            (VarDef { description: desc("percentiles"), ..q.def }, &with_p, &pshape, pct),
-            (named(&q.def, "mean", desc("mean")), &qscales, &shape, q.stats.iter().map(|t| t.1).collect()),
-            (named(&q.def, "std", desc("sample standard deviation")), &qscales, &shape, q.stats.iter().map(|t| t.2).collect()),
+        let parts: [Part; 3] = [
+            (
+                VarDef {
+                    description: desc("percentiles"),
+                    ..q.def
+                },
+                &with_p,
+                &pshape,
+                pct,
+            ),
+            (
+                named(&q.def, "mean", desc("mean")),
+                &qscales,
+                &shape,
+                q.stats.iter().map(|t| t.1).collect(),
+            ),
+            (
+                named(&q.def, "std", desc("sample standard deviation")),
+                &qscales,
+                &shape,
+                q.stats.iter().map(|t| t.2).collect(),
+            ),
         ];
         for (def, sc, sh, data) in parts {
             write_var(&g, &def, sh, &data, (sc, &aux, &att), out)?;
@@ -278,6 +302,9 @@ fn write_group(
     }
     att.write().ctx(out, "attach the dimension scales")
 }
+
+/// One variable to write: what it is, its scales, its shape and its data.
+type Part<'a> = (VarDef, &'a [&'a Dataset], &'a [usize], Vec<f64>);
 
 fn named(def: &VarDef, suffix: &str, description: &'static str) -> VarDef {
     VarDef {
