@@ -270,8 +270,8 @@ pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> 
             v(
                 &format!("margin_{k}"),
                 &ci.units,
-                &format!("margin {}", ci.label),
-                "how far inside the limit (negative: outside)",
+                &format!("margin: {}", ci.quantity),
+                &format!("how far inside the limit {} (negative: outside)", ci.label),
             ),
             m,
         )?;
