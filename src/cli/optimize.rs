@@ -118,8 +118,10 @@ fn settings(a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFail
     })?;
     let jobs = jobs_or_all(a.jobs, &study.path).map_err(bad)?;
     let output = study.output_path(a.output.as_deref());
+    // a resumed search replaces the output it finishes (one killed between the rename of
+    // the final file and the journal's removal has both)
     let existing = match (a.resume, a.force) {
-        (_, true) => Existing::Overwrite,
+        (true, _) | (_, true) => Existing::Overwrite,
         _ => Existing::Refuse,
     };
     check_output_of(&study, &output, a.output.is_some(), existing).map_err(bad)?;
