@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import os
 import pathlib
+import subprocess
+import sys
 import tempfile
 from typing import Any, Mapping, Optional, Union
-
-from . import _native
 
 
 def optimize(
@@ -27,19 +27,27 @@ def optimize(
     The file itself holds the study run at the best design (``/summary``, ``/sweet_spot``,
     ``/bat``) beside ``/optimize``. ``resume=True`` continues a search that was stopped
     (its candidates are replayed from ``OUT.h5.optimize``); ``force=True`` starts over.
-    Raises :class:`RuntimeError` with the command's message when it does not finish
-    (bad input: exit status 2)."""
+    The search runs in a process of its own (``python -m batstudy optimize``), so Ctrl-C
+    stops it as it stops the command (:class:`KeyboardInterrupt` here; resume with
+    ``resume=True``). Raises :class:`RuntimeError` with the command's message when it does
+    not finish (bad input: exit status 2)."""
     import xarray as xr
 
     with tempfile.TemporaryDirectory() as tmp:
         path = _study_path(study, pathlib.Path(tmp))
-        argv = ["batstudy", "optimize", str(path), "-o", os.fspath(output)]
+        argv = [sys.executable, "-m", "batstudy", "optimize", str(path), "-o", os.fspath(output)]
         if jobs is not None:
             argv += ["-j", str(int(jobs))]
         argv += ["--resume"] * bool(resume) + ["--force"] * bool(force) + ["--quiet"] * bool(quiet)
-        code = _native.cli_main(argv, None)
-        if code not in (0, 1):
-            raise RuntimeError(f"batstudy optimize exited with status {code} (its message is above)")
+        # a process of its own: Ctrl-C stops its search (the candidate in flight finishes and
+        # is kept), and this interpreter's own handling of Ctrl-C is left alone
+        r = subprocess.run(argv, stderr=subprocess.PIPE, text=True)
+    if r.stderr and not quiet:
+        print(r.stderr, end="", file=sys.stderr)
+    if r.returncode == 130:
+        raise KeyboardInterrupt("the search was interrupted: resume=True continues it")
+    if r.returncode not in (0, 1):
+        raise RuntimeError(f"batstudy optimize exited with status {r.returncode}:\n{r.stderr}")
     with xr.open_dataset(output, engine="h5netcdf", group="optimize") as ds:
         return ds.load()
 
