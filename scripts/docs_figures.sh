@@ -11,8 +11,12 @@ work=target/docs_figures
 mkdir -p "$work" docs/figures
 "$bin" run studies/param_space.yaml -o "$work/param_space.h5" --force --quiet
 "$bin" run studies/ball_tests.yaml -o "$work/ball_tests.h5" --force --quiet
+"$bin" run studies/batter.yaml -o "$work/batter.h5" --force --quiet
+"$bin" run studies/undercut.yaml -o "$work/undercut.h5" --force --quiet
 .venv/bin/python scripts/figures.py "$work/param_space.h5" -o docs/figures --jobs 2
 .venv/bin/python scripts/figures.py "$work/ball_tests.h5" -o docs/figures --only ball_tests
+.venv/bin/python scripts/figures.py "$work/batter.h5" -o docs/figures --only batter
+.venv/bin/python scripts/figures.py "$work/undercut.h5" -o docs/figures --only undercut
 .venv/bin/python - <<'PY'
 from pathlib import Path
 from PIL import Image

@@ -36,6 +36,7 @@ fn bench_quick_reports_every_section_and_no_targets() {
         "== points/s",
         "== writer and disk",
         "== peak memory",
+        "== the batted ball",
     ] {
         assert!(text.contains(section), "missing section {section}:\n{text}");
     }
@@ -83,9 +84,11 @@ fn bench_quick_reports_every_section_and_no_targets() {
 fn bench_quick_json_has_every_section_and_key() {
     let (r, _) = quick_bench();
     let json = serde_json::to_value(&r).unwrap();
-    for key in ["machine", "scaling", "writer_headroom", "memory"] {
+    for key in ["machine", "scaling", "writer_headroom", "memory", "batted"] {
         assert!(json.get(key).is_some(), "json lacks {key}");
     }
+    let batted = &r.batted;
+    assert!(batted.flight_time_ratio > 0.0 && batted.flight_time_ratio.is_finite());
     for key in ["nproc", "cpu_model", "memory_bytes", "os", "kernel"] {
         assert!(json["machine"].get(key).is_some(), "machine lacks {key}");
     }

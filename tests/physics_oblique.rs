@@ -244,3 +244,57 @@ fn a_vanishing_offset_approaches_the_head_on_collision() {
     );
     assert!(oblique.batted.launch_angle.abs() < 1e-4);
 }
+
+/// The aluminum bat with its hoop mode (from the shell).
+fn aluminum_with_hoop(z: f64) -> CollisionSpec {
+    let mut spec = CollisionSpec::base_case(z);
+    spec.bat.preset = BatPreset::Aluminum;
+    spec.hoop = Some(HoopSpec {
+        from_geometry: true,
+        ..HoopSpec::default()
+    });
+    spec.ball = ball(BallPreset::Mlb);
+    spec.swing.omega = -40.0;
+    spec
+}
+
+#[test]
+fn with_a_hoop_mode_the_oblique_energy_balance_closes_and_momentum_is_kept() {
+    for (offset, mu) in [(-0.02, 0.15), (0.015, 0.0)] {
+        let mut spec = aluminum_with_hoop(0.68);
+        spec.impact.offset = offset;
+        spec.ball.law.friction = Some(mu);
+        let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
+        let (o, d) = simulate_with_diagnostics(&spec, &bat, None).unwrap();
+        assert!(o.energy.hoop >= 0.0 && o.hoop_frequency.is_finite());
+        assert!(
+            (d.energy_final / o.energy.initial - 1.0).abs() < 2e-4,
+            "offset {offset}: {} vs {}",
+            d.energy_final,
+            o.energy.initial
+        );
+        let scale = spec.ball.mass * spec.ball.speed;
+        assert!(
+            (d.momentum_final - d.momentum_initial).abs() < 1e-6 * scale,
+            "offset {offset}: momentum {} -> {}",
+            d.momentum_initial,
+            d.momentum_final
+        );
+    }
+}
+
+#[test]
+fn with_a_hoop_mode_a_vanishing_offset_approaches_the_head_on_collision() {
+    let mut spec = aluminum_with_hoop(0.70);
+    let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
+    let head_on = simulate(&spec, &bat, None).unwrap();
+    spec.impact.offset = -1e-7;
+    let oblique = simulate(&spec, &bat, None).unwrap();
+    assert!(
+        (oblique.exit_speed / head_on.exit_speed - 1.0).abs() < 1e-6,
+        "{} vs {}",
+        oblique.exit_speed,
+        head_on.exit_speed
+    );
+    assert!((oblique.energy.hoop / head_on.energy.hoop - 1.0).abs() < 1e-4);
+}

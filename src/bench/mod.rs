@@ -29,6 +29,7 @@
 //! tests use (integrator accuracy, the HDF5 share); the shipped bench does not run it.
 //! Off the run path: nothing in `run`, `store`, `study` or `model` uses this module.
 
+mod batted;
 mod cases;
 pub mod dev;
 mod headroom;
@@ -41,6 +42,7 @@ mod scaling;
 mod sinks;
 mod store_run;
 
+pub use batted::Batted;
 pub use cases::{
     base_spec, curve_positions, curve_study_text, load_study, HISTORY_BLOCK, SCALAR_HISTORY_BLOCK,
 };
@@ -105,6 +107,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     let memory = memory::bench_memory(&sz, scaling.cores, dir.path(), &peaks)?;
     report::print_memory(out, &memory);
 
+    let batted = batted::bench_batted(&sz, scaling.cores, dir.path())?;
+    report::print_batted(out, &batted);
     let optimize = optimize::bench_optimize(if opts.quick { 8 } else { 120 }, scaling.cores)?;
     optimize::print(out, &optimize);
 
@@ -115,6 +119,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         scaling,
         writer_headroom: headroom,
         memory,
+        batted,
         optimize,
     })
 }

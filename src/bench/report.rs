@@ -1,6 +1,7 @@
 //! The report: every section printed as it is measured, and the figures as JSON. Facts
 //! about this machine only: no targets, no reference times.
 
+use super::batted::Batted;
 use super::headroom::WriterHeadroom;
 use super::machine::Machine;
 use super::memory::{MemoryBench, RunMemory};
@@ -19,6 +20,8 @@ pub struct BenchReport {
     pub writer_headroom: WriterHeadroom,
     /// Peak resident memory of the runs.
     pub memory: MemoryBench,
+    /// The batted ball's flight: an undercut study with and without it.
+    pub batted: Batted,
     /// Design candidates per second of a profile search (issue 36).
     pub optimize: super::optimize::OptimizeBench,
 }
@@ -246,6 +249,21 @@ pub(super) fn print_memory(out: &mut dyn Write, mb: &MemoryBench) {
             mib(Some(mb.history_bytes_in_memory)),
             mb.channel_capacity,
             mib(Some(mb.build_memory as u64))
+        ),
+    );
+}
+
+pub(super) fn print_batted(out: &mut dyn Write, b: &Batted) {
+    line(
+        out,
+        format!(
+            "\n== the batted ball: an undercut study ({} points, {} threads) with and without its flight\n\
+             {:.0} points/s without, {:.0} with: the flight costs {:.2}× the time per point",
+            b.points,
+            b.threads,
+            b.without_flight_points_per_second,
+            b.with_flight_points_per_second,
+            b.flight_time_ratio
         ),
     );
 }

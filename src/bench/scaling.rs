@@ -96,7 +96,7 @@ fn studies(sz: &Sizes, threads: usize) -> Result<[Study; 3], String> {
 }
 
 /// `repeats` store runs of `study`: the median points/s and the last run.
-fn rate(
+pub(super) fn rate(
     study: &Study,
     file: &str,
     dir: &Path,

@@ -35,10 +35,10 @@ pub const DEFAULT_BALL_RADIUS: f64 = 9.125 * 0.0254 / std::f64::consts::TAU;
 /// cork and rubber inside wool and leather, are close to uniform in density).
 pub const DEFAULT_INERTIA_FACTOR: f64 = 0.4;
 /// Coefficient of friction between ball and bat (docs/physics.md, "Oblique impacts").
-pub const DEFAULT_FRICTION: f64 = 0.15;
-/// The ball's tangential stiffness over its normal (secant) one (docs/physics.md, "Oblique
-/// impacts").
-pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.2;
+pub const DEFAULT_FRICTION: f64 = 0.2;
+/// The contact patch's tangential stiffness over the ball's normal tangent stiffness dN/ds
+/// (docs/physics.md, "Oblique impacts").
+pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.35;
 
 /// The `mlb` preset's COR exponent γ in e(v) = e_spec (v / v_spec)^(−γ): the curve through
 /// both calibration points (0.0488).

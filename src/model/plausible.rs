@@ -297,7 +297,7 @@ pub const RANGES: &[Range] = &[
         min: 0.01,
         max: 2.0,
         unit: "1",
-        reason: "a rubber contact's tangential stiffness is 0.67-1 of its normal one (Mindlin); baseballs' about 0.2",
+        reason: "a rubber contact's tangential stiffness is 0.67-1 of its normal one (Mindlin); baseballs' about 0.35",
         get: |s| s.ball.law.tangential_ratio,
     },
     Range {

@@ -34,6 +34,7 @@ PARAMS = {
     "bat_ends_barrel": ("", "free"),
     "bat_shell_thickness": ("m", NAN),
     "ball_law_kind": ("", "linear_hysteresis"),
+    "ball_preset": ("", ""),
     "swing_omega": ("rad/s", 0.0),
     "ball_speed": ("m/s", 40.0),
     "hoop_frequency": ("Hz", 0.0),
@@ -56,6 +57,10 @@ def cases() -> list[tuple[str, dict]]:
     ]
     out += [
         (f"speed-dependent ball, omega {w:g}", {"ball_law_kind": "speed_dependent", "swing_omega": w})
+        for w in (0.0, -20.0, -40.0, -60.0)
+    ]
+    out += [
+        (f"mlb ball, omega {w:g}", {"ball_preset": "mlb", "ball_law_kind": "speed_dependent", "swing_omega": w})
         for w in (0.0, -20.0, -40.0, -60.0)
     ]
     out += [(f"corked {h * 100:g} cm", {"bat_preset": "corked", "bat_shell_thickness": h}) for h in (0.01, 0.015)]

@@ -21,6 +21,8 @@ fig08  /sweet_spot/position, varying omega      fig15  hoop_frequency > 0 and th
 anim   as fig14                                 bat_profiles  /bat profile and mode nodes
 sweet_spot_definitions  /bat profiles with every sweet-spot definition (/bat, /sweet_spot)
 ball_tests  the wall test: COR and contact times vs ball_speed per ball law (studies/ball_tests.yaml)
+batter      exit speed and carry along the barrel per bat, swing fixed or scaled (studies/batter.yaml)
+undercut    launch, spin and carry vs impact.offset, and the contact's parameters (studies/undercut.yaml)
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from PIL import Image
 from ._curves import IMPACT, MODEL, Skip, excess_speed, one_factor, select
 from ._draw import (COLORS, STYLES, Z_LABEL, draw_profiles, loaded_bats, new_axes, new_figure, require, save,
                     short_bat_label)  # fmt: skip
+from ._batter import BATTER_FIGURES
 from ._sweet_defs import sweet_spot_definitions
 
 EXIT = "exit speed (m/s, bat-CM frame)"
@@ -475,4 +478,5 @@ FIGURES = {
 # what a bat study gives).
 OTHER_FIGURES = {
     "ball_tests": ball_tests,
+    **BATTER_FIGURES,
 }

@@ -6,7 +6,8 @@ Per bat (from ``/bat``): centre of percussion for the pivot at the hands
 (``node1_barrel``, ``node2_barrel``), maximum BBCOR (``bbcor_max_position``).  Per curve (from
 ``/sweet_spot``, the first curve of the main model using that bat): maximum exit speed
 (``position`` with its ``width`` as a band), least grip vibration (``min_vibration_position``)
-and least energy in bat vibration (``min_vibration_energy_position``).  Variables a file does
+and least energy in bat vibration (``min_vibration_energy_position``), and the longest carry
+(``carry_position``, a study with a ``flight``).  Variables a file does
 not hold are left out; bats are drawn in the order wood (r161), corked, aluminum, then the rest.
 """
 
@@ -29,6 +30,7 @@ DEFINITIONS = [
     ("sweet", "min_vibration_position", "least grip vibration", "tab:purple", "-.", "D"),
     ("sweet", "min_vibration_energy_position", "least vibration energy", "tab:pink", "-.", "P"),
     ("bat", "bbcor_max_position", "max BBCOR", "tab:orange", (0, (5, 1, 1, 1)), "*"),
+    ("sweet", "carry_position", "longest carry (a study with a flight)", "tab:brown", "--", "X"),
 ]
 ORDER = ["r161", "corked", "aluminum"]
 

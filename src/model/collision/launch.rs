@@ -106,15 +106,21 @@ pub fn complete(
     Ok(lab_speed)
 }
 
+/// Most spin the flight accepts, rad/s (about 9 500 rpm; Nathan's lift and drag were fitted
+/// to batted balls of up to about 4 500 rpm).
+const FLIGHT_SPIN_LIMIT: f64 = 1000.0;
+
 /// The flight of a ball launched as `batted` says with lab velocity `v`; a ball that goes
-/// back past the batter (toward the catcher) has no carry (NaN).
+/// back past the batter (toward the catcher), or spins beyond what the flight model covers
+/// (an extreme pop-up), has no carry (NaN).
 fn fly_batted(
     spec: &CollisionSpec,
     flight: &FlightSpec,
     v: Vec3,
     batted: &mut BattedBall,
 ) -> Result<(), ModelError> {
-    if v[1].is_nan() || v[1] <= 0.0 {
+    let spin = batted.backspin.hypot(batted.sidespin);
+    if v[1].is_nan() || v[1] <= 0.0 || spin.is_nan() || spin > FLIGHT_SPIN_LIMIT {
         return Ok(());
     }
     let speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();

@@ -13,9 +13,10 @@
 //! Forces (Cross's model of a ball with tangential compliance, R. Cross, Am. J. Phys. 70,
 //! 482 (2002); 73, 914 (2005)): the normal force N ≥ 0 from the ball's law of compression
 //! along n̂ pushes the ball by −N n̂ and the bat by +N n̂; the tangential force T on the
-//! ball (−T on the bat) comes from a spring of stiffness k_t in the contact patch that
-//! shears with the contact points' relative tangential displacement while the ball grips,
-//! T = −k_t ξ, and slides with |T| = μ N when that would exceed friction.
+//! ball (−T on the bat) comes from the contact patch, which shears with the contact points'
+//! relative tangential displacement while the ball grips, dT = −k_t du, with a stiffness
+//! that grows with the patch as the normal one does (k_t = κ dN/ds, Mindlin), and slides
+//! with |T| = μ N when that would exceed friction.
 //!
 //! The bat bends in the swing plane (along ŷ) as in the head-on model; across it (along x̂)
 //! and in roll about its axis it moves as a rigid body: its impact point has the effective
@@ -23,8 +24,7 @@
 //! sections about the axis.
 
 use crate::model::ball::{
-    ContactLaw, DEFAULT_BALL_RADIUS, DEFAULT_FRICTION, DEFAULT_INERTIA_FACTOR,
-    DEFAULT_TANGENTIAL_RATIO,
+    DEFAULT_BALL_RADIUS, DEFAULT_FRICTION, DEFAULT_INERTIA_FACTOR, DEFAULT_TANGENTIAL_RATIO,
 };
 use crate::model::bat::PreparedBat;
 use crate::model::error::{out_of_range, ModelError};
@@ -59,15 +59,6 @@ impl BallContact {
                 .unwrap_or(DEFAULT_TANGENTIAL_RATIO),
         }
     }
-
-    /// The tangential spring k_t, N/m, of a ball of mass `mass` meeting the target at normal
-    /// speed `v_n`: the ratio times the law's secant stiffness F/s at the compression a rigid
-    /// wall would give. Held for the collision, as the speed-dependent COR is; it grows with
-    /// speed as the ball's normal stiffness does (the contact patch grows).
-    pub fn tangential_stiffness(&self, law: &ContactLaw, mass: f64, v_n: f64) -> f64 {
-        let s = law.wall_compression(mass, v_n);
-        self.tangential_ratio * law.force(s, s) / s
-    }
 }
 
 /// Everything an oblique (or spinning) collision needs beyond the head-on one.
@@ -85,8 +76,6 @@ pub struct Oblique {
     pub roll_inertia: f64,
     /// The rigid bat's effective mass at the impact point across the swing plane, kg.
     pub cross_mass: f64,
-    /// The ball's tangential spring for this collision, N/m.
-    pub tangential_stiffness: f64,
 }
 
 impl Oblique {
@@ -108,12 +97,8 @@ impl Oblique {
             ));
         }
         let sin = offset / reach;
-        let cos = (1.0 - sin * sin).sqrt();
-        let v_n = crate::model::collision::wave::approach_speed(spec, bat) * cos;
-        let law = ContactLaw::new(&spec.ball.law, v_n);
         Ok(Some(Oblique {
-            tangential_stiffness: ball.tangential_stiffness(&law, spec.ball.mass, v_n),
-            cos,
+            cos: (1.0 - sin * sin).sqrt(),
             sin,
             ball,
             spin: spec.ball.spin,

@@ -453,10 +453,10 @@ pub struct BallLaw {
     /// docs/physics.md, "Oblique impacts".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub friction: Option<f64>,
-    /// Stiffness of the ball's tangential spring (Cross's tangential compliance: how far the
-    /// contact patch shears before it slides) over its normal stiffness, the secant F/s at
-    /// the compression a rigid wall would give at this impact's normal speed. Default:
-    /// docs/physics.md, "Oblique impacts".
+    /// Tangential stiffness of the contact patch (Cross's tangential compliance: how far the
+    /// patch shears before it slides) over the ball's normal tangent stiffness dN/ds at the
+    /// same compression (Mindlin: both grow with the patch). Default: docs/physics.md,
+    /// "Oblique impacts".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential_ratio: Option<f64>,
 }

@@ -190,11 +190,6 @@ fn collision_of(
 ) -> Result<Collision, ModelError> {
     let hoop = resolve_hoop(spec, bat)?;
     let oblique = Oblique::resolve(spec, bat)?;
-    if oblique.is_some() && hoop.is_some() {
-        return Err(ModelError::Unsupported(
-            "a hoop mode with an oblique impact or a spinning ball (the hoop acts head-on)",
-        ));
-    }
     let dt = time_step(spec, bat)?;
     // The run lasts at least the re-contact watch after the ball has left.
     let budget = checked_step_budget(spec, dt, "numerics.max_steps")?;
@@ -227,9 +222,11 @@ fn collision_of(
 
 /// The hoop mass and its velocity at first contact (that of the contact point).
 fn hoop_start(c: &Collision) -> (f64, f64) {
+    let along = c.omega * c.lever - c.frame_velocity;
     (
         c.hoop.map_or(0.0, |h| h.mass),
-        c.omega * c.lever - c.frame_velocity,
+        // an oblique contact's hoop mass moves along n̂ with the surface's normal velocity
+        c.oblique.map_or(along, |o| along * o.cos),
     )
 }
 
@@ -334,17 +331,17 @@ fn diagnostics_of(
 ) -> Diagnostics {
     let m = c.ball_mass;
     let (hoop_mass, hoop_initial_velocity) = hoop_start(c);
+    // its momentum along ŷ: an oblique contact's hoop mass moves along n̂
+    let hoop_initial_along = hoop_initial_velocity * c.oblique.map_or(1.0, |o| o.cos);
     // about the grip (with one) or the CM; bat angular momentum about the CM → about centre
     let centre = bat.beam.grip_z.unwrap_or(bat.z_cm);
     let lever = spec.impact.z - centre;
     let shift = bat.z_cm - centre;
     let bat_momentum_initial = -bat.beam.total_mass() * c.frame_velocity;
     Diagnostics {
-        momentum_initial: m * c.ball_speed
-            + hoop_mass * hoop_initial_velocity
-            + bat_momentum_initial,
+        momentum_initial: m * c.ball_speed + hoop_mass * hoop_initial_along + bat_momentum_initial,
         momentum_final: m * fin.ball_velocity + fin.bat_momentum + hoop_mass * fin.hoop_velocity,
-        angular_momentum_initial: (m * c.ball_speed + hoop_mass * hoop_initial_velocity) * lever
+        angular_momentum_initial: (m * c.ball_speed + hoop_mass * hoop_initial_along) * lever
             + c.omega * bat.inertia_cm
             + shift * bat_momentum_initial,
         angular_momentum_final: (m * fin.ball_velocity + hoop_mass * fin.hoop_velocity) * lever

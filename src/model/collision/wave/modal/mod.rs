@@ -18,6 +18,7 @@ use super::{displacement_points, spec_history, Collision, FinalState};
 use crate::model::bat::motion::grip_vibration_amplitude;
 use crate::model::bat::PreparedBat;
 use crate::model::collision::history::Recorder;
+use crate::model::collision::oblique::Oblique;
 use crate::model::error::ModelError;
 use crate::model::protocol::KNOB6;
 use setup::Setup;
@@ -47,7 +48,7 @@ pub(super) fn run_modal(
         step(c, &setup, &mut state, contact);
         if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, setup.h)) {
             let p_bat = state.bat_force(c);
-            let hoop_rel = state.xh - state.y_c;
+            let hoop_rel = state.hoop_stretch(c);
             let force = state.contact_force();
             let smp = record::sample(rec, bat, &state, force, p_bat, hoop_rel, points.len());
             rec.push(state.t, smp);
@@ -64,23 +65,9 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     let (y_free, g_end, alpha_d) = state::free_contact_point(c, s, state);
     let h2 = s.h * s.h;
     let w_free = state.w + s.h * state.v - h2 * state.force / (3.0 * c.ball_mass);
-    let (new_force, new_hoop_force, new_s, oblique_forces) = match (&c.oblique, &state.tangential) {
-        (Some(o), Some(t)) => {
-            let inputs = StepInputs {
-                law: &c.law,
-                mass: c.ball_mass,
-                h: s.h,
-                s_max: contact.s_max,
-                guess: 2.0 * state.s - state.s_before,
-            };
-            let y_part = (
-                w_free - y_free - s.g_start * state.force,
-                h2 / (6.0 * c.ball_mass) + g_end,
-            );
-            let (n1, t1, s1) = tangential::end_forces(o, t, &inputs, y_part, state.w - state.y_c);
-            (Tangential::bat_force_y(o, n1, t1), 0.0, s1, Some((n1, t1)))
-        }
-        _ => {
+    let (new_force, new_hoop_force, new_s, oblique_forces) = match &c.oblique {
+        Some(o) => oblique_end_forces(c, o, s, state, contact, (w_free, y_free, g_end)),
+        None => {
             let (f1, fh1, s1) =
                 state::solve_contact(c, state, contact, w_free, y_free, s.g_start, g_end);
             (f1, fh1, s1, None)
@@ -110,23 +97,71 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     ball_and_contact(c, s, state, contact, (new_force, new_hoop_force, new_s));
 }
 
-/// The oblique contact's states after the step, and what sliding dissipated.
+/// The oblique contact's end forces: (the ball's force along ŷ, the bat's along ŷ, the
+/// compression, and (N₁, T₁, the normal force on the bat: N₁, or the hoop spring's)).
+type ObliqueEnd = (f64, f64, f64, Option<(f64, f64, f64)>);
+
+fn oblique_end_forces(
+    c: &Collision,
+    o: &Oblique,
+    s: &Setup,
+    state: &mut State,
+    contact: &Contact,
+    (w_free, y_free, g_end): (f64, f64, f64),
+) -> ObliqueEnd {
+    let Some(t) = state.tangential else {
+        return (0.0, 0.0, state.s, None);
+    };
+    let inputs = StepInputs {
+        law: &c.law,
+        mass: c.ball_mass,
+        h: s.h,
+        s_max: contact.s_max,
+        guess: 2.0 * state.s - state.s_before,
+        s_now: state.s,
+    };
+    let dy_now = state.w - state.y_c;
+    let y0 = y_free + s.g_start * state.bat_force(c);
+    let Some(hoop) = c.hoop else {
+        let y_part = (w_free - y0, s.h * s.h / (6.0 * c.ball_mass) + g_end);
+        let (n1, t1, s1) = tangential::end_forces(o, &t, &inputs, y_part, dy_now);
+        let fy = Tangential::bat_force_y(o, n1, t1);
+        return (fy, 0.0, s1, Some((n1, t1, n1)));
+    };
+    let hoop_state = (hoop, state.xh, state.vh);
+    let (n1, t1, nh1, s1) =
+        tangential::end_forces_hoop(o, &t, &inputs, hoop_state, (w_free, y0, g_end), dy_now);
+    let (fy, hy) = (
+        Tangential::bat_force_y(o, n1, t1),
+        Tangential::bat_force_y(o, nh1, t1),
+    );
+    (fy, hy, s1, Some((n1, t1, nh1)))
+}
+
+/// The oblique contact's states after the step (the hoop mass's too), and what sliding
+/// dissipated.
 fn advance_oblique(
     c: &Collision,
-    o: &crate::model::collision::oblique::Oblique,
+    o: &Oblique,
     h: f64,
     state: &mut State,
     dy_before: f64,
-    forces: (f64, f64),
+    (n1, t1, nb1): (f64, f64, f64),
 ) {
     let dy_after = state.w - state.y_c;
     let Some(t) = state.tangential.as_mut() else {
         return;
     };
+    if let Some(hoop) = c.hoop {
+        // the hoop mass between the ball's normal force and its spring, along n̂
+        let (load0, load1) = (t.normal - t.bat_normal, n1 - nb1);
+        state.xh += h * state.vh + h * h * (2.0 * load0 + load1) / (6.0 * hoop.mass);
+        state.vh += h * (load0 + load1) / (2.0 * hoop.mass);
+    }
     let (u_before, t0) = (t.tangential_displacement(o, dy_before), t.shear);
-    tangential::advance(o, t, (c.ball_mass, h), forces);
+    tangential::advance(o, t, (c.ball_mass, h), (n1, t1, nb1));
     let slip = t.tangential_displacement(o, dy_after) - u_before;
-    t.slip_loss += tangential::slip_loss(o.tangential_stiffness, (t0, forces.1), slip);
+    t.slip_loss += tangential::slip_loss((t0, t1), slip);
 }
 
 /// The ball's velocity, the compression, the forces and the clock after the step, and the
@@ -142,6 +177,7 @@ fn ball_and_contact(
     let s_prev = state.s;
     state.s_before = state.s;
     let s_states = match (c.hoop, &c.oblique, &state.tangential) {
+        (Some(_), Some(o), Some(t)) => t.hoop_compression(o, state.w, state.xh),
         (Some(_), _, _) => state.w - state.xh,
         (None, Some(o), Some(t)) => t.compression(o, state.w - state.y_c),
         _ => state.w - state.y_c,
@@ -176,7 +212,7 @@ fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> Fi
     bat_energy += 0.5 * s.g_static * p_final * p_final;
     let dot = |x: &[f64]| x.iter().zip(qd).map(|(a, b)| a * b).sum::<f64>();
     let hoop_energy = c.hoop.map_or(0.0, |hp| {
-        0.5 * hp.mass * state.vh * state.vh + 0.5 * hp.stiffness * (state.xh - state.y_c).powi(2)
+        0.5 * hp.mass * state.vh * state.vh + 0.5 * hp.stiffness * state.hoop_stretch(c).powi(2)
     });
     let bat_rigid_energy = qd[..bat.modes.n_rigid].iter().map(|x| 0.5 * x * x).sum();
     FinalState {
@@ -188,7 +224,12 @@ fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> Fi
         bat_momentum: dot(&bat.momentum_weight),
         bat_angular_momentum: dot(&bat.angular_weight),
         hoop_energy,
-        hoop_velocity: if c.hoop.is_some() { state.vh } else { 0.0 },
+        // along ŷ: an oblique contact's hoop mass moves along n̂
+        hoop_velocity: match (c.hoop, &c.oblique) {
+            (Some(_), Some(o)) => o.cos * state.vh,
+            (Some(_), None) => state.vh,
+            (None, _) => 0.0,
+        },
         grip_amplitude: grip_vibration_amplitude(bat, q, qd, KNOB6),
         steps: state.steps,
         modes: s.n,

@@ -54,7 +54,8 @@ impl State {
             w: 0.0,
             v: c.ball_speed,
             xh: 0.0,
-            vh: c.omega * c.lever - c.frame_velocity,
+            // the surface's velocity along the line of centres
+            vh: (c.omega * c.lever - c.frame_velocity) * c.oblique.map_or(1.0, |o| o.cos),
             force: 0.0,
             hoop_force: 0.0,
             s: 0.0,
@@ -66,6 +67,15 @@ impl State {
             bat_damping: 0.0,
             grip_loss: 0.0,
             tangential: c.oblique.as_ref().map(Tangential::first_contact),
+        }
+    }
+
+    /// The hoop spring's stretch: the hoop mass's displacement less the bat's surface point's,
+    /// along ŷ head-on, along the line of centres n̂ in an oblique contact.
+    pub(super) fn hoop_stretch(&self, c: &Collision) -> f64 {
+        match (&c.oblique, &self.tangential) {
+            (Some(o), Some(t)) => self.xh - (o.cos * self.y_c + o.sin * t.bat_x),
+            _ => self.xh - self.y_c,
         }
     }
 
