@@ -627,7 +627,16 @@ class Checker:
             elif stores_history:
                 self.bad("/history", "group missing although the store header lists "
                                      f"{header['history'][0]}")
-            groups = [x for x in ("summary", "sweet_spot", "history", "bat", "errors") if x in f]
+            # issue 36: a `sample` study's statistics, a design search's record
+            for extra in ("uncertainty", "optimize"):
+                if extra in f:
+                    self.group_generic(f[extra])
+            if "optimize" in f:
+                for key in ("method", "objective", "sense", "stopped", "best_candidate"):
+                    if key not in f["optimize"].attrs:
+                        self.bad("/optimize", f"attribute {key} missing")
+            groups = [x for x in ("summary", "sweet_spot", "history", "bat", "errors",
+                                  "uncertainty", "optimize") if x in f]
         for grp in groups:
             ds = self.xarray_view(grp)
             if ds is not None:

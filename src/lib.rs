@@ -7,6 +7,7 @@
 pub mod bench;
 pub mod cli;
 pub mod model;
+pub mod optimize;
 pub mod pointset;
 pub mod results;
 pub mod run;

@@ -70,6 +70,22 @@ pub const RESERVED_NAMES: &[&str] = &[
     "bat_mode",
     "shape_point",
     "history",
+    // `/uncertainty` (issue 36)
+    "percentile",
+    "exit_speed_mean",
+    "exit_speed_std",
+    "bbcor_mean",
+    "bbcor_std",
+    "sweet_spot_position",
+    "sweet_spot_position_mean",
+    "sweet_spot_position_std",
+    "sweet_spot_exit_speed",
+    "sweet_spot_exit_speed_mean",
+    "sweet_spot_exit_speed_std",
+    "bbcor_max",
+    "bbcor_max_mean",
+    "bbcor_max_std",
+    "bbcor_max_above_limit",
 ];
 
 /// A stable identifier of one point: a hash of its canonical (fully resolved) parameters.
@@ -229,6 +245,8 @@ pub struct StudyInfo {
     pub bats: Vec<BatVariant>,
     /// The study accepts values outside the plausible ranges (`allow_implausible`).
     pub allow_implausible: bool,
+    /// The dimension a `sample` block draws, if any: its statistics go to `/uncertainty`.
+    pub sample_dim: Option<String>,
 }
 
 /// One finished point.

@@ -39,6 +39,7 @@ fn bad_values_name_their_field_and_range() {
     s.bat.shell = Some(ShellSpec {
         thickness: Some(0.04),
         from: Some(0.6),
+        ..Default::default()
     });
     let m = message(&s);
     assert!(

@@ -63,6 +63,7 @@ fn ring_formula_against_a_hand_value() {
     spec.bat.shell = Some(ShellSpec {
         thickness: Some(h),
         from: Some(0.0),
+        ..Default::default()
     });
     spec.bat.material = MaterialSpec {
         density: Some(7850.0),

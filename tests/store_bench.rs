@@ -42,6 +42,7 @@ fn summary_only_write_cost() {
             shapes: None,
         }],
         allow_implausible: false,
+        sample_dim: None,
     };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bench.h5");

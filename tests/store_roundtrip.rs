@@ -119,6 +119,7 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
         }),
         bats: vec![bat("r161", 3), bat("r161, bat.material.density=700", 2)],
         allow_implausible: false,
+        sample_dim: None,
     }
 }
 

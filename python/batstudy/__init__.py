@@ -13,6 +13,8 @@
 - :func:`longest_carry` says where a study's ball flies farthest: the impact position and,
   over a swept ``impact.offset``, the offset (a study with a ``flight``).
 - :func:`report` writes a results file's explorer, one HTML file.
+- :func:`optimize` searches a study's design (its ``optimize`` block) within its rules;
+  :func:`sobol_indices` gives the global sensitivity of a ``sample`` study's answers.
 - :mod:`batstudy.plot` draws the paper's figures, or any figure of a results file
   (matplotlib: ``pip install 'batstudy[plot]'``).
 
@@ -30,6 +32,7 @@ from ._ball_rig import ball_rig
 from ._carry import longest_carry
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
+from ._sensitivity import sobol_indices
 
 __all__ = [
     "simulate",
@@ -42,6 +45,8 @@ __all__ = [
     "ball_rig",
     "longest_carry",
     "report",
+    "sobol_indices",
+    "optimize",
     "StudyError",
     "RunError",
     "__version__",
@@ -54,6 +59,7 @@ _ON_FIRST_USE = {
     "merge": "._api",
     "plan": "._api",
     "validate": "._api",
+    "optimize": "._optimize",
     "StudyError": "._api",
     "RunError": "._api",
     "__version__": "._native",

@@ -16,6 +16,7 @@
 //!   computes and encodes: the workers it keeps up with; and the disk's durable write rate
 //!   (`fdatasync`) over the bytes one worker produces: the workers any store on this disk
 //!   keeps up with;
+//! - `optimize`: design candidates per second of a 6-variable profile search (issue 36);
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before
 //!   each run) of the scaling studies on the most threads and of a large summary-only study.
 //!
@@ -35,6 +36,7 @@ mod headroom;
 mod machine;
 mod measure;
 mod memory;
+mod optimize;
 mod report;
 mod scaling;
 mod sinks;
@@ -108,6 +110,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
 
     let batted = batted::bench_batted(&sz, scaling.cores, dir.path())?;
     report::print_batted(out, &batted);
+    let optimize = optimize::bench_optimize(if opts.quick { 8 } else { 120 }, scaling.cores)?;
+    optimize::print(out, &optimize);
 
     machine.loadavg_end = machine::loadavg();
     report::print_end(out, &machine);
@@ -117,6 +121,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         writer_headroom: headroom,
         memory,
         batted,
+        optimize,
     })
 }
 

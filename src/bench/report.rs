@@ -22,6 +22,8 @@ pub struct BenchReport {
     pub memory: MemoryBench,
     /// The batted ball's flight: an undercut study with and without it.
     pub batted: Batted,
+    /// Design candidates per second of a profile search (issue 36).
+    pub optimize: super::optimize::OptimizeBench,
 }
 
 fn mib(b: Option<u64>) -> String {

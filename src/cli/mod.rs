@@ -15,6 +15,7 @@ use std::path::PathBuf;
 
 mod common;
 pub mod merge;
+pub mod optimize;
 pub mod plan;
 pub mod run;
 pub mod slurm;
@@ -88,6 +89,9 @@ pub enum Command {
     Merge(MergeArgs),
     /// Write Slurm job scripts: an array of shards and a merge job that depends on it.
     Slurm(SlurmArgs),
+    /// Search a study's design (its `optimize` block) within its rules; store every
+    /// candidate in `/optimize` and the study at the best design.
+    Optimize(optimize::OptimizeArgs),
 }
 
 /// How this process was started, for what it writes that starts batstudy again (the Slurm
@@ -150,6 +154,7 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         }
         Command::Merge(a) => merge::cmd_merge(&a),
         Command::Slurm(a) => slurm::cmd_slurm(&a, invocation),
+        Command::Optimize(a) => optimize::cmd_optimize(&a),
         Command::Bench {
             quick,
             threads,

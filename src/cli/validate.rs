@@ -15,6 +15,7 @@ pub(super) fn cmd_validate(files: &[PathBuf], max_points: usize) -> i32 {
         let res = study::load(f, &LoadOptions { max_points }).and_then(|s| {
             let out = s.output_path(None);
             check_output_of(&s, &out, false, Existing::Resume)?;
+            crate::optimize::design_of(&s)?;
             Ok(s)
         });
         match res {

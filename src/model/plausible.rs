@@ -464,6 +464,7 @@ mod tests {
                 s.bat.shell = Some(crate::model::spec::ShellSpec {
                     thickness: Some(1e-4),
                     from: None,
+                    ..Default::default()
                 });
             }),
         ];

@@ -30,6 +30,7 @@ pub mod layout;
 pub mod lock;
 pub mod merge;
 pub mod modal;
+pub mod optimize;
 pub mod options;
 pub mod paths;
 pub mod placer;

@@ -50,6 +50,7 @@ pub(super) fn build_plan(
     let mut dims = grid_dims(cx, file)?;
     dims.extend(zip_dims(cx, file, &mut names)?);
     dims.extend(points_dim(cx, file, &mut names)?);
+    dims.extend(super::sample::sample_dim(cx, file)?);
     check_one_block_per_path(cx, file, &dims)?;
     let n = check_size(cx, file, &dims, opts)?;
     let defaults = with_defaults(&base);
@@ -352,6 +353,10 @@ fn dim_name_at(d: &PlanDim, file: &StudyFile) -> Vec<Seg> {
         DimOrigin::Points => match file.points.as_ref().and_then(|b| b.name()) {
             Some(_) => keys(&["points", "name"]),
             None => keys(&["points"]),
+        },
+        DimOrigin::Sample => match file.sample.as_ref().and_then(|b| b.name.as_ref()) {
+            Some(_) => keys(&["sample", "name"]),
+            None => keys(&["sample"]),
         },
     }
 }

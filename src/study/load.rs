@@ -153,6 +153,11 @@ impl Study {
             history,
             bats,
             allow_implausible: self.file.allow_implausible,
+            sample_dim: self
+                .file
+                .sample
+                .as_ref()
+                .map(|s| s.name.clone().unwrap_or_else(|| "sample".into())),
         }
     }
 

@@ -48,6 +48,7 @@ pub(super) fn dim_elem(file: &StudyFile, d: &PlanDim, path: &str, i: usize) -> V
             Seg::Index(i),
             Seg::Key(path.into()),
         ],
+        DimOrigin::Sample => keys(&["sample", "params", path]),
     }
 }
 
@@ -58,6 +59,7 @@ pub(super) fn dim_label(d: &PlanDim, path: &str, i: usize) -> String {
             format!("zip group #{} (`{path}`), entry #{}", group + 1, i + 1)
         }
         DimOrigin::Points => format!("points entry #{} (`{path}`)", i + 1),
+        DimOrigin::Sample => format!("sample point #{} (`{path}`)", i + 1),
     }
 }
 

@@ -17,6 +17,8 @@ pub enum DimOrigin {
     Zip { group: usize },
     /// The `points` list.
     Points,
+    /// The `sample` block: drawn values.
+    Sample,
 }
 
 /// One dimension: its name and, per parameter path, one value per index.
@@ -202,7 +204,22 @@ impl Plan {
 
     /// The parameter tree of the point at this multi-index.
     pub fn value_at(&self, multi: &[usize]) -> Value {
-        let mut v = self.base.clone();
+        self.value_over(&self.base, multi)
+    }
+
+    /// The resolved collision at this multi-index over another base: an optimiser's
+    /// candidate design with the study's dimensions (issue 36).
+    pub fn resolve_over(
+        &self,
+        base: &Value,
+        multi: &[usize],
+    ) -> Result<CollisionSpec, ResolveError> {
+        let mut v = self.value_over(base, multi);
+        self.resolve_value(&mut v)
+    }
+
+    fn value_over(&self, base: &Value, multi: &[usize]) -> Value {
+        let mut v = base.clone();
         for (d, &i) in self.dims.iter().zip(multi) {
             for (path, vals) in &d.params {
                 if is_unset(&vals[i]) {

@@ -18,6 +18,8 @@ pub(super) const TOP_KEYS: &[&str] = &[
     "grid",
     "zip",
     "points",
+    "sample",
+    "optimize",
     "history",
     "output",
     "allow_implausible",

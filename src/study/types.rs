@@ -53,6 +53,16 @@ pub struct StudyFile {
     /// a set leaves out keeps its base value.
     #[serde(default)]
     pub points: Option<PointsBlock>,
+    /// Parameters drawn from distributions (normal, lognormal, uniform; correlated pairs)
+    /// on a seeded quasi-random (Sobol) design: one dimension, default name `sample`, whose
+    /// coordinates are the drawn values. It comes after every other block's dimensions.
+    #[serde(default)]
+    pub sample: Option<super::sample::SampleBlock>,
+    /// Search a design (`batstudy optimize`): design variables with bounds, an objective
+    /// over the study's other dimensions, constraints and rule sets. `batstudy run` runs
+    /// the study at its base design and ignores this block.
+    #[serde(default, deserialize_with = "via_json")]
+    pub optimize: Option<super::optimize_block::OptimizeBlock>,
     /// Time histories to store. Default: summaries only.
     #[serde(default)]
     pub history: Option<HistorySpec>,
@@ -65,6 +75,17 @@ pub struct StudyFile {
     /// `allow_implausible`. Default false.
     #[serde(default)]
     pub allow_implausible: bool,
+}
+
+/// Deserialize through JSON: yaml_serde's `Value` reads an enum with data only from a YAML
+/// tag, while a study writes `{normal: {mean: 1, sd: 2}}`.
+pub(crate) fn via_json<'de, D, T>(d: D) -> Result<T, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: serde::de::DeserializeOwned,
+{
+    let v = serde_json::Value::deserialize(d)?;
+    serde_json::from_value(v).map_err(serde::de::Error::custom)
 }
 
 fn base_schema(gen: &mut SchemaGenerator) -> Schema {

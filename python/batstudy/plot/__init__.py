@@ -8,7 +8,9 @@ Any file, in a notebook or a script (each returns the matplotlib axes it drew on
   dimension: ``sweet_spots(path, against="case", model="wave")``;
 - :func:`history`: stored histories against time: ``history(path, "force", impact_z=0.6)``;
 - :func:`displacement`: the bat's displacement along its length at several times;
-- :func:`bat_profiles`: the profiles of the study's bats.
+- :func:`bat_profiles`: the profiles of the study's bats;
+- :func:`uncertainty`: a `sample` study's BBCOR over the sample and its sweet spot's wander;
+  :func:`search`: a design search's candidates (`/optimize`).
 
 The paper's figures: :func:`figures` draws every one the file has data for into a folder
 (``FIGURES`` names them), as the command ``batstudy figures RESULTS [-o DIR]`` does.
@@ -38,6 +40,7 @@ from ._curves import (
     select,
 )
 from ._figures import ALL_FIGURES, figures, file_name, main
+from ._uncertainty import search, uncertainty
 from ._paper import FIGURES, MAX_FRAMES, OTHER_FIGURES
 from ._views import bat_profiles, displacement, exit_speed, history, sweet_spots
 

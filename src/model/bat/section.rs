@@ -64,6 +64,8 @@ pub struct BatGeometry {
     pub damping_ratio: f64,
     /// (wall thickness, start z) of the hollow part, if any.
     pub shell: Option<(f64, f64)>,
+    /// The wall thickness along the bat, `[z, t]` knots (empty: `shell`'s one thickness).
+    pub shell_knots: Vec<[f64; 2]>,
     /// Density of the filling of the hollow part, kg/m³ (0: empty).
     pub fill_density: f64,
     /// (radius, start z) of an axial bore from the barrel end, if any (exclusive with
@@ -109,6 +111,7 @@ impl BatGeometry {
             shear_coefficient: material.shear_coefficient,
             damping_ratio,
             shell: shell_of(bat.shell.as_ref(), preset.shell)?,
+            shell_knots: shell_knots(bat.shell.as_ref())?,
             fill_density: bat
                 .fill
                 .as_ref()
@@ -216,11 +219,12 @@ impl BatGeometry {
                     &format!("[0, {}) m (the bat's length)", self.length),
                 ));
             }
-            // R is piecewise linear between breakpoints, so its minimum over the hollow
-            // part sits at one of them.
+            // R and the wall are piecewise linear between breakpoints, so the thinnest
+            // margin over the hollow part sits at one of them.
             for z in self.breakpoints() {
                 if z >= from {
                     let r = self.outer_radius(z);
+                    let thickness = self.wall_thickness(z).unwrap_or(thickness);
                     if thickness >= r {
                         return Err(ModelError::ShellTooThick {
                             thickness,
@@ -239,11 +243,27 @@ impl BatGeometry {
         self.profile.radius(z) * handle_factor(&self.handle, z)
     }
 
+    /// The shell's wall thickness at z from `shell_knots` (None without knots), m.
+    pub fn wall_thickness(&self, z: f64) -> Option<f64> {
+        let k = &self.shell_knots;
+        let (first, last) = (k.first()?, k.last()?);
+        if z <= first[0] {
+            return Some(first[1]);
+        }
+        if z >= last[0] {
+            return Some(last[1]);
+        }
+        let i = k.partition_point(|p| p[0] <= z).clamp(1, k.len() - 1);
+        let (a, b) = (k[i - 1], k[i]);
+        Some(a[1] + (b[1] - a[1]) * (z - a[0]) / (b[0] - a[0]))
+    }
+
     /// Inner radius r(z) (0 where solid), m.
     pub fn inner_radius(&self, z: f64) -> f64 {
         match (self.shell, self.bore) {
             (Some((thickness, from)), _) if z >= from => {
-                (self.outer_radius(z) - thickness).max(0.0)
+                let t = self.wall_thickness(z).unwrap_or(thickness);
+                (self.outer_radius(z) - t).max(0.0)
             }
             (_, Some((radius, from))) if z >= from => radius,
             _ => 0.0,
@@ -290,6 +310,7 @@ impl BatGeometry {
         if let Some((_, from)) = self.shell.or(self.bore) {
             b.push(from);
         }
+        b.extend(self.shell_knots.iter().map(|k| k[0]));
         b.push(0.0);
         b.push(self.length);
         b.retain(|&z| (0.0..=self.length).contains(&z));
@@ -386,6 +407,26 @@ fn check_length(length: f64, profile: &Profile) -> Result<(), ModelError> {
     Ok(())
 }
 
+/// The shell's thickness knots, checked: z increasing, every thickness > 0.
+fn shell_knots(spec: Option<&ShellSpec>) -> Result<Vec<[f64; 2]>, ModelError> {
+    let Some(k) = spec.and_then(|s| s.thickness_knots.clone()) else {
+        return Ok(Vec::new());
+    };
+    let increasing = k.windows(2).all(|w| w[1][0] > w[0][0]);
+    match k
+        .iter()
+        .find(|p| !(p[1] > 0.0 && p[1].is_finite() && p[0].is_finite()))
+    {
+        _ if k.is_empty() || !increasing => Err(out_of_range(
+            "bat.shell.thickness_knots",
+            f64::NAN,
+            "at least one [z, t] knot, z increasing",
+        )),
+        Some(p) => Err(out_of_range("bat.shell.thickness_knots", p[1], "t > 0 m")),
+        None => Ok(k),
+    }
+}
+
 /// The hollow part: the study's shell (its missing fields from the preset's), else the
 /// preset's.
 fn shell_of(
@@ -393,13 +434,22 @@ fn shell_of(
     preset: Option<(f64, f64)>,
 ) -> Result<Option<(f64, f64)>, ModelError> {
     let Some(s) = spec else { return Ok(preset) };
-    let thickness = s.thickness.or(preset.map(|p| p.0)).ok_or_else(|| {
-        out_of_range(
-            "bat.shell.thickness",
-            f64::NAN,
-            "a wall thickness in m (required: this preset is solid)",
-        )
-    })?;
+    // with knots, `thickness` is their thickest (what the knots leave to it is nothing)
+    let from_knots = s
+        .thickness_knots
+        .as_ref()
+        .map(|k| k.iter().map(|p| p[1]).fold(0.0, f64::max));
+    let thickness = s
+        .thickness
+        .or(from_knots)
+        .or(preset.map(|p| p.0))
+        .ok_or_else(|| {
+            out_of_range(
+                "bat.shell.thickness",
+                f64::NAN,
+                "a wall thickness in m (required: this preset is solid)",
+            )
+        })?;
     Ok(Some((
         thickness,
         s.from.or(preset.map(|p| p.1)).unwrap_or(0.0),
@@ -425,6 +475,7 @@ mod tests {
             shell: Some(crate::model::spec::ShellSpec {
                 thickness: Some(0.02),
                 from: Some(0.0),
+                ..Default::default()
             }),
             ..BatSpec::default()
         };

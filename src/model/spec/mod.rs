@@ -248,6 +248,11 @@ pub struct ShellSpec {
     /// 0.55), else 0.
     #[serde(default)]
     pub from: Option<f64>,
+    /// The wall thickness along the bat instead of one `thickness`: `[[z, t], ...]` (m from
+    /// the knob, m), linear between knots and constant beyond the first and the last
+    /// (issue 36: a barrel wall thicker than the handle's). Default none: `thickness`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness_knots: Option<Vec<[f64; 2]>>,
 }
 
 /// An axial bore from the barrel end (a corked bat as drilled: Nathan's 2003 test bat had

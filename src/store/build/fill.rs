@@ -115,6 +115,10 @@ pub fn fill(
     } = tally;
     // ---- /errors: made empty with the skeleton; grown only when points failed
     write_errors(&sk.errors, errors, out)?;
+    // ---- /uncertainty: a `sample` dimension's statistics, read back from the data above
+    if let Some(sample) = &info.sample_dim {
+        super::uncertainty::write_uncertainty(&sk.f, info, sample, out)?;
+    }
 
     let f = &sk.f;
     final_attrs(f, created, (n_done, n_failed, n_points), out)?;

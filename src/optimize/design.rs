@@ -1,0 +1,475 @@
+//! A study's `optimize` block checked and made usable: the design variables (their bounds,
+//! start and units), how a design vector becomes a candidate's base parameters, the
+//! objective and the limits. Every problem is a located error (file:line:column, field,
+//! value, what is allowed), found before anything runs.
+
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
+use super::quantity::Quantity;
+use super::rules::{rule_limits, Limit};
+use crate::study::optimize_block::{Aggregate, Bounds, Constraint, Knot, OptimizeBlock};
+use crate::study::paths::{get_path, known_paths, meta, set_path};
+use crate::study::plan::related;
+use crate::study::source::{keys, Seg, SourceMap};
+use crate::study::{Study, StudyError};
+use yaml_serde::{Mapping, Value};
+
+/// One design variable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variable {
+    /// Its label: the dotted path, or `bat.profile.radius[k]` for knot k's radius.
+    pub name: String,
+    pub min: f64,
+    pub max: f64,
+    pub start: f64,
+    pub units: String,
+    /// The knot it is the radius (or, `wall`, the wall thickness) of.
+    knot: Option<usize>,
+    wall: bool,
+}
+
+/// The objective: a quantity, maximised or minimised, over the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Objective {
+    pub quantity: Quantity,
+    pub maximize: bool,
+    pub over: Aggregate,
+}
+
+/// The optimisation a study asks for.
+#[derive(Debug, Clone)]
+pub struct Design {
+    pub variables: Vec<Variable>,
+    pub objective: Objective,
+    pub limits: Vec<Limit>,
+    pub block: OptimizeBlock,
+    /// The profile's knot positions, fixed radii and fixed wall thicknesses (NaN where a
+    /// variable; no thicknesses: the study's shell).
+    profile: Option<ProfileValues>,
+}
+
+impl Design {
+    /// The base parameters of the candidate `x` (one value per variable).
+    pub fn apply(&self, x: &[f64], base: &Value) -> Value {
+        let mut v = base.clone();
+        for (var, &xi) in self.variables.iter().zip(x) {
+            if var.knot.is_none() {
+                let _ = set_path(&mut v, &var.name, Value::from(xi));
+            }
+        }
+        if let Some((z, radius, wall)) = &self.profile {
+            let (mut r, mut t) = (radius.clone(), wall.clone());
+            for (var, &xi) in self.variables.iter().zip(x) {
+                match (var.knot, var.wall, t.as_mut()) {
+                    (Some(k), false, _) => r[k] = xi,
+                    (Some(k), true, Some(t)) => t[k] = xi,
+                    _ => {}
+                }
+            }
+            let mut m = Mapping::new();
+            m.insert("knots".into(), knots(z, &r));
+            let _ = set_path(&mut v, "bat.profile", Value::Mapping(m));
+            if let Some(t) = t {
+                let _ = set_path(&mut v, "bat.shell.thickness_knots", knots(z, &t));
+            }
+        }
+        v
+    }
+
+    /// The start design.
+    pub fn start(&self) -> Vec<f64> {
+        self.variables.iter().map(|v| v.start).collect()
+    }
+}
+
+/// `[[z, r], ...]` as a value.
+fn knots(z: &[f64], r: &[f64]) -> Value {
+    let k = z.iter().zip(r);
+    Value::Sequence(
+        k.map(|(&z, &r)| Value::Sequence(vec![Value::from(z), Value::from(r)]))
+            .collect(),
+    )
+}
+
+/// A located error in the `optimize` block.
+fn located(study: &Study, at: &[Seg], message: String) -> StudyError {
+    let pos = SourceMap::build(&study.text).nearest(at);
+    StudyError::new(&study.path, message).at(pos)
+}
+
+fn at(parts: &[&str]) -> Vec<Seg> {
+    let mut v = keys(&["optimize"]);
+    v.extend(keys(parts));
+    v
+}
+
+/// The study's `optimize` block, checked (None: the study has none).
+pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
+    let Some(block) = study.file.optimize.clone() else {
+        return Ok(None);
+    };
+    if study.file.sample.is_some() {
+        return Err(located(
+            study,
+            &keys(&["sample"]),
+            "a study cannot both sample and optimize".into(),
+        )
+        .field("sample")
+        .allowed("either a `sample` block or an `optimize` block"));
+    }
+    if block.max_evaluations == 0 || block.max_evaluations > 100_000 {
+        return Err(located(
+            study,
+            &at(&["max_evaluations"]),
+            "`optimize.max_evaluations` out of range".into(),
+        )
+        .field("optimize.max_evaluations")
+        .value(block.max_evaluations.to_string())
+        .allowed("1 to 100000 candidates"));
+    }
+    if block.tolerance.is_nan() || block.tolerance < 0.0 {
+        return Err(located(
+            study,
+            &at(&["tolerance"]),
+            "`optimize.tolerance` must be >= 0".into(),
+        )
+        .field("optimize.tolerance")
+        .value(block.tolerance.to_string())
+        .allowed("a number >= 0"));
+    }
+    let mut variables = path_variables(study, &block)?;
+    let profile = match &block.profile {
+        Some(p) => Some(profile_variables(study, p, &mut variables)?),
+        None => None,
+    };
+    if variables.is_empty() {
+        return Err(located(study, &at(&["variables"]), "the optimize block has no design variable".into())
+            .field("optimize.variables")
+            .allowed("at least one `path: {min, max}` under `variables`, or a `profile` with a radius `{min, max}`"));
+    }
+    let objective = objective_of(study, &block)?;
+    let limits = limits_of(study, &block)?;
+    check_solid_wood(study, &block)?;
+    let design = Design {
+        variables,
+        objective,
+        limits,
+        block,
+        profile,
+    };
+    check_start(study, &design)?;
+    Ok(Some(design))
+}
+
+fn bounds_ok(b: &Bounds) -> Result<f64, &'static str> {
+    let start = b.start.unwrap_or(0.5 * (b.min + b.max));
+    match () {
+        _ if b.min.partial_cmp(&b.max) != Some(std::cmp::Ordering::Less) => Err("min < max"),
+        _ if !(b.min..=b.max).contains(&start) => Err("min <= start <= max"),
+        _ => Ok(start),
+    }
+}
+
+/// `variables`: each a known numeric path no block varies, with sound bounds.
+fn path_variables(study: &Study, block: &OptimizeBlock) -> Result<Vec<Variable>, StudyError> {
+    let mut out = Vec::new();
+    for (path, b) in &block.variables {
+        let here = at(&["variables", path]);
+        let numeric = known_paths().contains_key(path) && !meta(path).units.is_empty();
+        if !numeric {
+            return Err(
+                located(study, &here, format!("`{path}` is not a numeric parameter"))
+                    .field(format!("optimize.variables.{path}"))
+                    .allowed(
+                        "a dotted path of a number, e.g. bat.shell.thickness, bat.material.density",
+                    ),
+            );
+        }
+        if let Some(d) = study
+            .plan
+            .dims()
+            .iter()
+            .find(|d| d.params.iter().any(|(p, _)| related(p, path)))
+        {
+            return Err(located(
+                study,
+                &here,
+                format!("`{path}` is also varied by dimension `{}`", d.name),
+            )
+            .field(format!("optimize.variables.{path}"))
+            .allowed("a parameter no grid, zip or points block sets"));
+        }
+        let start = bounds_ok(b).map_err(|allowed| {
+            located(study, &here, format!("bad bounds of `{path}`"))
+                .field(format!("optimize.variables.{path}"))
+                .value(format!("min {}, max {}, start {:?}", b.min, b.max, b.start))
+                .allowed(allowed)
+        })?;
+        out.push(Variable {
+            name: path.clone(),
+            min: b.min,
+            max: b.max,
+            start,
+            units: meta(path).units.to_string(),
+            knot: None,
+            wall: false,
+        });
+    }
+    Ok(out)
+}
+
+/// `profile`: knots increasing from 0, one radius each, fixed (> 0) or bounded.
+type ProfileValues = (Vec<f64>, Vec<f64>, Option<Vec<f64>>);
+
+fn profile_variables(
+    study: &Study,
+    p: &crate::study::optimize_block::ProfileDesign,
+    vars: &mut Vec<Variable>,
+) -> Result<ProfileValues, StudyError> {
+    let bad = |part: &str, msg: &str, value: String, allowed: &str| {
+        located(study, &at(&["profile", part]), msg.to_string())
+            .field(format!("optimize.profile.{part}"))
+            .value(value)
+            .allowed(allowed.to_string())
+    };
+    let increasing = p.z.first() == Some(&0.0) && p.z.windows(2).all(|w| w[1] > w[0]);
+    if p.z.len() < 2 || !increasing {
+        return Err(bad(
+            "z",
+            "bad knot positions",
+            format!("{:?}", p.z),
+            "at least 2 positions, increasing from 0 (m from the knob)",
+        ));
+    }
+    if p.radius.len() != p.z.len() {
+        return Err(bad(
+            "radius",
+            "one radius per knot position",
+            format!("{} radii", p.radius.len()),
+            &format!("{} radii", p.z.len()),
+        ));
+    }
+    if let Some(d) = study
+        .plan
+        .dims()
+        .iter()
+        .find(|d| d.params.iter().any(|(q, _)| related(q, "bat.profile")))
+    {
+        return Err(bad(
+            "z",
+            &format!("the profile is also varied by dimension `{}`", d.name),
+            String::new(),
+            "a profile no grid, zip or points block sets",
+        ));
+    }
+    let radius = knot_values(&p.radius, false, vars).map_err(|(k, r)| {
+        bad(
+            "radius",
+            &format!("bad radius of knot {k}"),
+            r,
+            "a radius > 0, or {min, max, start} with 0 < min < max and start within",
+        )
+    })?;
+    let wall = match &p.thickness {
+        None => None,
+        Some(t) if t.len() != p.z.len() => {
+            return Err(bad(
+                "thickness",
+                "one wall thickness per knot position",
+                format!("{} thicknesses", t.len()),
+                &format!("{} thicknesses", p.z.len()),
+            ))
+        }
+        Some(t) => Some(knot_values(t, true, vars).map_err(|(k, r)| {
+            bad(
+                "thickness",
+                &format!("bad wall thickness of knot {k}"),
+                r,
+                "a thickness > 0, or {min, max, start} with 0 < min < max and start within",
+            )
+        })?),
+    };
+    Ok((p.z.clone(), radius, wall))
+}
+
+/// A profile's fixed values (NaN where a variable), its variables pushed to `vars`; the
+/// bad knot and its text on error.
+fn knot_values(
+    list: &[Knot],
+    wall: bool,
+    vars: &mut Vec<Variable>,
+) -> Result<Vec<f64>, (usize, String)> {
+    let mut fixed = Vec::new();
+    for (k, r) in list.iter().enumerate() {
+        match r {
+            Knot::Fixed(r) if *r > 0.0 => fixed.push(*r),
+            Knot::Free(b) if b.min > 0.0 && bounds_ok(b).is_ok() => {
+                fixed.push(f64::NAN);
+                let what = if wall {
+                    "shell.thickness"
+                } else {
+                    "profile.radius"
+                };
+                vars.push(Variable {
+                    name: format!("bat.{what}[{k}]"),
+                    min: b.min,
+                    max: b.max,
+                    start: bounds_ok(b).unwrap_or(b.min),
+                    units: "m".into(),
+                    knot: Some(k),
+                    wall,
+                });
+            }
+            _ => return Err((k, format!("{r:?}"))),
+        }
+    }
+    Ok(fixed)
+}
+
+fn quantity_of(
+    study: &Study,
+    name: &str,
+    here: Vec<Seg>,
+    field: &str,
+) -> Result<Quantity, StudyError> {
+    let q = Quantity::parse(name).ok_or_else(|| {
+        located(study, &here, format!("unknown quantity `{name}`"))
+            .field(field.to_string())
+            .value(name.to_string())
+            .allowed(Quantity::names().join(", "))
+    })?;
+    let has_z = study.plan.dims().iter().any(|d| d.name == "impact_z");
+    if matches!(q, Quantity::Sweet(_)) && !has_z {
+        return Err(located(
+            study,
+            &here,
+            format!("`{name}` needs an `impact_z` dimension"),
+        )
+        .field(field.to_string())
+        .value(name.to_string())
+        .allowed("a sweet-spot quantity in a study with a grid axis `impact.z`"));
+    }
+    Ok(q)
+}
+
+fn objective_of(study: &Study, block: &OptimizeBlock) -> Result<Objective, StudyError> {
+    let o = &block.objective;
+    let (name, maximize, key) = match (&o.maximize, &o.minimize) {
+        (Some(n), None) => (n, true, "maximize"),
+        (None, Some(n)) => (n, false, "minimize"),
+        _ => {
+            return Err(located(
+                study,
+                &at(&["objective"]),
+                "the objective needs exactly one of `maximize` and `minimize`".into(),
+            )
+            .field("optimize.objective")
+            .allowed("{maximize: QUANTITY} or {minimize: QUANTITY}"))
+        }
+    };
+    let quantity = quantity_of(
+        study,
+        name,
+        at(&["objective", key]),
+        &format!("optimize.objective.{key}"),
+    )?;
+    Ok(Objective {
+        quantity,
+        maximize,
+        over: o.over,
+    })
+}
+
+fn limits_of(study: &Study, block: &OptimizeBlock) -> Result<Vec<Limit>, StudyError> {
+    let mut out = Vec::new();
+    for (i, c) in block.constraints.iter().enumerate() {
+        let mut here = at(&["constraints"]);
+        here.push(Seg::Index(i));
+        match c {
+            Constraint::Rules(r) => {
+                if r.moi_min.is_some_and(|m| m.is_nan() || m <= 0.0) {
+                    return Err(located(study, &here, "`moi_min` must be > 0".into())
+                        .field(format!("optimize.constraints[{i}].moi_min"))
+                        .allowed("a moment of inertia in kg m^2, > 0"));
+                }
+                out.extend(rule_limits(r.rules, r.moi_min));
+            }
+            Constraint::Bound(b) => {
+                let mut qat = here.clone();
+                qat.push(Seg::Key("quantity".into()));
+                let field = format!("optimize.constraints[{i}]");
+                let quantity = quantity_of(study, &b.quantity, qat, &field)?;
+                if b.min.is_none() && b.max.is_none()
+                    || b.min.zip(b.max).is_some_and(|(a, m)| a > m)
+                {
+                    return Err(located(
+                        study,
+                        &here,
+                        format!("the constraint on `{}` needs a bound", b.quantity),
+                    )
+                    .field(field)
+                    .allowed("`min`, `max` or both (min <= max)"));
+                }
+                out.push(Limit {
+                    quantity,
+                    min: b.min,
+                    max: b.max,
+                    over: b.over.unwrap_or(if b.max.is_some() {
+                        Aggregate::Max
+                    } else {
+                        Aggregate::Min
+                    }),
+                    source: "study".into(),
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// `mlb_wood`: one piece of solid wood, so no shell, bore or fill anywhere.
+fn check_solid_wood(study: &Study, block: &OptimizeBlock) -> Result<(), StudyError> {
+    let mlb = block.constraints.iter().position(|c| {
+        matches!(c, Constraint::Rules(r) if r.rules == crate::study::optimize_block::RuleSet::MlbWood)
+    });
+    let Some(i) = mlb else { return Ok(()) };
+    let zero = vec![0; study.plan.dims().len()];
+    let Ok(spec) = study.plan.resolve(&zero) else {
+        return Ok(());
+    };
+    let geometry = crate::model::bat::section::BatGeometry::resolve(&spec.bat);
+    let hollow = geometry.is_ok_and(|g| g.shell.is_some() || g.bore.is_some());
+    let wood = spec.bat.preset == crate::model::spec::BatPreset::R161;
+    if hollow || !wood || get_path(study.plan.base(), "bat.fill").is_some_and(|f| !f.is_null()) {
+        let mut here = at(&["constraints"]);
+        here.push(Seg::Index(i));
+        return Err(located(
+            study,
+            &here,
+            "`mlb_wood` needs a bat of one piece of solid wood".into(),
+        )
+        .field("base.bat")
+        .value(format!("{:?}", spec.bat.preset).to_lowercase())
+        .allowed("bat.preset r161 (wood) without shell, bore or fill"));
+    }
+    Ok(())
+}
+
+/// The start design must resolve at every point of the study's grid.
+fn check_start(study: &Study, design: &Design) -> Result<(), StudyError> {
+    let base = design.apply(&design.start(), study.plan.base());
+    let n = study.plan.n_points().min(crate::study::FULL_CHECK_LIMIT);
+    for flat in 0..n {
+        let m = study.plan.shape().unravel(flat);
+        if let Err(e) = study.plan.resolve_over(&base, &m) {
+            return Err(located(
+                study,
+                &at(&["variables"]),
+                format!("the start design does not make a valid collision: {e}"),
+            )
+            .field("optimize")
+            .allowed("start values (and fixed knots) that give a valid bat at every point"));
+        }
+    }
+    Ok(())
+}

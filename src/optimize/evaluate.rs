@@ -1,0 +1,224 @@
+//! One candidate evaluated: its design applied to the study's base, every point of the
+//! study's grid simulated (on all cores; each point alone, so the result does not depend on
+//! the threads), and the objective and every limit's quantity made one number each.
+//!
+//! The bat's preparation (its modes) is most of a candidate's cost when the grid is small,
+//! so prepared bats are kept by their canonical JSON and shared by every point and candidate
+//! that has the same bat (a design variable that does not touch the bat, e.g. a swing
+//! parameter, prepares it once for the whole search).
+
+use super::design::Design;
+use super::quantity::{aggregate, BatQuantity, Quantity, Sweet};
+use super::rules::{protocol_bbcor, INCH, OUNCE};
+use crate::model::measures::sweet::find_sweet_spot;
+use crate::model::outcome::Outcome;
+use crate::model::protocol::moment_of_inertia_about;
+use crate::model::spec::CollisionSpec;
+use crate::model::{simulate_target, Target};
+use crate::store::layout::{summary_floats, SUMMARY_FLOATS};
+use crate::study::optimize_block::Aggregate;
+use crate::study::Study;
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+/// Prepared bats kept at most (a search moves on; old bats are dropped first).
+const CACHE_BATS: usize = 64;
+
+/// What a candidate gave: the objective and each limit's value, or why it failed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    pub objective: f64,
+    pub constraints: Vec<f64>,
+    pub error: Option<String>,
+}
+
+/// Evaluates candidates of one study's design problem.
+pub struct Evaluator<'a> {
+    pub study: &'a Study,
+    pub design: &'a Design,
+    bats: Mutex<BatCache>,
+}
+
+/// Prepared bats by key, and the keys oldest first.
+type BatCache = (HashMap<String, Arc<Target>>, Vec<String>);
+
+/// The points of one candidate: resolved specs, and each one's bat.
+struct Grid {
+    specs: Vec<CollisionSpec>,
+    bats: Vec<Arc<Target>>,
+}
+
+impl<'a> Evaluator<'a> {
+    pub fn new(study: &'a Study, design: &'a Design) -> Self {
+        Evaluator {
+            study,
+            design,
+            bats: Mutex::new((HashMap::new(), Vec::new())),
+        }
+    }
+
+    /// The candidate `x` (one value per design variable). Call inside the run's pool.
+    pub fn evaluate(&self, x: &[f64]) -> Evaluation {
+        match self.try_evaluate(x) {
+            Ok(e) => e,
+            Err(message) => Evaluation {
+                objective: f64::NAN,
+                constraints: vec![f64::NAN; self.design.limits.len()],
+                error: Some(message),
+            },
+        }
+    }
+
+    fn try_evaluate(&self, x: &[f64]) -> Result<Evaluation, String> {
+        let grid = self.grid(x)?;
+        let outcomes: Vec<Result<Outcome, String>> = grid
+            .specs
+            .par_iter()
+            .zip(grid.bats.par_iter())
+            .map(|(s, b)| simulate_target(s, b, None).map_err(|e| e.to_string()))
+            .collect();
+        let outcomes = outcomes.into_iter().collect::<Result<Vec<_>, _>>()?;
+        let o = &self.design.objective;
+        let objective = self.value(o.quantity, o.over, &grid, &outcomes);
+        if !objective.is_finite() {
+            return Err(format!(
+                "the objective {} is not a number",
+                o.quantity.name()
+            ));
+        }
+        let constraints = self
+            .design
+            .limits
+            .iter()
+            .map(|l| self.value(l.quantity, l.over, &grid, &outcomes))
+            .collect();
+        Ok(Evaluation {
+            objective,
+            constraints,
+            error: None,
+        })
+    }
+
+    /// Every point of the study's grid at this design, and its prepared bat.
+    fn grid(&self, x: &[f64]) -> Result<Grid, String> {
+        let plan = &self.study.plan;
+        let base = self.design.apply(x, plan.base());
+        let mut specs = Vec::with_capacity(plan.n_points());
+        for flat in 0..plan.n_points() {
+            let m = plan.shape().unravel(flat);
+            let spec = plan
+                .resolve_over(&base, &m)
+                .map_err(|e| format!("point {flat}: {e}"))?;
+            specs.push(spec);
+        }
+        let bats = specs
+            .iter()
+            .map(|s| self.bat(s))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Grid { specs, bats })
+    }
+
+    /// The prepared bat of a point, from the cache or prepared now.
+    fn bat(&self, spec: &CollisionSpec) -> Result<Arc<Target>, String> {
+        let key = crate::study::plan::bat_key(&spec.bat, &spec.numerics);
+        if let Some(t) = self.bats.lock().expect("bat cache").0.get(&key) {
+            return Ok(Arc::clone(t));
+        }
+        let t = Arc::new(Target::prepare(&spec.bat, &spec.numerics).map_err(|e| e.to_string())?);
+        let mut cache = self.bats.lock().expect("bat cache");
+        if cache.1.len() >= CACHE_BATS {
+            let old = cache.1.remove(0);
+            cache.0.remove(&old);
+        }
+        cache.0.insert(key.clone(), Arc::clone(&t));
+        cache.1.push(key);
+        Ok(t)
+    }
+
+    /// One quantity over the grid, aggregated.
+    fn value(&self, q: Quantity, over: Aggregate, grid: &Grid, outcomes: &[Outcome]) -> f64 {
+        let values: Vec<f64> = match q {
+            Quantity::Summary(k) => outcomes.iter().map(|o| summary_floats(o)[k]).collect(),
+            Quantity::Sweet(s) => self.sweet_values(s, outcomes),
+            Quantity::Bat(BatQuantity::Bbcor) => self.protocol_values(grid),
+            Quantity::Bat(b) => grid.bats.iter().map(|t| bat_value(b, t)).collect(),
+        };
+        aggregate(&values, over)
+    }
+
+    /// The sweet-spot quantity of every curve along `impact_z`.
+    fn sweet_values(&self, s: Sweet, outcomes: &[Outcome]) -> Vec<f64> {
+        let plan = &self.study.plan;
+        let dims = &plan.shape().dims;
+        let Some(iz) = dims.iter().position(|d| d.name == "impact_z") else {
+            return Vec::new();
+        };
+        let z: Vec<f64> = match &dims[iz].coords[0].values {
+            crate::results::CoordValues::Numbers(z) => z.clone(),
+            _ => return Vec::new(),
+        };
+        let mut order: Vec<usize> = (0..z.len()).collect();
+        order.sort_by(|&a, &b| z[a].total_cmp(&z[b]));
+        let zs: Vec<f64> = order.iter().map(|&q| z[q]).collect();
+        let stride: usize = dims[iz + 1..].iter().map(|d| d.size).product();
+        let outer = plan.n_points() / (z.len() * stride);
+        let carry = SUMMARY_FLOATS
+            .iter()
+            .position(|d| d.name == "carry")
+            .expect("carry");
+        let mut out = Vec::new();
+        for hi in 0..outer {
+            for lo in 0..stride {
+                let at = |q: usize| &outcomes[hi * z.len() * stride + q * stride + lo];
+                let curve: Vec<f64> = match s {
+                    Sweet::Carry | Sweet::CarryPosition => order
+                        .iter()
+                        .map(|&q| summary_floats(at(q))[carry])
+                        .collect(),
+                    Sweet::ExitSpeedLab => order.iter().map(|&q| at(q).exit_speed_lab).collect(),
+                    _ => order.iter().map(|&q| at(q).exit_speed).collect(),
+                };
+                let spot = find_sweet_spot(&zs, &curve);
+                out.push(spot.map_or(f64::NAN, |p| match s {
+                    Sweet::Position | Sweet::CarryPosition => p.position,
+                    Sweet::ExitSpeed | Sweet::ExitSpeedLab | Sweet::Carry => p.exit_speed,
+                    Sweet::Width => p.width,
+                }));
+            }
+        }
+        out
+    }
+
+    /// The protocol's BBCOR of each distinct bat of the grid (with its first point's ball
+    /// and hoop).
+    fn protocol_values(&self, grid: &Grid) -> Vec<f64> {
+        let mut seen: Vec<*const Target> = Vec::new();
+        let mut out = Vec::new();
+        for (s, t) in grid.specs.iter().zip(&grid.bats) {
+            if !seen.contains(&Arc::as_ptr(t)) {
+                seen.push(Arc::as_ptr(t));
+                out.push(protocol_bbcor(s, t));
+            }
+        }
+        out
+    }
+}
+
+/// A bat's own quantity.
+fn bat_value(q: BatQuantity, t: &Target) -> f64 {
+    let p = t.properties();
+    match q {
+        BatQuantity::Mass => p.mass,
+        BatQuantity::Length => p.length,
+        BatQuantity::CentreOfMass => p.z_cm,
+        BatQuantity::MomentOfInertia => p.moment_of_inertia,
+        BatQuantity::MomentOfInertiaKnob6 => p.moment_of_inertia_knob6,
+        BatQuantity::MomentOfInertiaKnob => {
+            moment_of_inertia_about(p.mass, p.z_cm, p.moment_of_inertia, 0.0)
+        }
+        BatQuantity::BarrelDiameter => 2.0 * p.outer_radius.iter().copied().fold(0.0, f64::max),
+        BatQuantity::Drop => p.mass / OUNCE - p.length / INCH,
+        BatQuantity::Bbcor => f64::NAN,
+    }
+}

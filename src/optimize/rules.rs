@@ -1,0 +1,164 @@
+//! The rule sets built in (`rules: ncaa_bbcor`, `rules: mlb_wood`) as constraints, each
+//! with its source; and the certification protocol's BBCOR of a candidate bat.
+//!
+//! - NCAA / NFHS (BBCOR bats, since 2011 / 2012): BBCOR ≤ 0.50 at the barrel's maximum, the
+//!   bat at rest pivoted 6 in from the knob (NCAA announcement of 16 Sep 2008, the BBCOR
+//!   standard's pass/fail criteria); a length-to-weight difference of at most 3 units ("a bat
+//!   may not weigh, numerically, more than three units less than the length", NCAA Rule
+//!   1-12(b)(5); NFHS 1-3-2): weight (oz) − length (in) ≥ −3; barrel diameter ≤ 2 5/8 in
+//!   (NCAA Rule 1-12, NFHS 1-3-2); a moment of inertia about the 6-in point at least the
+//!   minimum of the bat's length class (the BBCOR standard's table, which the study gives:
+//!   `moi_min`, kg·m²).
+//! - MLB (Official Baseball Rules 3.02(a)): "a smooth, round stick not more than 2.61 inches
+//!   in diameter at the thickest part and not more than 42 inches in length", one piece of
+//!   solid wood (checked when the study is loaded: no shell, bore or fill).
+
+use super::quantity::{BatQuantity, Quantity};
+use crate::model::measures::sweet::find_maximum;
+use crate::model::protocol::BBCOR_BALL_SPEED;
+use crate::model::spec::{CollisionSpec, SwingSpec};
+use crate::model::{simulate_target, Target};
+use crate::study::optimize_block::{Aggregate, RuleSet};
+use rayon::prelude::*;
+
+/// One inch, m.
+pub const INCH: f64 = 0.0254;
+/// One ounce (avoirdupois), kg.
+pub const OUNCE: f64 = 0.028349523125;
+
+/// A constraint: `quantity` (aggregated by `over`) within [min, max].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Limit {
+    pub quantity: Quantity,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+    pub over: Aggregate,
+    /// Where the limit comes from (a rule book), or `study` for the study's own.
+    pub source: String,
+}
+
+impl Limit {
+    /// A label, e.g. `bat.bbcor <= 0.5`.
+    pub fn label(&self) -> String {
+        match (self.min, self.max) {
+            (Some(a), Some(b)) => format!("{a} <= {} <= {b}", self.quantity.name()),
+            (Some(a), None) => format!("{} >= {a}", self.quantity.name()),
+            (None, Some(b)) => format!("{} <= {b}", self.quantity.name()),
+            (None, None) => self.quantity.name().to_string(),
+        }
+    }
+
+    /// How far inside its bounds a value is, in the quantity's units (negative: outside).
+    pub fn margin(&self, value: f64) -> f64 {
+        let lo = self.min.map_or(f64::INFINITY, |a| value - a);
+        let hi = self.max.map_or(f64::INFINITY, |b| b - value);
+        if value.is_nan() {
+            return f64::NAN;
+        }
+        lo.min(hi)
+    }
+
+    /// The scale a violation is measured in for the penalty: the bound's magnitude.
+    pub fn scale(&self) -> f64 {
+        let b = self.max.or(self.min).unwrap_or(1.0).abs();
+        if b > 0.0 {
+            b
+        } else {
+            1.0
+        }
+    }
+}
+
+fn bat_limit(q: BatQuantity, min: Option<f64>, max: Option<f64>, source: &str) -> Limit {
+    Limit {
+        quantity: Quantity::Bat(q),
+        min,
+        max,
+        over: if max.is_some() {
+            Aggregate::Max
+        } else {
+            Aggregate::Min
+        },
+        source: source.to_string(),
+    }
+}
+
+/// The limits of a rule set (`moi_min`: the NCAA minimum moment of inertia about the 6-in
+/// point, kg·m²).
+pub fn rule_limits(rules: RuleSet, moi_min: Option<f64>) -> Vec<Limit> {
+    const NCAA: &str = "NCAA BBCOR standard (2011), NCAA Rule 1-12, NFHS Rule 1-3-2";
+    const MLB: &str = "Official Baseball Rules 3.02(a)";
+    match rules {
+        RuleSet::NcaaBbcor => {
+            let mut v = vec![
+                bat_limit(BatQuantity::Bbcor, None, Some(0.50), NCAA),
+                bat_limit(BatQuantity::Drop, Some(-3.0), None, NCAA),
+                bat_limit(BatQuantity::BarrelDiameter, None, Some(2.625 * INCH), NCAA),
+            ];
+            if let Some(m) = moi_min {
+                v.push(bat_limit(
+                    BatQuantity::MomentOfInertiaKnob6,
+                    Some(m),
+                    None,
+                    NCAA,
+                ));
+            }
+            v
+        }
+        RuleSet::MlbWood => vec![
+            bat_limit(BatQuantity::BarrelDiameter, None, Some(2.61 * INCH), MLB),
+            bat_limit(BatQuantity::Length, None, Some(42.0 * INCH), MLB),
+        ],
+    }
+}
+
+/// The protocol's impact positions: from the CM to the barrel end less the ball's radius,
+/// every centimetre.
+fn scan_positions(z_cm: f64, length: f64) -> Vec<f64> {
+    let end = length - crate::model::measures::metrics::BBCOR_SCAN_END_MARGIN;
+    let n = ((end - z_cm) / 0.01).floor().max(0.0) as usize + 1;
+    (0..n).map(|k| z_cm + k as f64 * 0.01).collect()
+}
+
+/// The BBCOR protocol on a candidate: `spec`'s bat, ball (at 136 mph, no spin, head-on)
+/// and hoop, the bat at rest and free (Nathan 2000: a pivot does not change barrel impacts,
+/// and ASTM F2219 evaluates the bat unconstrained); the largest BBCOR along the barrel,
+/// parabola-refined. NaN if no collision of the scan succeeds.
+pub fn protocol_bbcor(spec: &CollisionSpec, target: &Target) -> f64 {
+    let p = target.properties();
+    let mut base = spec.clone();
+    base.swing = SwingSpec::default();
+    base.batter = None;
+    base.flight = None;
+    base.impact.offset = 0.0;
+    base.ball.speed = BBCOR_BALL_SPEED;
+    base.ball.spin = 0.0;
+    base.bat.grip = None;
+    let z = scan_positions(p.z_cm, p.length);
+    let bbcor: Vec<f64> = z
+        .par_iter()
+        .map(|&zi| {
+            let mut s = base.clone();
+            s.impact.z = zi;
+            simulate_target(&s, target, None).map_or(f64::NAN, |o| o.bbcor)
+        })
+        .collect();
+    find_maximum(&z, &bbcor).map_or(f64::NAN, |m| m.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn margins_are_inside_positive() {
+        let l = bat_limit(BatQuantity::Bbcor, None, Some(0.5), "x");
+        assert!((l.margin(0.48) - 0.02).abs() < 1e-15);
+        assert!(l.margin(0.51) < 0.0);
+        let l = bat_limit(BatQuantity::Drop, Some(-3.0), None, "x");
+        assert_eq!(l.margin(-2.0), 1.0);
+        assert_eq!(l.label(), "bat.drop >= -3");
+        assert_eq!(rule_limits(RuleSet::MlbWood, None).len(), 2);
+        assert_eq!(rule_limits(RuleSet::NcaaBbcor, Some(0.1)).len(), 4);
+    }
+}

@@ -1,0 +1,171 @@
+//! The `optimize` block as written (issue 36): design variables, an objective over the
+//! study's other dimensions, constraints and the built-in rule sets. `batstudy optimize`
+//! (`crate::optimize`) runs it; these are only the file's types and their schema.
+
+use indexmap::IndexMap;
+use schemars::JsonSchema;
+use serde::Deserialize;
+
+/// A design search: `batstudy optimize STUDY` varies the design variables within their
+/// bounds to maximise or minimise the objective subject to the constraints. Every other
+/// block of the study (`grid`, `zip`, `points`) is the grid each candidate is evaluated on.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OptimizeBlock {
+    /// The optimiser: `nelder_mead` (argmin's Nelder–Mead simplex, the default).
+    #[serde(default)]
+    pub method: OptimizeMethod,
+    /// Most candidates evaluated (1 to 100000). Default 300.
+    #[serde(default = "default_max_evaluations")]
+    pub max_evaluations: usize,
+    /// Stop when the standard deviation over the simplex of what the search minimises (the
+    /// objective over its magnitude at the start design, plus the penalties) falls below
+    /// this. Default 1e-6.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Numeric parameters varied: dotted path → `{min, max, start}` (`start` defaults to
+    /// the middle of the bounds). Each path must be a number the study does not vary
+    /// otherwise.
+    #[serde(default)]
+    pub variables: IndexMap<String, Bounds>,
+    /// A bat profile whose knot radii are variables (`bat.profile.knots` of every
+    /// candidate).
+    #[serde(default)]
+    pub profile: Option<ProfileDesign>,
+    /// What to maximise or minimise.
+    pub objective: Objective,
+    /// Bounds on stored quantities, and rule sets by name (`{rules: ncaa_bbcor}`).
+    #[serde(default)]
+    pub constraints: Vec<Constraint>,
+}
+
+fn default_max_evaluations() -> usize {
+    300
+}
+fn default_tolerance() -> f64 {
+    1e-6
+}
+
+/// The optimiser.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum OptimizeMethod {
+    /// Nelder–Mead simplex (argmin), on the variables scaled to [0, 1] by their bounds.
+    #[default]
+    NelderMead,
+}
+
+/// Bounds of a design variable.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Bounds {
+    pub min: f64,
+    pub max: f64,
+    /// First guess. Default: the middle of the bounds.
+    #[serde(default)]
+    pub start: Option<f64>,
+}
+
+/// A knot's radius: a fixed number, or a variable with bounds.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum Knot {
+    Fixed(f64),
+    Free(Bounds),
+}
+
+/// A profile design: knots at fixed positions whose radii may be variables.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileDesign {
+    /// Knot positions, m from the knob, increasing from 0.
+    pub z: Vec<f64>,
+    /// Outer radius at each knot, m: a number (fixed) or `{min, max, start}` (a variable).
+    pub radius: Vec<Knot>,
+    /// A hollow bat's wall thickness at each knot, m (fixed or a variable), linear between
+    /// knots (`bat.shell.thickness_knots` of every candidate). Default: the study's shell.
+    #[serde(default)]
+    pub thickness: Option<Vec<Knot>>,
+}
+
+/// How a quantity over the study's grid becomes one number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Aggregate {
+    /// The mean over the grid's points (or curves, for sweet-spot quantities).
+    Mean,
+    /// The smallest value.
+    Min,
+    /// The largest value.
+    Max,
+}
+
+/// The objective: exactly one of `maximize` and `minimize`, naming a quantity.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Objective {
+    /// A quantity to maximise: a `/summary` variable (`exit_speed`, `carry`, …), a
+    /// `/sweet_spot` one as `sweet_spot.NAME` (`sweet_spot.exit_speed`, `sweet_spot.width`,
+    /// `sweet_spot.carry`), or a bat's as `bat.NAME` (`bat.mass`, …).
+    #[serde(default)]
+    pub maximize: Option<String>,
+    /// A quantity to minimise (as `maximize`).
+    #[serde(default)]
+    pub minimize: Option<String>,
+    /// How the quantity over the study's grid becomes one number. Default `mean`.
+    #[serde(default = "default_over")]
+    pub over: Aggregate,
+}
+
+fn default_over() -> Aggregate {
+    Aggregate::Mean
+}
+
+/// A constraint: a bound on a quantity, or a rule set by name.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum Constraint {
+    /// `{rules: ncaa_bbcor}` or `{rules: mlb_wood}`: the rule book's limits
+    /// (docs/study-files.md, "Rule sets").
+    Rules(RulesConstraint),
+    /// `{quantity: NAME, min: a, max: b, over: max}`: the quantity (as in the objective)
+    /// within [min, max] (either may be left out). `over` defaults to the worst case: the
+    /// grid's largest value against `max`, its smallest against `min`.
+    Bound(QuantityBound),
+}
+
+/// A rule set by name.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RulesConstraint {
+    pub rules: RuleSet,
+    /// `ncaa_bbcor`: the minimum moment of inertia about the 6-in point of the bat's length
+    /// class, kg·m² (the BBCOR standard's table). Default: no MOI limit.
+    #[serde(default)]
+    pub moi_min: Option<f64>,
+}
+
+/// A bound on a quantity.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct QuantityBound {
+    pub quantity: String,
+    #[serde(default)]
+    pub min: Option<f64>,
+    #[serde(default)]
+    pub max: Option<f64>,
+    #[serde(default)]
+    pub over: Option<Aggregate>,
+}
+
+/// The rule sets built in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum RuleSet {
+    /// NCAA / NFHS BBCOR bats: BBCOR ≤ 0.50, length − weight ≥ −3 (in − oz), barrel
+    /// diameter ≤ 2 5/8 in, and the minimum moment of inertia about the 6-in point.
+    NcaaBbcor,
+    /// MLB wood bats (Official Baseball Rules 3.02(a)): one piece of solid wood, diameter
+    /// ≤ 2.61 in, length ≤ 42 in.
+    MlbWood,
+}

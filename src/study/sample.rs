@@ -1,0 +1,477 @@
+//! The `sample` block (issue 36): parameters drawn from distributions instead of a grid,
+//! one dimension (`sample`) whose coordinates are the drawn values.
+//!
+//! The design is quasi-random: Owen-scrambled Sobol points (Burley 2020, the `sobol_burley`
+//! crate), seeded, one Sobol dimension per parameter. Each point's uniform coordinates are
+//! taken to normal scores, correlated through the Cholesky factor of the correlation matrix
+//! (a Gaussian copula: `rho` is the correlation of the normal scores, the Pearson correlation
+//! for two normal parameters, that of the logarithms for two lognormal ones), and taken back
+//! to each parameter's distribution by its quantile function. Without correlations the
+//! points are the Sobol points themselves, mapped one coordinate at a time.
+
+use super::error::StudyError;
+use super::locate::Ctx;
+use super::plan::{DimOrigin, PlanDim};
+use super::source::{keys, Seg};
+use super::syntax::check_path;
+use super::types::StudyFile;
+use indexmap::IndexMap;
+use schemars::JsonSchema;
+use serde::Deserialize;
+
+/// Most points a `sample` block may draw (the Sobol sequence's length, 2^16).
+pub const MAX_SAMPLES: usize = 1 << 16;
+/// Most parameters a `sample` block may draw (the Sobol sequence's dimensions).
+pub const MAX_SAMPLE_PARAMS: usize = sobol_burley::NUM_DIMENSIONS as usize;
+
+/// Parameters drawn from distributions: one dimension (default name `sample`) of `n`
+/// points, each parameter's drawn values its coordinates.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SampleBlock {
+    /// Dimension name. Default `sample`.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Number of points, 1 to 65536 (a power of 2 keeps the Sobol design balanced).
+    pub n: usize,
+    /// The design: `sobol` (Owen-scrambled Sobol points, the default).
+    #[serde(default)]
+    pub method: SampleMethod,
+    /// Seed of the scrambling (0 to 2^32 − 1): another seed, another independent design.
+    /// Default 0.
+    #[serde(default)]
+    pub seed: u32,
+    /// Dotted parameter path → its distribution.
+    #[serde(deserialize_with = "super::types::via_json")]
+    pub params: IndexMap<String, Distribution>,
+    /// Correlated pairs: `{between: [path, path], rho: r}` (−1 < r < 1), the correlation of
+    /// the two parameters' normal scores (a Gaussian copula). Default: independent.
+    #[serde(default)]
+    pub correlation: Vec<Correlation>,
+}
+
+/// The quasi-random design.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SampleMethod {
+    /// Owen-scrambled Sobol points (Burley 2020), seeded by `seed`.
+    #[default]
+    Sobol,
+}
+
+/// A parameter's distribution.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Distribution {
+    /// `{normal: {mean, sd, min, max}}`: normal, optionally truncated to [min, max].
+    Normal {
+        mean: f64,
+        /// Standard deviation (> 0).
+        sd: f64,
+        #[serde(default)]
+        min: Option<f64>,
+        #[serde(default)]
+        max: Option<f64>,
+    },
+    /// `{lognormal: {mean, cov, min, max}}`: lognormal with this mean and coefficient of
+    /// variation (sd / mean, > 0), optionally truncated to [min, max].
+    Lognormal {
+        /// Mean (> 0).
+        mean: f64,
+        /// Coefficient of variation (> 0).
+        cov: f64,
+        #[serde(default)]
+        min: Option<f64>,
+        #[serde(default)]
+        max: Option<f64>,
+    },
+    /// `{uniform: {min, max}}`.
+    Uniform { min: f64, max: f64 },
+}
+
+/// A correlated pair of parameters.
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Correlation {
+    /// The two parameter paths (both in `params`).
+    pub between: [String; 2],
+    /// Correlation of their normal scores, −1 < rho < 1.
+    pub rho: f64,
+}
+
+/// A bad `sample` block: where, the field, the value and what is allowed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SampleError {
+    pub at: Vec<Seg>,
+    pub message: String,
+    pub field: String,
+    pub value: String,
+    pub allowed: String,
+}
+
+fn err(at: Vec<Seg>, message: String, field: &str, value: String, allowed: &str) -> SampleError {
+    SampleError {
+        at,
+        message,
+        field: field.to_string(),
+        value,
+        allowed: allowed.to_string(),
+    }
+}
+
+/// The `sample` block's dimension (after every other block's), its values drawn.
+pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, StudyError> {
+    let Some(block) = &file.sample else {
+        return Ok(None);
+    };
+    for path in block.params.keys() {
+        check_path(cx, path, &keys(&["sample", "params", path]))?;
+    }
+    let values = draw(block).map_err(|e| {
+        cx.err(&e.at, e.message)
+            .field(e.field)
+            .value(e.value)
+            .allowed(e.allowed)
+    })?;
+    let params = block
+        .params
+        .keys()
+        .zip(values)
+        .map(|(p, v)| {
+            (
+                p.clone(),
+                v.into_iter().map(yaml_serde::Value::from).collect(),
+            )
+        })
+        .collect();
+    Ok(Some(PlanDim {
+        name: block.name.clone().unwrap_or_else(|| "sample".into()),
+        size: block.n,
+        params,
+        origin: DimOrigin::Sample,
+    }))
+}
+
+/// The standard normal CDF.
+pub fn normal_cdf(z: f64) -> f64 {
+    0.5 * statrs::function::erf::erfc(-z / std::f64::consts::SQRT_2)
+}
+
+/// The standard normal quantile (0 < p < 1).
+pub fn normal_quantile(p: f64) -> f64 {
+    -std::f64::consts::SQRT_2 * statrs::function::erf::erfc_inv(2.0 * p)
+}
+
+impl Distribution {
+    /// The location and scale of the normal behind it, and its truncation in those terms.
+    fn normal_form(&self) -> (f64, f64, Option<f64>, Option<f64>, bool) {
+        match *self {
+            Distribution::Normal { mean, sd, min, max } => (mean, sd, min, max, false),
+            Distribution::Lognormal {
+                mean,
+                cov,
+                min,
+                max,
+            } => {
+                let s2 = (1.0 + cov * cov).ln();
+                (mean.ln() - s2 / 2.0, s2.sqrt(), min, max, true)
+            }
+            Distribution::Uniform { min, max } => (min, max, None, None, false),
+        }
+    }
+
+    /// The value at probability `p` (0 < p < 1).
+    pub fn quantile(&self, p: f64) -> f64 {
+        if let Distribution::Uniform { min, max } = *self {
+            return min + p * (max - min);
+        }
+        let (mu, sigma, lo, hi, log) = self.normal_form();
+        let score = |x: Option<f64>, inf: f64| match x {
+            Some(x) if log => (x.ln() - mu) / sigma,
+            Some(x) => (x - mu) / sigma,
+            None => inf,
+        };
+        let (a, b) = (
+            normal_cdf(score(lo, f64::NEG_INFINITY)),
+            normal_cdf(score(hi, f64::INFINITY)),
+        );
+        let z = normal_quantile(a + p * (b - a));
+        let x = mu + sigma * z;
+        if log {
+            x.exp()
+        } else {
+            x
+        }
+    }
+
+    /// Why its parameters are not a distribution, if they are not: (field, value, allowed).
+    fn problem(&self) -> Option<(&'static str, f64, &'static str)> {
+        let bounds = |min: Option<f64>, max: Option<f64>| match (min, max) {
+            (Some(a), Some(b)) if a >= b => Some(("max", b, "greater than `min`")),
+            _ => None,
+        };
+        match *self {
+            Distribution::Normal { sd, .. } if sd <= 0.0 => {
+                Some(("sd", sd, "a standard deviation > 0"))
+            }
+            Distribution::Normal { min, max, .. } => bounds(min, max),
+            Distribution::Lognormal { mean, .. } if mean <= 0.0 => {
+                Some(("mean", mean, "a mean > 0"))
+            }
+            Distribution::Lognormal { cov, .. } if cov <= 0.0 => {
+                Some(("cov", cov, "a coefficient of variation > 0"))
+            }
+            Distribution::Lognormal { min: Some(m), .. } if m <= 0.0 => Some((
+                "min",
+                m,
+                "a lower bound > 0 (lognormal values are positive)",
+            )),
+            Distribution::Lognormal { min, max, .. } => bounds(min, max),
+            Distribution::Uniform { min, max } if min >= max => {
+                Some(("max", max, "greater than `min`"))
+            }
+            Distribution::Uniform { .. } => None,
+        }
+    }
+
+    fn kind(&self) -> &'static str {
+        match self {
+            Distribution::Normal { .. } => "normal",
+            Distribution::Lognormal { .. } => "lognormal",
+            Distribution::Uniform { .. } => "uniform",
+        }
+    }
+}
+
+/// The block's drawn values: for each parameter (in `params` order), its `n` values.
+pub fn draw(block: &SampleBlock) -> Result<Vec<Vec<f64>>, SampleError> {
+    check(block)?;
+    let d = block.params.len();
+    let l = cholesky(&correlation_matrix(block)?).ok_or_else(|| {
+        err(
+            keys(&["sample", "correlation"]),
+            "the correlations are not those of any set of parameters (the matrix is not positive definite)".into(),
+            "sample.correlation",
+            format!("{} pairs", block.correlation.len()),
+            "correlations that can hold together, e.g. smaller |rho|",
+        )
+    })?;
+    let dists: Vec<&Distribution> = block.params.values().collect();
+    let mut out = vec![Vec::with_capacity(block.n); d];
+    let mut z = vec![0.0; d];
+    for i in 0..block.n {
+        for (k, zk) in z.iter_mut().enumerate() {
+            *zk = normal_quantile(uniform(i, k, block.seed));
+        }
+        for k in 0..d {
+            // the correlated score: row k of L times z (L lower triangular)
+            let s: f64 = (0..=k).map(|j| l[k * d + j] * z[j]).sum();
+            // a parameter correlated with none before it keeps its Sobol coordinate itself
+            let p = if (0..k).all(|j| l[k * d + j] == 0.0) {
+                uniform(i, k, block.seed)
+            } else {
+                normal_cdf(s)
+            };
+            out[k].push(dists[k].quantile(p));
+        }
+    }
+    Ok(out)
+}
+
+/// The Sobol coordinate `k` of point `i`, moved to the middle of its f32 cell so that it is
+/// never 0 (whose normal score is −∞).
+fn uniform(i: usize, k: usize, seed: u32) -> f64 {
+    let u = sobol_burley::sample(i as u32, k as u32, seed) as f64;
+    u + 0.5 / (1u64 << 24) as f64
+}
+
+fn check(block: &SampleBlock) -> Result<(), SampleError> {
+    if block.n == 0 || block.n > MAX_SAMPLES {
+        return Err(err(
+            keys(&["sample", "n"]),
+            "`sample.n` out of range".into(),
+            "sample.n",
+            block.n.to_string(),
+            "1 to 65536 points (the Sobol sequence's length)",
+        ));
+    }
+    if block.params.is_empty() || block.params.len() > MAX_SAMPLE_PARAMS {
+        return Err(err(
+            keys(&["sample", "params"]),
+            "`sample.params` must name 1 to 256 parameters".into(),
+            "sample.params",
+            format!("{} parameters", block.params.len()),
+            "1 to 256 dotted parameter paths, each with a distribution",
+        ));
+    }
+    for (path, dist) in &block.params {
+        if let Some((field, value, allowed)) = dist.problem() {
+            return Err(err(
+                keys(&["sample", "params", path, dist.kind(), field]),
+                format!(
+                    "the {} distribution of `{path}` has a bad `{field}`",
+                    dist.kind()
+                ),
+                &format!("sample.params.{path}.{}.{field}", dist.kind()),
+                value.to_string(),
+                allowed,
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The correlation matrix (row-major, d × d) of the block's parameters.
+fn correlation_matrix(block: &SampleBlock) -> Result<Vec<f64>, SampleError> {
+    let d = block.params.len();
+    let mut c = vec![0.0; d * d];
+    for k in 0..d {
+        c[k * d + k] = 1.0;
+    }
+    for (i, pair) in block.correlation.iter().enumerate() {
+        let at = |f: &str| {
+            let mut s = keys(&["sample", "correlation"]);
+            s.push(Seg::Index(i));
+            s.push(Seg::Key(f.into()));
+            s
+        };
+        let idx: Vec<Option<usize>> = pair
+            .between
+            .iter()
+            .map(|p| block.params.get_index_of(p))
+            .collect();
+        let (Some(a), Some(b)) = (idx[0], idx[1]) else {
+            let bad = pair.between.iter().find(|p| !block.params.contains_key(*p));
+            return Err(err(
+                at("between"),
+                "a correlated parameter is not drawn by the sample".into(),
+                "sample.correlation.between",
+                bad.cloned().unwrap_or_default(),
+                "two of the paths under `sample.params`",
+            ));
+        };
+        if a == b || !(pair.rho > -1.0 && pair.rho < 1.0) || c[a * d + b] != 0.0 {
+            let (value, allowed) = match a == b {
+                true => (pair.between[0].clone(), "two different paths"),
+                false if c[a * d + b] != 0.0 => (pair.between.join(", "), "each pair once"),
+                false => (pair.rho.to_string(), "-1 < rho < 1"),
+            };
+            return Err(err(
+                at(if a == b || c[a * d + b] != 0.0 {
+                    "between"
+                } else {
+                    "rho"
+                }),
+                "bad correlated pair".into(),
+                "sample.correlation",
+                value,
+                allowed,
+            ));
+        }
+        c[a * d + b] = pair.rho;
+        c[b * d + a] = pair.rho;
+    }
+    Ok(c)
+}
+
+/// The lower Cholesky factor of a symmetric matrix (row-major), None unless it is positive
+/// definite.
+fn cholesky(c: &[f64]) -> Option<Vec<f64>> {
+    let d = (c.len() as f64).sqrt().round() as usize;
+    let m = nalgebra::DMatrix::from_row_slice(d, d, c);
+    let l = nalgebra::Cholesky::new(m)?.unpack();
+    Some((0..d * d).map(|i| l[(i / d, i % d)]).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn block(params: &[(&str, Distribution)], corr: Vec<Correlation>, n: usize) -> SampleBlock {
+        SampleBlock {
+            name: None,
+            n,
+            method: SampleMethod::Sobol,
+            seed: 7,
+            params: params
+                .iter()
+                .map(|(p, d)| (p.to_string(), d.clone()))
+                .collect(),
+            correlation: corr,
+        }
+    }
+
+    #[test]
+    fn quantiles_invert_the_cdf() {
+        for p in [1e-6, 0.025, 0.3, 0.5, 0.9, 0.999] {
+            assert!((normal_cdf(normal_quantile(p)) - p).abs() < 1e-9 * p, "{p}");
+        }
+        assert!((normal_quantile(0.975) - 1.959963984540054).abs() < 1e-12);
+        let t = Distribution::Normal {
+            mean: 0.0,
+            sd: 1.0,
+            min: Some(-0.5),
+            max: Some(0.5),
+        };
+        assert!((t.quantile(0.5)).abs() < 1e-14);
+        assert!(t.quantile(1e-9) > -0.5 && t.quantile(1.0 - 1e-9) < 0.5);
+        // the lognormal's median is mean / sqrt(1 + cov^2)
+        let ln = Distribution::Lognormal {
+            mean: 2.0,
+            cov: 0.5,
+            min: None,
+            max: None,
+        };
+        assert!((ln.quantile(0.5) - 2.0 / 1.25f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn correlated_normals_have_their_correlation() {
+        let n = |m| Distribution::Normal {
+            mean: m,
+            sd: 1.0,
+            min: None,
+            max: None,
+        };
+        let corr = vec![Correlation {
+            between: ["a".into(), "b".into()],
+            rho: 0.7,
+        }];
+        let v = draw(&block(&[("a", n(0.0)), ("b", n(0.0))], corr, 4096)).unwrap();
+        let r: f64 = v[0].iter().zip(&v[1]).map(|(x, y)| x * y).sum::<f64>() / 4096.0;
+        assert!((r - 0.7).abs() < 0.01, "{r}");
+        let mean: f64 = v[1].iter().sum::<f64>() / 4096.0;
+        assert!(mean.abs() < 0.01, "{mean}");
+    }
+
+    #[test]
+    fn bad_blocks_are_refused() {
+        let bad = Distribution::Uniform { min: 1.0, max: 1.0 };
+        let e = draw(&block(&[("a", bad)], vec![], 8)).unwrap_err();
+        assert_eq!(e.field, "sample.params.a.uniform.max");
+        let u = Distribution::Uniform { min: 0.0, max: 1.0 };
+        let e = draw(&block(&[("a", u.clone())], vec![], 0)).unwrap_err();
+        assert_eq!(e.field, "sample.n");
+        let pairs = |r: f64, r2: f64| {
+            vec![
+                Correlation {
+                    between: ["a".into(), "b".into()],
+                    rho: r,
+                },
+                Correlation {
+                    between: ["b".into(), "c".into()],
+                    rho: r2,
+                },
+                Correlation {
+                    between: ["a".into(), "c".into()],
+                    rho: -0.99,
+                },
+            ]
+        };
+        let three = [("a", u.clone()), ("b", u.clone()), ("c", u.clone())];
+        let e = draw(&block(&three, pairs(0.99, 0.99), 8)).unwrap_err();
+        assert_eq!(e.field, "sample.correlation");
+        let e = draw(&block(&three, pairs(1.0, 0.0), 8)).unwrap_err();
+        assert_eq!(e.value, "1");
+    }
+}

@@ -1,0 +1,40 @@
+"""Issue 36: `batstudy.optimize` from the installed wheel: the rigid bat's best impact point
+(closed form: at rest, the centre of mass, Brody 1986) found from a dict, the record of the
+search in `/optimize`, a bad study refused."""
+
+import pytest
+
+import batstudy
+
+STUDY = {
+    "name": "best_point",
+    "model": "rigid",
+    "base": {"impact": {"z": 0.6}},
+    "grid": {"swing.cm_speed": [0]},
+    "optimize": {
+        "max_evaluations": 200,
+        "tolerance": 1e-14,
+        "variables": {"impact.z": {"min": 0.40, "max": 0.83}},
+        "objective": {"maximize": "exit_speed"},
+    },
+}
+
+
+def test_optimize_finds_the_centre_of_mass(tmp_path):
+    import xarray as xr
+
+    out = tmp_path / "best.h5"
+    o = batstudy.optimize(STUDY, out)
+    with xr.open_dataset(out, engine="h5netcdf", group="bat") as b:
+        z_cm = float(b.z_cm[0])
+    assert abs(float(o.attrs["best_design"]) - z_cm) < 1e-4
+    assert o.sizes["candidate"] == int(o.attrs["evaluations"]) > 5
+    assert (o.status.values == 0).all()
+    # the file holds the study at the best design too
+    with xr.open_dataset(out, engine="h5netcdf", group="summary") as s:
+        assert abs(float(s.exit_speed.max()) - float(o.attrs["best_objective"])) < 1e-12
+
+
+def test_optimize_refuses_a_study_without_the_block(tmp_path):
+    with pytest.raises(RuntimeError, match="status 2"):
+        batstudy.optimize({k: v for k, v in STUDY.items() if k != "optimize"}, tmp_path / "x.h5")
