@@ -85,7 +85,8 @@ def assert_same_displacement(modal, grid):
     assert hg.displacement.dtype == np.float32
     assert hm.sizes["history"] == hg.sizes["history"] > 0
     for name in ("impact_z", "swing_omega", "time", "z"):
-        np.testing.assert_array_equal(hm[name].values, hg[name].values)
+        if name in hg.variables:  # a batter's study has no swing_omega (issue 35)
+            np.testing.assert_array_equal(hm[name].values, hg[name].values)
     y, g = hm.displacement.values, hg.displacement.values
     assert y.shape == g.shape
     np.testing.assert_array_equal(np.isfinite(y), np.isfinite(g))
