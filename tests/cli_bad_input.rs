@@ -130,6 +130,15 @@ const CASES: &[(&str, &[&str])] = &[
         ],
     ),
     (
+        "offset_misses_the_bat",
+        &[
+            "offset_misses_the_bat.yaml:8:",
+            "`impact.offset`",
+            "value: -0.06",
+            "allowed: |offset| < bat radius + ball radius",
+        ],
+    ),
+    (
         "impact_off_bat",
         &[
             "impact_off_bat.yaml:7:24",

@@ -24,15 +24,19 @@ fn check(path: &str, v: f64, ok: bool, allowed: &str) -> Result<(), ModelError> 
 pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     let wall = spec.bat.preset == crate::model::spec::BatPreset::Wall;
     // A wall has no geometry: nothing to hit off the bat, no length to bound the approach.
-    let length = if wall {
-        0.0
+    let geometry = if wall {
+        None
     } else {
-        BatGeometry::resolve(&spec.bat)?.length
+        Some(BatGeometry::resolve(&spec.bat)?)
     };
+    let length = geometry.as_ref().map_or(0.0, |g| g.length);
     check_ball(&spec.ball)?;
     check("swing.omega", spec.swing.omega, true, "finite rad/s")?;
     check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
     check_oblique(spec, wall)?;
+    if let Some(g) = &geometry {
+        check_reach(spec, g)?;
+    }
     check_batter(spec, wall)?;
     if let Some(flight) = &spec.flight {
         check_flight(flight)?;
@@ -171,6 +175,23 @@ fn check_oblique(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
         check(path, angle, angle.abs() < right_angle, "(-pi/2, pi/2) rad")?;
     }
     Ok(())
+}
+
+/// The ball must meet the bat: |offset| below the bat's radius at the impact point plus the
+/// ball's (checked here so that a study that misses is refused before it runs).
+fn check_reach(spec: &CollisionSpec, g: &BatGeometry) -> Result<(), ModelError> {
+    let z = spec.impact.z;
+    if spec.impact.offset == 0.0 || !(0.0..=g.length).contains(&z) {
+        return Ok(());
+    }
+    let ball = crate::model::collision::oblique::BallContact::of(&spec.ball);
+    let reach = g.outer_radius(z) + ball.radius;
+    check(
+        "impact.offset",
+        spec.impact.offset,
+        spec.impact.offset.abs() < reach,
+        &format!("|offset| < bat radius + ball radius = {reach:.4} m at impact.z = {z} m (else the ball misses)"),
+    )
 }
 
 /// The batter: speeds, the reference bat, the exponent, the pivot.
