@@ -90,3 +90,53 @@ fn killed_runs_resume_to_the_uninterrupted_result() {
         "only {interrupted} kills landed before the run finished"
     );
 }
+
+/// A run killed while it creates its journal: a journal cut inside its header holds no
+/// record, and `--resume` starts over from it (it once refused a 0-byte journal as damaged);
+/// a journal of other bytes is still refused, and left as it was.
+#[test]
+fn a_journal_cut_inside_its_header_resumes_and_garbage_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.yaml");
+    std::fs::write(&study, STUDY).unwrap();
+    let study = study.to_str().unwrap();
+    let reference = dir.path().join("reference.h5");
+    batstudy_ok(&["run", study, "-o", reference.to_str().unwrap(), "-q"]);
+    let header = std::fs::read(format!("{}.journal", reference.to_str().unwrap())).ok();
+    assert!(header.is_none(), "a finished run leaves no journal");
+    for (k, bytes) in [
+        &b""[..],
+        &b"BATSJ"[..],
+        &b"BATSJRN2\x40\x00\x00\x00{\"a\""[..],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let out = dir.path().join(format!("cut-{k}.h5"));
+        let p = out.to_str().unwrap();
+        std::fs::write(format!("{p}.journal"), bytes).unwrap();
+        batstudy_ok(&["run", study, "-o", p, "-q", "--resume"]);
+        assert_eq!(
+            data(&out),
+            data(&reference),
+            "journal cut after {} bytes",
+            bytes.len()
+        );
+    }
+    let out = dir.path().join("garbage.h5");
+    let p = out.to_str().unwrap();
+    std::fs::write(format!("{p}.journal"), b"not a journal at all").unwrap();
+    let r = batstudy(&["run", study, "-o", p, "-q", "--resume"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        r.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&r.stderr)
+    );
+    assert_eq!(
+        std::fs::read(format!("{p}.journal")).unwrap(),
+        b"not a journal at all"
+    );
+}

@@ -230,6 +230,48 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
     Ok((header, (8 + 4 + n + 4) as u64))
 }
 
+/// The name a journal's header is written under before it is renamed into place.
+fn unfinished_path(path: &Path) -> std::path::PathBuf {
+    let mut name = path.as_os_str().to_os_string();
+    name.push(".new");
+    std::path::PathBuf::from(name)
+}
+
+/// The header as it is stored: magic, length, JSON, checksum.
+fn header_bytes(header: &JournalHeader) -> Vec<u8> {
+    let json = serde_json::to_vec(header).expect("header serialises");
+    let mut b = Vec::with_capacity(json.len() + 16);
+    b.extend_from_slice(MAGIC);
+    b.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    b.extend_from_slice(&json);
+    b.extend_from_slice(&checksum(&json).to_le_bytes());
+    b
+}
+
+/// Whether the journal at `path` ends inside its header: its bytes are the start of a
+/// header (the magic, then as much of the length, the JSON and the checksum as was written)
+/// and no more. Such a journal holds no record: a run killed while an older batstudy created
+/// its journal left one, and a resume starts over from it. Any other content is not this.
+pub fn ends_in_header(path: &Path) -> Result<bool, StoreError> {
+    let io = |e| StoreError::io(path, "read the journal", e);
+    let len = std::fs::metadata(path).map_err(io)?.len();
+    let mut head = Vec::new();
+    File::open(path)
+        .map_err(io)?
+        .take(12)
+        .read_to_end(&mut head)
+        .map_err(io)?;
+    let magic = head.len().min(8);
+    if head[..magic] != MAGIC[..magic] {
+        return Ok(false);
+    }
+    if head.len() < 12 {
+        return Ok(true);
+    }
+    let n = u32::from_le_bytes(head[8..12].try_into().expect("4 bytes")) as u64;
+    Ok(n <= 1 << 24 && len < 12 + n + 4)
+}
+
 /// A journal's header alone (what a resume checks before it touches anything).
 pub fn header(path: &Path) -> Result<JournalHeader, StoreError> {
     let file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
@@ -454,25 +496,40 @@ impl JournalWriter {
     /// becomes durable with the first [`Self::sync`], like the records: until then a power
     /// loss would lose the records anyway, and a killed process loses nothing handed to the
     /// OS (issue 7: two fsyncs off every run's critical path).
+    ///
+    /// The header is written under a temporary name and renamed into place, so a journal never
+    /// exists without its whole header: a run killed while it creates its journal leaves none
+    /// (a killed run's `--resume` once met a 0-byte journal and refused it as damaged).
     pub fn create(path: &Path, header: &JournalHeader) -> Result<Self, StoreError> {
+        if path.exists() {
+            return Err(StoreError::io(
+                path,
+                "create the journal",
+                std::io::Error::from(std::io::ErrorKind::AlreadyExists),
+            ));
+        }
+        let temp = unfinished_path(path);
+        // a stale one from a killed run: removed, never followed (issue 31)
+        match std::fs::remove_file(&temp) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(StoreError::io(&temp, "remove a stale journal", e))
+            }
+            _ => {}
+        }
         let mut file = std::fs::OpenOptions::new()
             .write(true)
             .create_new(true)
-            .open(path)
-            .map_err(|e| StoreError::io(path, "create the journal", e))?;
-        let json = serde_json::to_vec(header).expect("header serialises");
-        let mut b = Vec::with_capacity(json.len() + 16);
-        b.extend_from_slice(MAGIC);
-        b.extend_from_slice(&(json.len() as u32).to_le_bytes());
-        b.extend_from_slice(&json);
-        b.extend_from_slice(&checksum(&json).to_le_bytes());
+            .open(&temp)
+            .map_err(|e| StoreError::io(&temp, "create the journal", e))?;
+        let b = header_bytes(header);
         if let Err(e) = file.write_all(&b) {
             // a journal without its header could never be resumed: leave none behind
             // (issue 31: a full disk left a 0-byte journal that only --force got past)
             drop(file);
-            let _ = std::fs::remove_file(path);
+            let _ = std::fs::remove_file(&temp);
             return Err(StoreError::io(path, "write the journal header", e));
         }
+        std::fs::rename(&temp, path).map_err(|e| StoreError::io(path, "create the journal", e))?;
         let n = b.len() as u64;
         Ok(JournalWriter::over(file, path, n, n, false))
     }

@@ -109,7 +109,8 @@ pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> 
 /// replaced `OUT.h5.partial`). Nothing to resume is not an error.
 pub fn check_resumable(path: &Path, study_sha256: &str) -> Result<(), StoreError> {
     let jpath = journal_path(path);
-    let (found, from) = if jpath.exists() {
+    let journal = jpath.exists() && !journal::ends_in_header(&jpath)?;
+    let (found, from) = if journal {
         (journal::header(&jpath)?, jpath)
     } else if path.exists() {
         (read::file_info(path)?.header, path.to_path_buf())
@@ -144,6 +145,10 @@ pub fn open_begun(
     let mut s = Session::new(path, info, opts, skeleton);
     let jpath = journal_path(path);
     let want = JournalHeader::of(info);
+    if opts.resume && jpath.exists() && journal::ends_in_header(&jpath)? {
+        // killed while its journal was being created: nothing was recorded, start over
+        remove_if_exists(&jpath)?;
+    }
     if opts.resume && jpath.exists() {
         s.resume_journal(&want)?;
         return Ok(s);
