@@ -42,7 +42,23 @@ def _stored_positions(ds: h5py.Dataset, rank: int) -> np.ndarray:
     return pos[np.lexsort(pos.T[::-1])] if len(pos) else pos
 
 
-class _SparseHistoryArray(BackendArray):
+class _HistoryRows(BackendArray):
+    """A lazy array whose first axis is the stored histories: reads only the rows asked for
+    (`_read`, given xarray's outer-indexing key)."""
+
+    def __getitem__(self, key):
+        return indexing.explicit_indexing_adapter(
+            key, self.shape, indexing.IndexingSupport.OUTER, self._read
+        )
+
+    def _rows(self, key: tuple) -> tuple[np.ndarray, bool]:
+        """The history rows a key selects (at least one dimension) and whether it asked for
+        a single row."""
+        rows = np.arange(self.shape[0])[key[0]]
+        return np.atleast_1d(rows), np.ndim(rows) == 0
+
+
+class _SparseHistoryArray(_HistoryRows):
     """(history, time[, z]) view of a dense (…grid…, time[, z]) HDF5 dataset: row k is the
     stored history at grid position `positions[k]`. Reads only the rows asked for."""
 
@@ -52,16 +68,9 @@ class _SparseHistoryArray(BackendArray):
         self.dtype = np.dtype(dtype)
         self._lock = threading.Lock()
 
-    def __getitem__(self, key):
-        return indexing.explicit_indexing_adapter(
-            key, self.shape, indexing.IndexingSupport.OUTER, self._read
-        )
-
     def _read(self, key: tuple) -> np.ndarray:
-        rows = np.arange(self.shape[0])[key[0]]
+        rows, scalar = self._rows(key)
         tail_key = tuple(key[1:])
-        scalar = np.ndim(rows) == 0
-        rows = np.atleast_1d(rows)
         with self._lock, h5py.File(self.path, "r") as f:
             ds = f["history"][self.name]
             parts = [ds[tuple(int(i) for i in self.positions[r]) + tail_key] for r in rows]
@@ -72,7 +81,7 @@ class _SparseHistoryArray(BackendArray):
         return out[0] if scalar else out
 
 
-class _ModalDisplacementArray(BackendArray):
+class _ModalDisplacementArray(_HistoryRows):
     """(history, time, z) displacement computed from the file's modal form, row by row as
     asked for (``_modal``)."""
 
@@ -82,15 +91,8 @@ class _ModalDisplacementArray(BackendArray):
         self.dtype = np.dtype("float64")
         self._lock = threading.Lock()
 
-    def __getitem__(self, key):
-        return indexing.explicit_indexing_adapter(
-            key, self.shape, indexing.IndexingSupport.OUTER, self._read
-        )
-
     def _read(self, key: tuple) -> np.ndarray:
-        rows = np.arange(self.shape[0])[key[0]]
-        scalar = np.ndim(rows) == 0
-        rows = np.atleast_1d(rows)
+        rows, scalar = self._rows(key)
         with self._lock, h5py.File(self.path, "r") as f:
             reader = ModalReader(f)
             parts = [reader.displacement(tuple(int(i) for i in self.positions[r]), self.z)[key[1:]]
