@@ -13,9 +13,7 @@
 
 use crate::model::collision::oblique::BallContact;
 use crate::model::error::ModelError;
-use crate::model::flight::{
-    fly, Atmosphere, BallProperties, FlightOptions, Launch, DEFAULT_CONTACT_HEIGHT_M,
-};
+use crate::model::flight::{fly, Atmosphere, BallProperties, FlightOptions, Launch};
 use crate::model::outcome::{BallExit, BattedBall};
 use crate::model::spec::{CollisionSpec, FlightSpec};
 
@@ -152,6 +150,3 @@ fn fly_batted(
     (batted.carry, batted.apex, batted.hang_time) = (f.carry_m, f.apex_m, f.hang_time_s);
     Ok(())
 }
-
-/// The default contact height, m (for the docs and the schema).
-pub const CONTACT_HEIGHT: f64 = DEFAULT_CONTACT_HEIGHT_M;

@@ -27,7 +27,7 @@ use crate::model::ball::{
     DEFAULT_BALL_RADIUS, DEFAULT_FRICTION, DEFAULT_INERTIA_FACTOR, DEFAULT_TANGENTIAL_RATIO,
 };
 use crate::model::bat::PreparedBat;
-use crate::model::error::{out_of_range, ModelError};
+use crate::model::error::ModelError;
 use crate::model::protocol::{free_effective_mass, pivoted_effective_mass};
 use crate::model::spec::{BallSpec, CollisionSpec};
 
@@ -87,16 +87,9 @@ impl Oblique {
         }
         let ball = BallContact::of(&spec.ball);
         let bat_radius = bat.geometry.outer_radius(spec.impact.z);
-        let reach = bat_radius + ball.radius;
-        let offset = spec.impact.offset;
-        if offset.is_nan() || offset.abs() >= reach {
-            return Err(out_of_range(
-                "impact.offset",
-                offset,
-                &format!("|offset| < bat radius + ball radius = {reach:.4} m here (a miss)"),
-            ));
-        }
-        let sin = offset / reach;
+        // the same check the study layer makes when it loads (a miss is refused)
+        crate::model::collision::validate::check_reach(spec, &bat.geometry)?;
+        let sin = spec.impact.offset / (bat_radius + ball.radius);
         Ok(Some(Oblique {
             cos: (1.0 - sin * sin).sqrt(),
             sin,

@@ -179,7 +179,7 @@ fn check_oblique(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
 
 /// The ball must meet the bat: |offset| below the bat's radius at the impact point plus the
 /// ball's (checked here so that a study that misses is refused before it runs).
-fn check_reach(spec: &CollisionSpec, g: &BatGeometry) -> Result<(), ModelError> {
+pub(crate) fn check_reach(spec: &CollisionSpec, g: &BatGeometry) -> Result<(), ModelError> {
     let z = spec.impact.z;
     if spec.impact.offset == 0.0 || !(0.0..=g.length).contains(&z) {
         return Ok(());
