@@ -59,6 +59,10 @@ fn cases() -> Vec<(String, batstudy::model::spec::CollisionSpec, PreparedBat)> {
 }
 
 fn request(form: HistoryDisplacement) -> HistoryRequest {
+    request_in(form, HistoryPrecision::F64)
+}
+
+fn request_in(form: HistoryDisplacement, precision: HistoryPrecision) -> HistoryRequest {
     let study = load_str(
         STUDY,
         Path::new("modal_forms.yaml"),
@@ -66,7 +70,7 @@ fn request(form: HistoryDisplacement) -> HistoryRequest {
     )
     .unwrap();
     let mut r = study.history_request(1.10).unwrap();
-    r.precision = HistoryPrecision::F64;
+    r.precision = precision;
     r.displacement = form;
     r
 }
@@ -154,6 +158,69 @@ fn the_modal_form_reconstructs_the_grid_form() {
         // the other series do not depend on the form
         assert_eq!(m.force, g.force, "{label}");
         assert_eq!(m.rigid_translation, g.rigid_translation, "{label}");
+    }
+}
+
+/// The spacing of f32 values at `y` (> 0).
+fn f32_ulp(y: f64) -> f64 {
+    let y = y as f32;
+    f64::from(f32::from_bits(y.to_bits() + 1) - y)
+}
+
+// With `history.precision: f32` the modal form is kept to the precision that gives y to f32
+// rounding (`collision::modal_precision`): the bound is analytic (each coordinate within
+// half its step, the steps chosen so that the terms' errors add up to at most half an f32
+// ulp of the history's largest |y|), and checked here against the grid form in f64, on
+// every kind of bat. The coordinates were rounded (some have zero low bits), and a study
+// that asks for f64 gets them as computed (the test above).
+#[test]
+fn at_f32_precision_the_modal_form_is_within_half_an_ulp_of_the_largest() {
+    let grid = request_in(HistoryDisplacement::Grid, HistoryPrecision::F32);
+    let modal = request_in(HistoryDisplacement::Modal, HistoryPrecision::F32);
+    let exact = request(HistoryDisplacement::Modal);
+    for (label, spec, bat) in cases() {
+        let g = simulate(&spec, &bat, Some(&grid)).unwrap().history.unwrap();
+        let m = simulate(&spec, &bat, Some(&modal))
+            .unwrap()
+            .history
+            .unwrap();
+        let e = simulate(&spec, &bat, Some(&exact))
+            .unwrap()
+            .history
+            .unwrap();
+        let y = reconstruct(&bat, &m, &grid.z, grid.n_samples);
+        let scale = largest(&g.displacement);
+        let mut worst = 0.0f64;
+        for (a, b) in y.iter().zip(&g.displacement) {
+            assert_eq!(a.is_nan(), b.is_nan(), "{label}: NaN at different places");
+            if !b.is_nan() {
+                worst = worst.max((a - b).abs());
+            }
+        }
+        let bound = 0.5 * f32_ulp(scale);
+        eprintln!(
+            "{label}: worst {:.3} of half an f32 ulp of the largest |y| ({scale:.2e} m)",
+            worst / bound
+        );
+        // the grid's own round-off (1e-14 of the largest, the test above) on top
+        assert!(
+            worst <= bound + 1e-14 * scale,
+            "{label}: {worst:e} > {bound:e}"
+        );
+        let rounded = m.modal.coordinate.iter().zip(&e.modal.coordinate);
+        assert!(
+            rounded.clone().any(|(a, b)| a != b),
+            "{label}: the coordinates are rounded"
+        );
+        let low_zero = m
+            .modal
+            .coordinate
+            .iter()
+            .filter(|q| q.to_bits() & 0xFFFF == 0);
+        assert!(
+            low_zero.count() * 2 > m.modal.coordinate.len(),
+            "{label}: most coordinates end in 16 zero bits"
+        );
     }
 }
 

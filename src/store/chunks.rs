@@ -5,6 +5,7 @@
 //! libdeflate makes one about twice as fast as zlib.
 
 use super::fixed_deflate;
+use super::run_huffman;
 use hdf5::Dataset;
 use hdf5_sys::h5::{herr_t, hsize_t};
 use hdf5_sys::h5i::hid_t;
@@ -124,6 +125,16 @@ pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
         return le_bytes(values); // no filters: the values as they are
     }
     deflate_planes(&shuffle_values(values), T::SIZE, level)
+}
+
+/// [`filtered_whole`] for values whose bytes are mostly runs of zeros between planes that
+/// repeat little (the modal coordinates kept to the precision they need, issue 37): each
+/// byte plane a deflate block with its own Huffman codes ([`run_huffman`]).
+pub fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
+    if level == 0 {
+        return le_bytes(values);
+    }
+    run_huffman::zlib_planes(&shuffle_values(values), values.len())
 }
 
 /// HDF5's shuffle of `values` (byte j of value i at j·n + i), eight values at a time: byte j

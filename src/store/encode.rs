@@ -40,9 +40,11 @@ struct StoredHistory {
     level: u8,
 }
 
-/// One chunk's stored bytes: the values in `precision`, shuffled and deflated at `level`.
-fn chunk(values: &[f64], precision: HistoryPrecision, level: u8) -> Vec<u8> {
+/// One chunk's stored bytes: the values in `precision`, shuffled and deflated at `level`;
+/// the modal coordinates (`runs`), mostly runs of zeros, by the encoder made for them.
+fn chunk(values: &[f64], precision: HistoryPrecision, level: u8, runs: bool) -> Vec<u8> {
     match precision {
+        HistoryPrecision::F64 if runs => chunks::filtered_runs(values, level),
         HistoryPrecision::F64 => chunks::filtered_whole(values, level),
         HistoryPrecision::F32 => {
             let a: Vec<f32> = values.iter().map(|&x| x as f32).collect();
@@ -159,8 +161,10 @@ impl RecordEncoder {
                         layout::HISTORY_VARS[k].0.name
                     ))
                 })?;
+                let runs = layout::HISTORY_VARS[k].2 == HistoryDims::ModeTime;
                 for v in values {
-                    journal::put_history_chunk(&chunk(&v, precision, st.level), &mut framed);
+                    let bytes = chunk(&v, precision, st.level, runs);
+                    journal::put_history_chunk(&bytes, &mut framed);
                 }
             }
         }

@@ -88,17 +88,44 @@ const DIST_EXTRA: [u8; 30] = [
     13,
 ];
 
+/// The length code of a copy of `length` (3..=258) bytes: (its index 0..=28 among the
+/// codes 257..=285, the number of extra bits, their value).
+pub(super) fn length_symbol(length: usize) -> (u32, u32, u32) {
+    // the last base ≤ value: its code and the extra bits of the rest
+    let l = LENGTH_BASE.partition_point(|&b| usize::from(b) <= length) - 1;
+    (
+        l as u32,
+        u32::from(LENGTH_EXTRA[l]),
+        (length - usize::from(LENGTH_BASE[l])) as u32,
+    )
+}
+
 /// Deflate's bit order: fields least-significant bit first, into bytes from their low bit.
-struct BitWriter {
+pub(super) struct BitWriter {
     out: Vec<u8>,
     acc: u64,
     bits: u32,
 }
 
 impl BitWriter {
+    /// A writer appending to `out`, on a byte boundary.
+    pub(super) fn new(out: Vec<u8>) -> Self {
+        BitWriter {
+            out,
+            acc: 0,
+            bits: 0,
+        }
+    }
+
+    /// Whole bytes, on a byte boundary (nothing pending).
+    pub(super) fn extend_bytes(&mut self, bytes: &[u8]) {
+        debug_assert_eq!(self.bits, 0);
+        self.out.extend_from_slice(bytes);
+    }
+
     /// `count` ≤ 32 bits of `value` (higher bits zero).
     #[inline]
-    fn put(&mut self, value: u32, count: u32) {
+    pub(super) fn put(&mut self, value: u32, count: u32) {
         self.acc |= u64::from(value) << self.bits;
         self.bits += count;
         if self.bits >= 32 {
@@ -108,12 +135,45 @@ impl BitWriter {
         }
     }
 
-    fn finish(mut self) -> Vec<u8> {
+    /// Up to a byte boundary with zero bits (a stored block's padding).
+    pub(super) fn align(&mut self) {
         while self.bits > 0 {
             self.out.push(self.acc as u8);
             self.acc >>= 8;
             self.bits = self.bits.saturating_sub(8);
         }
+        self.acc = 0;
+    }
+
+    /// `bytes` as literals of a code whose (reversed code, length ≤ 15) for byte b is
+    /// `table[b]`: two at a time between flushes (at most 31 + 30 bits pending).
+    pub(super) fn put_literals(&mut self, bytes: &[u8], table: &[(u32, u32); 256]) {
+        let (mut acc, mut bits) = (self.acc, self.bits);
+        let pairs = bytes.chunks_exact(2);
+        let odd = pairs.remainder();
+        for pair in pairs {
+            let (c0, l0) = table[pair[0] as usize];
+            let (c1, l1) = table[pair[1] as usize];
+            acc |= u64::from(c0) << bits;
+            bits += l0;
+            acc |= u64::from(c1) << bits;
+            bits += l1;
+            if bits >= 32 {
+                self.out.extend_from_slice(&(acc as u32).to_le_bytes());
+                acc >>= 32;
+                bits -= 32;
+            }
+        }
+        (self.acc, self.bits) = (acc, bits);
+        for &b in odd {
+            let (c, l) = table[b as usize];
+            self.put(c, l);
+        }
+    }
+
+    /// The bytes, the last one padded with zero bits.
+    pub(super) fn finish(mut self) -> Vec<u8> {
+        self.align();
         self.out
     }
 }
@@ -148,19 +208,15 @@ const LITERALS: [(u16, u8); 288] = {
 };
 
 #[inline]
-fn put_symbol(w: &mut BitWriter, symbol: usize) {
+pub(super) fn put_symbol(w: &mut BitWriter, symbol: usize) {
     let (code, length) = LITERALS[symbol];
     w.put(u32::from(code), u32::from(length));
 }
 
-fn put_match(w: &mut BitWriter, length: usize, distance: usize) {
-    // the last base ≤ value: its code and the extra bits of the rest
-    let l = LENGTH_BASE.partition_point(|&b| usize::from(b) <= length) - 1;
-    put_symbol(w, 257 + l);
-    w.put(
-        (length - usize::from(LENGTH_BASE[l])) as u32,
-        u32::from(LENGTH_EXTRA[l]),
-    );
+pub(super) fn put_match(w: &mut BitWriter, length: usize, distance: usize) {
+    let (l, extra_bits, extra) = length_symbol(length);
+    put_symbol(w, 257 + l as usize);
+    w.put(extra, extra_bits);
     let d = DIST_BASE.partition_point(|&b| usize::from(b) <= distance) - 1;
     w.put(reversed(d as u32, 5), 5);
     w.put(

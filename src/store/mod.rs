@@ -35,6 +35,7 @@ pub mod options;
 pub mod paths;
 pub mod placer;
 pub mod read;
+pub mod run_huffman;
 pub mod session;
 
 pub use encode::{EncodedRecord, RecordEncoder};

@@ -9,8 +9,10 @@ scripts/test.sh); skipped without it.
 
 Issue 37: the bundled studies store the displacement in modal form (the default); each is
 run again with `history.displacement: grid`, and the displacement `batstudy.open` computes
-from the modal form equals the grid's, value by value, to float32 rounding (at most one ulp
-of the grid's f32 value apart; NaN at the same places)."""
+from the modal form equals the grid's, value by value, to float32 rounding of the history's
+largest displacement Y: within one f32 ulp of Y (the modal form is kept to half an ulp of
+Y, by an analytic bound, docs/layout.md; the grid's own f32 rounding adds at most another
+half), NaN at the same places."""
 import os
 import subprocess
 import sys
@@ -79,7 +81,8 @@ def test_bundled_study_has_the_public_layout(study, tmp_path):
 
 def assert_same_displacement(modal, grid):
     """The displacement computed from the modal form equals the grid form's (f32) value by
-    value to f32 rounding: within one ulp of the grid's value, NaN at the same places."""
+    value to f32 rounding of each history's largest |y|: within one f32 ulp of it, NaN at
+    the same places."""
     hm = batstudy.open(modal)["history"].to_dataset()
     hg = batstudy.open(grid)["history"].to_dataset()
     assert hg.displacement.dtype == np.float32
@@ -92,7 +95,9 @@ def assert_same_displacement(modal, grid):
     np.testing.assert_array_equal(np.isfinite(y), np.isfinite(g))
     ok = np.isfinite(g)
     assert ok.any()
-    y32, g32 = y[ok].astype(np.float32), g[ok]
-    off = np.abs(y32.astype(np.float64) - g32) > np.spacing(np.abs(g32)).astype(np.float64)
-    assert not off.any(), (f"{off.sum()} of {off.size} values more than one ulp apart, e.g. "
-                           f"{y[ok][off][:3]} against {g32[off][:3]}")
+    g64 = np.where(ok, g, 0.0).astype(np.float64)
+    rows = g64.reshape(g64.shape[0], -1)
+    ulp = np.spacing(np.abs(rows).max(axis=1).astype(np.float32)).astype(np.float64)
+    diff = np.abs(np.where(ok, y, 0.0) - g64).reshape(rows.shape)
+    worst = (diff / ulp[:, None]).max()
+    assert worst <= 1.0, f"a value {worst:.3f} f32 ulps of its history's largest |y| apart"

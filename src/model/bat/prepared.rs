@@ -43,6 +43,9 @@ pub struct PreparedBat {
     pub(crate) grip_damping: f64,
     /// Moment of inertia about the long axis, kg·m² (the bat's roll, for oblique impacts).
     pub(crate) roll_inertia: f64,
+    /// Each mode's largest |scaled shape| over the shape points (`shapes::shape_maxima`),
+    /// found when a history first needs it.
+    pub(crate) shape_max: std::sync::OnceLock<Vec<f64>>,
     properties: BatProperties,
 }
 
@@ -115,6 +118,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         z_cm,
         inertia_cm,
         total_mass,
+        shape_max: std::sync::OnceLock::new(),
         properties,
     })
 }

@@ -49,6 +49,19 @@ pub fn n_modes(bat: &PreparedBat) -> usize {
     bat.modes.omega.len()
 }
 
+/// Each mode's largest |φ_m √M| over the shape points (between them the displacement is
+/// linear, so nowhere on the bat larger): what the modal form's stored precision needs
+/// (`collision::modal_precision`). Computed once per bat, for every mode.
+pub fn shape_maxima(bat: &PreparedBat) -> &[f64] {
+    bat.shape_max.get_or_init(|| {
+        let points = shape_point_weights(bat).len();
+        scaled_shapes(bat, 0..n_modes(bat))
+            .chunks_exact(points.max(1))
+            .map(|phi| phi.iter().fold(0.0_f64, |m, x| m.max(x.abs())))
+            .collect()
+    })
+}
+
 /// The scaled shapes φ_m √M of modes `modes` at the shape points, mode-major
 /// (`[m][point]`), dimensionless.
 pub fn scaled_shapes(bat: &PreparedBat, modes: Range<usize>) -> Vec<f64> {

@@ -1,6 +1,7 @@
 //! Sampling time histories on the request's grid t = k·interval from integrator steps,
 //! by linear interpolation between the states at the ends of each step.
 
+use super::modal_precision::ModalRounding;
 use crate::model::error::ModelError;
 use crate::model::outcome::{History, HistoryDisplacement, HistoryField, HistoryRequest};
 
@@ -41,6 +42,8 @@ pub(crate) struct Recorder<'r> {
     projector: Option<Projector>,
     /// The modal form's scale: coordinates are recorded divided by it (`bat::shapes`).
     modal_scale: f64,
+    /// The modal form's stored precision (f32: `modal_precision`; f64: none).
+    rounding: Option<ModalRounding>,
     /// The buffer of the last state dropped (for [`Self::modal_buffer`]), and the
     /// interpolated coordinates handed to the projector.
     spare: Vec<f64>,
@@ -91,6 +94,7 @@ impl<'r> Recorder<'r> {
             wants_modal: false,
             projector: None,
             modal_scale: 1.0,
+            rounding: None,
             spare: Vec::new(),
             scratch: Vec::new(),
         })
@@ -110,12 +114,14 @@ impl<'r> Recorder<'r> {
 
     /// Samples carry the coordinates of `modes` modes, recorded divided by `scale` with
     /// the force on the bat; `static_shape` (m/N at the bat's shape points) is the static
-    /// response of the modes not stepped (the modal form).
+    /// response of the modes not stepped (the modal form), and `rounding` the precision
+    /// they are kept to when the history is finished.
     pub fn record_modes(
         &mut self,
         modes: usize,
         scale: f64,
         static_shape: Vec<f64>,
+        rounding: Option<ModalRounding>,
     ) -> Result<(), ModelError> {
         let n = self.request.n_samples.saturating_mul(modes);
         let m = &mut self.history.modal;
@@ -132,6 +138,7 @@ impl<'r> Recorder<'r> {
         m.modes = modes;
         m.static_shape = static_shape;
         self.modal_scale = scale;
+        self.rounding = rounding;
         self.wants_modal = true;
         Ok(())
     }
@@ -232,7 +239,11 @@ impl<'r> Recorder<'r> {
         }
     }
 
-    pub fn finish(self) -> History {
+    /// The history recorded, the modal form at its stored precision.
+    pub fn finish(mut self) -> History {
+        if let Some(r) = &self.rounding {
+            r.round(&mut self.history.modal);
+        }
         self.history
     }
 }

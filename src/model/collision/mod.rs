@@ -9,6 +9,7 @@
 pub mod batter;
 pub(crate) mod history;
 pub mod launch;
+mod modal_precision;
 pub mod oblique;
 pub mod rigid;
 mod rigid_model;

@@ -5,10 +5,12 @@
 use super::super::project::project;
 use super::setup::{shapes_at, Setup};
 use super::state::State;
-use crate::model::bat::shapes::{modal_scale, shape_point_weights};
+use crate::model::bat::shapes::{modal_scale, shape_at, shape_maxima, shape_point_weights};
 use crate::model::bat::PreparedBat;
 use crate::model::collision::history::{Recorder, Sample};
+use crate::model::collision::modal_precision::ModalRounding;
 use crate::model::error::ModelError;
+use crate::model::outcome::HistoryPrecision;
 
 /// The modal form: the recorder keeps the stepped modes' coordinates and the force on the
 /// bat; the modes not stepped respond statically to that force, with this shape (m/N) at
@@ -29,11 +31,20 @@ pub(super) fn install_modal(
             *u += phi * w;
         }
     }
-    let static_shape = shape_point_weights(bat)
+    let weights = shape_point_weights(bat);
+    let static_shape: Vec<f64> = weights
         .iter()
         .map(|&(k, a)| (1.0 - a) * at_nodes[k] + a * at_nodes[k + 1])
         .collect();
-    rec.record_modes(n, modal_scale(bat), static_shape)
+    // stored to f32 rounding of y, not of each coordinate (`modal_precision`)
+    let rounding = (rec.request().precision == HistoryPrecision::F32).then(|| {
+        let scale = modal_scale(bat);
+        ModalRounding::new(&shape_maxima(bat)[..n], &static_shape, |p, j| {
+            let (k, a) = weights[p];
+            shape_at(bat, k, a, j) * scale
+        })
+    });
+    rec.record_modes(n, modal_scale(bat), static_shape, rounding)
 }
 
 /// Give the recorder the displacement of the bat at its requested positions (`points`:

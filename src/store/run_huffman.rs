@@ -1,0 +1,538 @@
+//! A zlib stream for shuffled chunks made of runs of zeros and of bytes that repeat little:
+//! one deflate block per byte plane, with Huffman codes of its own (RFC 1951 §3.2.7), each
+//! run of zeros a literal then copies at distance 1, every other byte a literal.
+//!
+//! Why: the modal coordinates kept to the precision they need (issue 37,
+//! `model::collision::modal_precision`) are f64 whose low bytes are zero, value by value:
+//! shuffled, a block of them is long runs of zeros between planes of near-noise and of
+//! slowly varying exponents. libdeflate's fastest level spent 140 µs on such a 51 KB block
+//! on the development machine (2.5 ns per byte, the zeros as slow as the rest), more than
+//! the collision; this takes one pass to count and one to write, the runs found eight bytes
+//! at a time, and comes out the same size within a few percent (docs/performance.md).
+//!
+//! Any zlib reader reads the stream: HDF5's deflate filter, h5py, xarray.
+
+use super::fixed_deflate::{length_symbol, put_match, put_symbol, BitWriter, ZLIB_HEADER};
+
+/// Zero runs shorter than this stay literals (a zero is a short code in these planes).
+const MIN_RUN: usize = 32;
+/// Longest copy in deflate, and the shortest.
+const MAX_MATCH: usize = 258;
+const MIN_MATCH: usize = 3;
+/// Literal/length symbols (0..=285) and the end of a block.
+const SYMBOLS: usize = 286;
+const END_OF_BLOCK: usize = 256;
+/// The order in which a block's header gives the code-length code's lengths.
+const CODE_LENGTH_ORDER: [usize; 19] = [
+    16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15,
+];
+
+/// `shuffled` (planes of `plane_len` bytes, the last possibly shorter) as a zlib stream:
+/// every plane in blocks that are not final, then an empty final block.
+pub fn zlib_planes(shuffled: &[u8], plane_len: usize) -> Vec<u8> {
+    let mut w = BitWriter::new(Vec::with_capacity(shuffled.len() / 3 + 64));
+    w.extend_bytes(&ZLIB_HEADER);
+    for plane in shuffled.chunks(plane_len.max(1)) {
+        put_plane(&mut w, plane);
+    }
+    w.put(1, 1); // BFINAL
+    w.put(1, 2); // BTYPE 01, the fixed codes
+    put_symbol(&mut w, END_OF_BLOCK);
+    let mut out = w.finish();
+    out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
+    out
+}
+
+/// The runs of at least [`MIN_RUN`] zeros in `bytes`, as (start, length): whole zero words
+/// skipped eight bytes at a time.
+fn zero_runs(bytes: &[u8]) -> Vec<(usize, usize)> {
+    let mut runs = Vec::new();
+    let mut start: Option<usize> = None;
+    let mut close = |start: &mut Option<usize>, end: usize| {
+        if let Some(s) = start.take() {
+            if end - s >= MIN_RUN {
+                runs.push((s, end - s));
+            }
+        }
+    };
+    let words = bytes.chunks_exact(8);
+    let tail_at = bytes.len() - words.remainder().len();
+    for (i, word) in words.enumerate() {
+        let v = u64::from_le_bytes(word.try_into().expect("8 bytes"));
+        let at = 8 * i;
+        if v == 0 {
+            start.get_or_insert(at);
+            continue;
+        }
+        // little-endian: the word's first zero bytes are its low ones
+        let leading = (v.trailing_zeros() / 8) as usize;
+        close(&mut start, at + leading);
+        let trailing = (v.leading_zeros() / 8) as usize;
+        if trailing > 0 {
+            start = Some(at + 8 - trailing);
+        }
+    }
+    for (i, &b) in bytes[tail_at..].iter().enumerate() {
+        match b {
+            0 => {
+                start.get_or_insert(tail_at + i);
+            }
+            _ => close(&mut start, tail_at + i),
+        }
+    }
+    close(&mut start, bytes.len());
+    runs
+}
+
+/// The copies that write a run of `len` zeros after its first one (as literal): lengths of
+/// at most 258, none left of 1 or 2 bytes; what no copy can take comes back as literals.
+fn run_copies(len: usize, mut each: impl FnMut(usize)) -> usize {
+    let mut left = len - 1;
+    while left >= MIN_MATCH {
+        let l = match left > MAX_MATCH && left - MAX_MATCH < MIN_MATCH {
+            true => left - MIN_MATCH,
+            false => left.min(MAX_MATCH),
+        };
+        each(l);
+        left -= l;
+    }
+    left
+}
+
+/// A plane's bytes between its zero runs, and the runs.
+struct Plane<'a> {
+    bytes: &'a [u8],
+    runs: Vec<(usize, usize)>,
+}
+
+impl Plane<'_> {
+    /// Each piece of bytes between runs, then the run after it (length 0 after the last).
+    fn pieces(&self) -> impl Iterator<Item = (&[u8], usize)> + '_ {
+        let ends = self
+            .runs
+            .iter()
+            .copied()
+            .chain(std::iter::once((self.bytes.len(), 0)));
+        let mut at = 0;
+        ends.map(move |(s, len)| {
+            let piece = &self.bytes[at..s];
+            at = s + len;
+            (piece, len)
+        })
+    }
+}
+
+/// One plane: its runs of zeros as copies, the rest as literals of a Huffman code of its
+/// own (one dynamic block), or stored when that code would save little, or with the fixed
+/// codes when there is nothing but zero runs.
+fn put_plane(w: &mut BitWriter, bytes: &[u8]) {
+    let plane = Plane {
+        bytes,
+        runs: zero_runs(bytes),
+    };
+    let mut freq = [0u32; SYMBOLS];
+    let mut tables = [[0u32; 256]; 4];
+    let mut data = 0;
+    for (piece, run) in plane.pieces() {
+        count_bytes(piece, &mut tables);
+        data += piece.len();
+        if run > 0 {
+            freq[0] += 1;
+            freq[0] += run_copies(run, |l| freq[257 + length_symbol(l).0 as usize] += 1) as u32;
+        }
+    }
+    for (b, f) in freq[..256].iter_mut().enumerate() {
+        *f += tables.iter().map(|t| t[b]).sum::<u32>();
+    }
+    freq[END_OF_BLOCK] = 1;
+    if data < FIXED_BELOW {
+        return put_fixed(w, &plane);
+    }
+    if near_uniform(&freq[..256], data) {
+        return put_stored_runs(w, &plane);
+    }
+    put_dynamic(w, &plane, &code_lengths(&freq, 15));
+}
+
+/// Whether bytes with these counts (n in all) are near enough to uniform that a Huffman
+/// code would save little (then they are stored, copied instead of coded): their
+/// collision probability Σ c(c − 1) / (n(n − 1)) is at most 1.3/256. Near uniform,
+/// 8 − H ≈ (256 Σ p² − 1) / (2 ln 2) bits: at most about 0.2 bit (3 %) per byte (the
+/// coordinates' plane 6, measured: a code would save 2.9 %, for the time of building it).
+/// Integers keep the decision the same on every machine.
+fn near_uniform(counts: &[u32], n: usize) -> bool {
+    let pairs: u128 = counts
+        .iter()
+        .map(|&c| u128::from(c) * u128::from(c.saturating_sub(1)))
+        .sum();
+    let n = n as u128;
+    pairs * 256 * 10 <= 13 * n * n.saturating_sub(1)
+}
+
+/// Byte counts, in four tables so that neighbouring equal bytes do not wait on each
+/// other's count.
+fn count_bytes(bytes: &[u8], tables: &mut [[u32; 256]; 4]) {
+    let quads = bytes.chunks_exact(4);
+    for &b in quads.remainder() {
+        tables[0][b as usize] += 1;
+    }
+    for q in quads {
+        for (t, &b) in tables.iter_mut().zip(q) {
+            t[b as usize] += 1;
+        }
+    }
+}
+
+/// A run of zeros: a zero, then copies at distance 1 (`copy`: writes one copy's length).
+fn put_run(
+    w: &mut BitWriter,
+    run: usize,
+    zero: impl Fn(&mut BitWriter),
+    mut copy: impl FnMut(&mut BitWriter, usize),
+) {
+    zero(w);
+    let left = run_copies(run, |l| copy(w, l));
+    (0..left).for_each(|_| zero(w));
+}
+
+/// Planes with fewer bytes than this between their zero runs go in a block with the fixed
+/// codes: a code of their own would cost more to build than it could save.
+const FIXED_BELOW: usize = 256;
+
+/// A plane in one block with the fixed codes.
+fn put_fixed(w: &mut BitWriter, plane: &Plane) {
+    w.put(0, 1);
+    w.put(1, 2);
+    for (piece, run) in plane.pieces() {
+        piece.iter().for_each(|&b| put_symbol(w, b.into()));
+        if run > 0 {
+            put_run(w, run, |w| put_symbol(w, 0), |w, l| put_match(w, l, 1));
+        }
+    }
+    put_symbol(w, END_OF_BLOCK);
+}
+
+/// A plane whose bytes are as good as noise: each piece in stored blocks, each run in a
+/// block with the fixed codes.
+fn put_stored_runs(w: &mut BitWriter, plane: &Plane) {
+    for (piece, run) in plane.pieces() {
+        for block in piece.chunks(u16::MAX as usize) {
+            w.put(0, 3); // not final, BTYPE 00
+            w.align();
+            let len = block.len() as u16;
+            w.extend_bytes(&len.to_le_bytes());
+            w.extend_bytes(&(!len).to_le_bytes());
+            w.extend_bytes(block);
+        }
+        if run > 0 {
+            // a block with the fixed codes for the run
+            w.put(0, 1);
+            w.put(1, 2);
+            put_run(w, run, |w| put_symbol(w, 0), |w, l| put_match(w, l, 1));
+            put_symbol(w, END_OF_BLOCK);
+        }
+    }
+}
+
+/// A plane in one dynamic block with the literal/length code `lit`.
+fn put_dynamic(w: &mut BitWriter, plane: &Plane, lit: &[u8]) {
+    let codes = canonical_codes(lit);
+    // one distance code (distance 1), of length 1, whether or not a copy uses it
+    put_header(w, lit, &[1], false);
+    let table: [(u32, u32); 256] = std::array::from_fn(|b| (codes[b], u32::from(lit[b])));
+    for (piece, run) in plane.pieces() {
+        w.put_literals(piece, &table);
+        if run > 0 {
+            let zero = |w: &mut BitWriter| w.put(table[0].0, table[0].1);
+            put_run(w, run, zero, |w, l| {
+                let (sym, extra_bits, extra) = length_symbol(l);
+                let s = 257 + sym as usize;
+                w.put(codes[s], lit[s].into());
+                w.put(extra, extra_bits);
+                w.put(0, 1); // distance code 0: the one code, 0
+            });
+        }
+    }
+    w.put(codes[END_OF_BLOCK], lit[END_OF_BLOCK].into());
+}
+
+/// A dynamic block's header: BFINAL, BTYPE 10, the code lengths run-length coded.
+fn put_header(w: &mut BitWriter, lit: &[u8], dist: &[u8], last: bool) {
+    let n_lit = 257 + lit[257..].iter().rposition(|&l| l > 0).map_or(0, |p| p + 1);
+    let lengths: Vec<u8> = lit[..n_lit].iter().chain(dist).copied().collect();
+    let rle = length_runs(&lengths);
+    let mut freq = [0u32; 19];
+    rle.iter().for_each(|&(s, _)| freq[s as usize] += 1);
+    let cl = code_lengths(&freq, 7);
+    let cl_codes = canonical_codes(&cl);
+    let n_cl = 4.max(
+        CODE_LENGTH_ORDER
+            .iter()
+            .rposition(|&s| cl[s] > 0)
+            .map_or(0, |p| p + 1),
+    );
+    w.put(u32::from(last), 1);
+    w.put(2, 2);
+    w.put((n_lit - 257) as u32, 5);
+    w.put((dist.len() - 1) as u32, 5);
+    w.put((n_cl - 4) as u32, 4);
+    CODE_LENGTH_ORDER[..n_cl]
+        .iter()
+        .for_each(|&s| w.put(cl[s].into(), 3));
+    for (s, extra) in rle {
+        w.put(cl_codes[s as usize], cl[s as usize].into());
+        match s {
+            16 => w.put(extra.into(), 2),
+            17 => w.put(extra.into(), 3),
+            18 => w.put(extra.into(), 7),
+            _ => {}
+        }
+    }
+}
+
+/// Code lengths as the code-length alphabet's symbols (RFC 1951 §3.2.7): 0–15 as they are,
+/// 16 repeats the previous 3–6 times, 17 and 18 give 3–10 and 11–138 zeros; (symbol, extra).
+fn length_runs(lengths: &[u8]) -> Vec<(u8, u8)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < lengths.len() {
+        let l = lengths[i];
+        let run = lengths[i..].iter().take_while(|&&x| x == l).count();
+        let mut left = run;
+        if l == 0 {
+            while left >= 11 {
+                let n = left.min(138);
+                out.push((18, (n - 11) as u8));
+                left -= n;
+            }
+            if left >= 3 {
+                out.push((17, (left - 3) as u8));
+                left = 0;
+            }
+        } else {
+            out.push((l, 0));
+            left -= 1;
+            while left >= 3 {
+                let n = left.min(6);
+                out.push((16, (n - 3) as u8));
+                left -= n;
+            }
+        }
+        out.extend(std::iter::repeat_n((l, 0), left));
+        i += run;
+    }
+    out
+}
+
+/// Lengths of a Huffman code for `freq` (0: the symbol is absent), none longer than
+/// `limit`; at least two symbols get a code (a code of one symbol is incomplete, which
+/// zlib refuses for the code-length code). Over-long codes are shortened as miniz and zlib
+/// do: cut to the limit, then the Kraft sum restored by lengthening the longest codes below
+/// it, the most frequent symbols keeping the shortest codes.
+fn code_lengths(freq: &[u32], limit: u8) -> Vec<u8> {
+    // (frequency, symbol) packed in one word: sorted as integers
+    let mut packed = [0u64; SYMBOLS];
+    let mut n = 0;
+    for (s, &f) in freq.iter().enumerate() {
+        if f > 0 {
+            packed[n] = u64::from(f) << 16 | s as u64;
+            n += 1;
+        }
+    }
+    for (s, &f) in freq.iter().enumerate() {
+        if n >= 2 {
+            break;
+        }
+        if f == 0 {
+            packed[n] = 1 << 16 | s as u64;
+            n += 1;
+        }
+    }
+    let used = &mut packed[..n];
+    used.sort_unstable();
+    let limit = usize::from(limit);
+    let mut count = [0u32; 16];
+    huffman_depths(used, |d| count[d.min(limit)] += 1);
+    // Kraft's sum over 2^limit, brought back to 1: each pass takes one unit off
+    let kraft: u64 = (1..=limit)
+        .map(|l| u64::from(count[l]) << (limit - l))
+        .sum();
+    for _ in 0..kraft.saturating_sub(1 << limit) {
+        count[limit] -= 1;
+        let l = (1..limit)
+            .rev()
+            .find(|&l| count[l] > 0)
+            .expect("a shorter code");
+        count[l] -= 1;
+        count[l + 1] += 2;
+    }
+    // lengths by count, shortest to the most frequent (`used` is ascending)
+    let mut lengths = vec![0u8; freq.len()];
+    let mut l = 1;
+    for &p in used.iter().rev() {
+        while count[l] == 0 {
+            l += 1;
+        }
+        count[l] -= 1;
+        lengths[(p & 0xFFFF) as usize] = l as u8;
+    }
+    lengths
+}
+
+/// The depth of each leaf of a Huffman tree over `used` (packed frequency and symbol,
+/// ascending), handed to `each`.
+fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
+    // two queues: the leaves (sorted) and the merged nodes (made in ascending order)
+    let n = used.len();
+    let mut weight = [0u64; 2 * SYMBOLS];
+    let mut parent = [0u16; 2 * SYMBOLS];
+    for (w, &p) in weight.iter_mut().zip(used) {
+        *w = p >> 16;
+    }
+    let (mut leaf, mut node) = (0, n);
+    for made in n..2 * n - 1 {
+        let mut take = || {
+            let from_leaf = leaf < n && (node >= made || weight[leaf] <= weight[node]);
+            let i = if from_leaf { leaf } else { node };
+            if from_leaf {
+                leaf += 1;
+            } else {
+                node += 1;
+            }
+            i
+        };
+        let (a, b) = (take(), take());
+        weight[made] = weight[a] + weight[b];
+        parent[a] = made as u16;
+        parent[b] = made as u16;
+    }
+    let mut depth = [0u16; 2 * SYMBOLS];
+    for i in (0..2 * n - 2).rev() {
+        depth[i] = depth[usize::from(parent[i])] + 1;
+    }
+    depth[..n].iter().for_each(|&d| each(usize::from(d)));
+}
+
+/// The canonical codes of `lengths` (RFC 1951 §3.2.2), bit-reversed for the LSB-first stream.
+fn canonical_codes(lengths: &[u8]) -> Vec<u32> {
+    let mut count = [0u32; 16];
+    lengths
+        .iter()
+        .filter(|&&l| l > 0)
+        .for_each(|&l| count[l as usize] += 1);
+    let mut next = [0u32; 16];
+    let mut code = 0;
+    for l in 1..16 {
+        code = (code + count[l - 1]) << 1;
+        next[l] = code;
+    }
+    lengths
+        .iter()
+        .map(|&l| match l {
+            0 => 0,
+            l => {
+                let c = next[l as usize];
+                next[l as usize] += 1;
+                c.reverse_bits() >> (32 - u32::from(l))
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use libdeflater::Decompressor;
+
+    fn inflate(z: &[u8], n: usize) -> Vec<u8> {
+        let mut out = vec![0u8; n];
+        let got = Decompressor::new()
+            .zlib_decompress(z, &mut out)
+            .expect("a zlib stream");
+        assert_eq!(got, n);
+        out
+    }
+
+    // Planes of every kind inflate to themselves (libdeflate's decoder): zeros, runs at
+    // every edge, noise, one repeated byte, a plane of one byte, runs of 258 ± 1 and 2.
+    #[test]
+    fn planes_inflate_to_themselves() {
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut noise = |n: usize| -> Vec<u8> {
+            (0..n)
+                .map(|_| {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    (x >> 24) as u8
+                })
+                .collect()
+        };
+        let mut cases: Vec<(Vec<u8>, usize)> = vec![
+            (vec![0; 6400], 800),
+            (vec![7; 999], 1000),
+            (vec![], 10),
+            (vec![3], 1),
+            (noise(4096), 512),
+        ];
+        for run in [31, 32, 33, 258, 259, 260, 261, 262, 517, 2200] {
+            let mut v = noise(100);
+            v.extend(std::iter::repeat_n(0, run));
+            v.extend(noise(77));
+            v.extend(std::iter::repeat_n(0, run));
+            cases.push((v.clone(), v.len()));
+            cases.push((v.clone(), 64));
+        }
+        // noise with zero runs inside: stored pieces between blocks of copies
+        let mut stored = noise(5000);
+        stored.extend(std::iter::repeat_n(0, 300));
+        stored.extend(noise(5000));
+        stored.extend(std::iter::repeat_n(0, 40));
+        cases.push((stored.clone(), stored.len()));
+        cases.push((noise(70_000), 70_000));
+        let mut partial = noise(3000);
+        partial.iter_mut().step_by(3).for_each(|b| *b &= 0xF0);
+        cases.push((partial, 1000));
+        for (bytes, plane) in cases {
+            let z = zlib_planes(&bytes, plane);
+            assert_eq!(inflate(&z, bytes.len()), bytes, "{} bytes", bytes.len());
+        }
+    }
+
+    // Zero runs: found at any offset, at least MIN_RUN long, exactly delimited.
+    #[test]
+    fn zero_runs_are_exact() {
+        for (lead, run, tail) in [(0, 40, 3), (5, 32, 0), (13, 100, 9), (3, 31, 3), (8, 64, 1)] {
+            let mut v = vec![9u8; lead];
+            v.extend(std::iter::repeat_n(0, run));
+            v.extend(std::iter::repeat_n(1, tail));
+            let want = if run >= MIN_RUN {
+                vec![(lead, run)]
+            } else {
+                vec![]
+            };
+            assert_eq!(zero_runs(&v), want, "{lead} {run} {tail}");
+        }
+    }
+
+    // The code lengths satisfy Kraft's equality within the limit, on skewed frequencies
+    // (a Fibonacci sequence would need codes of 25 bits).
+    #[test]
+    fn lengths_are_limited_and_complete() {
+        let mut fib = vec![1u32, 1];
+        while fib.len() < 30 {
+            fib.push(fib[fib.len() - 1] + fib[fib.len() - 2]);
+        }
+        for limit in [7u8, 15] {
+            let l = code_lengths(&fib, limit);
+            assert!(l.iter().all(|&x| (1..=limit).contains(&x)));
+            let kraft: f64 = l.iter().map(|&x| 0.5f64.powi(x.into())).sum();
+            assert_eq!(kraft, 1.0, "limit {limit}");
+        }
+        assert_eq!(
+            code_lengths(&[0, 5, 0], 7),
+            vec![1, 1, 0],
+            "one symbol gets a partner"
+        );
+    }
+}
