@@ -592,11 +592,10 @@ pub fn history_stored(h: &HistoryRequest, k: usize) -> bool {
     h.fields.contains(&field) && form_ok
 }
 
-/// The precision variable `k` is stored in: the request's, but f64 for the modal form. The
-/// modal sum cancels (far from the impact and near a zero of y, the modes' terms are much
-/// larger than their sum), so coordinates in f32 would give y to f32 rounding of each
-/// history's largest displacement only; in f64 every value equals the grid form's to f32
-/// rounding (issue 37, docs/layout.md).
+/// The precision variable `k` is stored in: the request's, but f64 for the modal form, whose
+/// variables the model has already rounded to what the request's precision calls for
+/// (`model::collision::modal_precision`): the low modes' terms cancel, so they need more
+/// than an f32's 24 bits, the high modes' far fewer (issue 37, docs/layout.md).
 pub fn history_precision(h: &HistoryRequest, k: usize) -> HistoryPrecision {
     match is_modal(k) {
         true => HistoryPrecision::F64,
