@@ -155,18 +155,18 @@ fn put_plane(w: &mut BitWriter, bytes: &[u8]) {
 }
 
 /// Whether bytes with these counts (n in all) are near enough to uniform that a Huffman
-/// code would save little (then they are stored, copied instead of coded): their
-/// collision probability Σ c(c − 1) / (n(n − 1)) is at most 1.3/256. Near uniform,
-/// 8 − H ≈ (256 Σ p² − 1) / (2 ln 2) bits: at most about 0.2 bit (3 %) per byte (the
-/// coordinates' plane 6, measured: a code would save 2.9 %, for the time of building it).
-/// Integers keep the decision the same on every machine.
+/// code would save little: their collision probability Σ c(c − 1) / (n(n − 1)) is at most
+/// 2.5/256 (uniform bytes: 1/256). Then they are stored, copied instead of coded. Measured
+/// on the bench's coordinate blocks: planes 5 and 6 (1.7 to 2.3, 1.2 to 1.3) stored cost
+/// 60 bytes of a block's 12 300 and save 7 of the 49 µs it took to code them; plane 4
+/// (10 to 13) a code shrinks by a fifth. Integers keep the decision the same on every machine.
 fn near_uniform(counts: &[u32], n: usize) -> bool {
     let pairs: u128 = counts
         .iter()
         .map(|&c| u128::from(c) * u128::from(c.saturating_sub(1)))
         .sum();
     let n = n as u128;
-    pairs * 256 * 10 <= 13 * n * n.saturating_sub(1)
+    pairs * 256 * 10 <= 25 * n * n.saturating_sub(1)
 }
 
 /// Byte counts, in four tables so that neighbouring equal bytes do not wait on each
