@@ -61,11 +61,15 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
     // No chunk cache: every chunk is written whole and already filtered (H5Dwrite_chunk),
     // never read back, and HDF5 allocates and zeroes each dataset's cache when it is created
     // (issue 22: a third of a 45-point curve's page faults, 67 datasets).
+    // HDF5 1.10's object formats (readable by HDF5 1.10 and later): a chunked dataset of
+    // fixed size indexes its chunks in a fixed array, where 1.8's B-tree made every chunk
+    // written an insertion (issue 37: a modal history study 4.5 % faster, the writer thread
+    // a tenth lighter; a 45-point summary study unchanged).
     // Whatever is at `out` (a stale `.partial`, or a symbolic link planted there) is removed,
     // not followed, and the file is created exclusively (O_EXCL: no link is followed).
     crate::store::paths::remove_if_exists(out)?;
     let f = hdf5::File::with_options()
-        .with_fapl(|p| p.chunk_cache(1, 0, 1.0))
+        .with_fapl(|p| p.chunk_cache(1, 0, 1.0).libver_v110())
         .create_excl(out)
         .ctx(out, "create the results file")?;
     let dims = &study_shape.dims;
