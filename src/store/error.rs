@@ -61,13 +61,20 @@ impl StoreError {
 /// Attach a file and an action to an HDF5 result.
 pub(crate) trait H5Ctx<T> {
     fn ctx(self, path: &Path, what: &str) -> Result<T, StoreError>;
+    /// [`Self::ctx`] with the action made only on failure (a chunk written per history
+    /// variable named its dataset for every write, issue 37).
+    fn ctx_with(self, path: &Path, what: impl FnOnce() -> String) -> Result<T, StoreError>;
 }
 
 impl<T> H5Ctx<T> for hdf5::Result<T> {
     fn ctx(self, path: &Path, what: &str) -> Result<T, StoreError> {
+        self.ctx_with(path, || what.to_string())
+    }
+
+    fn ctx_with(self, path: &Path, what: impl FnOnce() -> String) -> Result<T, StoreError> {
         self.map_err(|source| StoreError::Hdf5 {
             path: path.to_path_buf(),
-            what: what.to_string(),
+            what: what(),
             source,
         })
     }

@@ -81,10 +81,13 @@ impl ModalRounding {
         }
         let terms = (m.modes + 3) as f64; // the modes, the load, the shape, and a margin
         let share = 0.5 * f32_ulp(y_max) / terms;
-        let n = m.modes;
-        for (j, &phi) in self.shape_max.iter().enumerate() {
-            let step = step_for(share, phi);
-            for q in m.coordinate.iter_mut().skip(j).step_by(n) {
+        let steps: Vec<f64> = self
+            .shape_max
+            .iter()
+            .map(|&phi| step_for(share, phi))
+            .collect();
+        for row in m.coordinate.chunks_exact_mut(m.modes.max(1)) {
+            for (q, &step) in row.iter_mut().zip(&steps) {
                 *q = round_to(*q, step);
             }
         }
@@ -126,7 +129,7 @@ const ROUND_TO_INTEGER: f64 = 6_755_399_441_055_744.0;
 /// value when the store trims zero modes). A value already coarser than the step (|x| ≥
 /// 2^51 steps) is kept as it is.
 fn round_to(x: f64, step: f64) -> f64 {
-    let y = x / step;
+    let y = x * (1.0 / step); // exact: a power of two
     match step.is_normal() && y.abs() < 2_251_799_813_685_248.0 {
         true => ((y + ROUND_TO_INTEGER) - ROUND_TO_INTEGER) * step,
         false => x,

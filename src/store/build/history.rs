@@ -216,7 +216,7 @@ impl Into<'_> {
                     start[rank] = b * self.block;
                 }
                 chunks::write_chunk(ds, &start, bytes)
-                    .ctx(self.out, &format!("write a history of {}", ds.name()))?;
+                    .ctx_with(self.out, || format!("write a history of {}", ds.name()))?;
             }
         }
         if let (Some(shapes), Some((rec, _))) =

@@ -25,9 +25,12 @@ pub(super) fn install_modal(
     let n = setup.n;
     let nodes = bat.beam.len();
     let mut at_nodes = vec![0.0; nodes];
+    // the matrix in memory, column-major: a mode's node values are one contiguous run (a
+    // slice loop the compiler vectorises; nalgebra's column iterator was 19 µs a history)
+    let (rows, all) = (bat.modes.shapes.nrows(), bat.modes.shapes.as_slice());
     for (j, w) in (n..).zip(&setup.static_weight) {
-        let column = &bat.modes.shapes.column(j);
-        for (u, phi) in at_nodes.iter_mut().zip(column.iter()) {
+        let column = &all[j * rows..][..nodes];
+        for (u, phi) in at_nodes.iter_mut().zip(column) {
             *u += phi * w;
         }
     }
