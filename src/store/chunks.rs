@@ -180,18 +180,58 @@ const PLANE_MIN_VALUES: usize = 1024;
 fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
     let n = shuffled.len() / size.max(1);
     if n < PLANE_MIN_VALUES {
-        // small chunks (a history's scalar series, a short study's summaries): fixed codes,
-        // without libdeflate's set-up of several µs per call
-        return fixed_deflate::zlib_small(shuffled)
-            .unwrap_or_else(|| deflate_zlib(shuffled, level));
+        return deflate_small(shuffled, n, size, level);
     }
     if size <= 1 {
         return deflate_zlib(shuffled, level);
     }
-    let segments = leading_noise(shuffled, n);
+    let segments = leading_noise(shuffled, n, UNIFORM_PERCENT);
     if segments.is_empty() {
         return deflate_zlib(shuffled, level);
     }
+    let (mut out, rest) = leading_segments(shuffled, &segments);
+    if !rest.is_empty() {
+        // a raw deflate stream of the rest, starting on the byte boundary the stored
+        // blocks end on; its last block is the stream's final one
+        with_compressor(level, |comp| {
+            let start = out.len();
+            out.resize(start + comp.deflate_compress_bound(rest.len()), 0);
+            let written = comp
+                .deflate_compress(rest, &mut out[start..])
+                .expect("the output buffer is the compressor's own bound");
+            out.truncate(start + written);
+        });
+    }
+    out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
+    out
+}
+
+/// A small chunk (under [`PLANE_MIN_VALUES`] values; a history's scalar series): its
+/// leading planes of noise stored and the rest in one block with the fixed codes, without
+/// libdeflate's set-up of several µs per call (`fixed_deflate`). Issue 37: the fixed codes'
+/// hash search found nothing in the noise planes (the low bytes of a series of f32) and
+/// coded each of their bytes in 8 or 9 bits; stored they are copied, in 8.
+fn deflate_small(shuffled: &[u8], n: usize, size: usize, level: u8) -> Vec<u8> {
+    let segments = match size > 1 {
+        true => leading_noise(shuffled, n, SMALL_UNIFORM_PERCENT),
+        false => Vec::new(),
+    };
+    if segments.is_empty() {
+        return fixed_deflate::zlib_small(shuffled)
+            .unwrap_or_else(|| deflate_zlib(shuffled, level));
+    }
+    let (out, rest) = leading_segments(shuffled, &segments);
+    let mut out = match rest.is_empty() {
+        true => out,
+        false => fixed_deflate::put_fixed_lz(out, rest),
+    };
+    out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
+    out
+}
+
+/// The zlib header and the leading segments (stored bytes, zero runs) of a chunk; the bytes
+/// after them. The last segment is the stream's final block when nothing follows.
+fn leading_segments<'a>(shuffled: &'a [u8], segments: &[Segment<'_>]) -> (Vec<u8>, &'a [u8]) {
     let consumed: usize = segments.iter().map(|s| s.len()).sum();
     let rest = &shuffled[consumed..];
     let mut out = Vec::with_capacity(shuffled.len() + 64);
@@ -214,20 +254,7 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
             }
         }
     }
-    if !rest.is_empty() {
-        // a raw deflate stream of the rest, starting on the byte boundary the stored
-        // blocks end on; its last block is the stream's final one
-        with_compressor(level, |comp| {
-            let start = out.len();
-            out.resize(start + comp.deflate_compress_bound(rest.len()), 0);
-            let written = comp
-                .deflate_compress(rest, &mut out[start..])
-                .expect("the output buffer is the compressor's own bound");
-            out.truncate(start + written);
-        });
-    }
-    out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
-    out
+    (out, rest)
 }
 
 /// A piece of the leading planes: bytes stored as they are, or a run of zeros.
@@ -244,6 +271,16 @@ impl Segment<'_> {
         }
     }
 }
+
+/// [`looks_uniform`]'s bound for a chunk's planes, in percent of uniform bytes' collision
+/// probability: 3 % above it (the documentation of [`looks_uniform`]).
+const UNIFORM_PERCENT: u128 = 103;
+
+/// The same for a small chunk's planes (a few hundred bytes), whose statistic scatters by
+/// 10 % (its standard deviation for 200 uniform bytes): 30 % above it, three deviations.
+/// Mistaken either way, a plane is only stored where it could have been coded, or the
+/// reverse: the same data, a few bytes more or less.
+const SMALL_UNIFORM_PERCENT: u128 = 130;
 
 /// Zero runs shorter than this at a plane's end are left in it (noise ends in a zero byte
 /// one time in 256, in 64 of them never).
@@ -274,14 +311,14 @@ fn trailing_zeros(bytes: &[u8]) -> usize {
 /// The leading planes (each `n` bytes) that are noise, with a plane's trailing run of zeros
 /// apart; consecutive stored bytes in one segment, so that a chunk without zero runs is
 /// stored exactly as before.
-fn leading_noise(shuffled: &[u8], n: usize) -> Vec<Segment<'_>> {
+fn leading_noise(shuffled: &[u8], n: usize, percent: u128) -> Vec<Segment<'_>> {
     let mut segments: Vec<Segment> = Vec::new();
     let mut at = 0;
     for plane in shuffled.chunks_exact(n) {
         let zeros = trailing_zeros(plane);
         let zeros = if zeros >= MIN_ZERO_RUN { zeros } else { 0 };
         let data = &plane[..n - zeros];
-        if data.len() < MIN_ZERO_RUN || !looks_uniform(data) {
+        if data.len() < MIN_ZERO_RUN || !looks_uniform(data, percent) {
             break;
         }
         match segments.last_mut() {
@@ -303,7 +340,7 @@ fn leading_noise(shuffled: &[u8], n: usize) -> Vec<Segment<'_>> {
 /// (2 ln 2) bits near uniform). Measured on displacement chunks: planes 0 and 1 at 1.004 to
 /// 1.011, plane 2 (which deflate shrinks by 10 %) at 1.054 to 1.066. Integers keep the
 /// decision the same on every machine.
-fn looks_uniform(plane: &[u8]) -> bool {
+fn looks_uniform(plane: &[u8], percent: u128) -> bool {
     // four tables, so that neighbouring equal bytes do not wait on each other's count
     let mut tables = [[0u64; 256]; 4];
     let quads = plane.chunks_exact(4);
@@ -320,8 +357,8 @@ fn looks_uniform(plane: &[u8]) -> bool {
         .map(|b| tables.iter().map(|t| t[b]).sum::<u64>())
         .map(|c| u128::from(c * c.saturating_sub(1)))
         .sum();
-    // 256 Σ c(c − 1) ≤ 1.03 n(n − 1)
-    pairs * 256 * 100 <= 103 * n * n.saturating_sub(1)
+    // 256 Σ c(c − 1) ≤ (percent / 100) n(n − 1)
+    pairs * 256 * 100 <= percent * n * n.saturating_sub(1)
 }
 
 thread_local! {
@@ -440,14 +477,17 @@ mod tests {
     // smooth floats are not.
     #[test]
     fn only_noise_planes_look_uniform() {
-        assert!(looks_uniform(&noise(17_000)));
-        assert!(looks_uniform(&noise(1_024)));
-        assert!(!looks_uniform(&[7u8; 4096]));
+        assert!(looks_uniform(&noise(17_000), UNIFORM_PERCENT));
+        assert!(looks_uniform(&noise(1_024), UNIFORM_PERCENT));
+        assert!(!looks_uniform(&[7u8; 4096], UNIFORM_PERCENT));
         let ramp: Vec<u8> = (0..4096).map(|i| (i % 97) as u8).collect();
-        assert!(!looks_uniform(&ramp)); // 97 values: 2.6 times the uniform collision rate
+        assert!(!looks_uniform(&ramp, UNIFORM_PERCENT)); // 97 values: 2.6 times the uniform collision rate
         let v = smooth_f32(17_000);
         let shuffled = shuffle(&le_bytes(&v), 4);
-        let planes: Vec<bool> = shuffled.chunks_exact(17_000).map(looks_uniform).collect();
+        let planes: Vec<bool> = shuffled
+            .chunks_exact(17_000)
+            .map(|p| looks_uniform(p, UNIFORM_PERCENT))
+            .collect();
         assert!(planes[0] && !planes[3], "planes {planes:?}");
     }
 
@@ -488,6 +528,60 @@ mod tests {
         let back = ds.read_raw::<f32>().unwrap();
         assert_eq!(&back[..n], &v[..]);
         assert_eq!(&back[n..], &noisy[..]);
+    }
+
+    // A history's scalar series (issue 37): 200 f32 whose low planes are noise during the
+    // contact and zero after it, as a force has. Its noise planes go in stored, the rest with
+    // the fixed codes, and HDF5's own filter (zlib) reads the chunk back; so do a series of
+    // zeros, one without noise planes and an f64 one.
+    #[test]
+    fn small_chunks_with_stored_planes_read_back_through_hdf5() {
+        let n = 200;
+        let force: Vec<f32> = noise(4 * n)
+            .chunks_exact(4)
+            .enumerate()
+            .map(|(i, b)| match i < 70 {
+                true => f32::from_le_bytes([b[0], b[1], b[2] & 0x7f, 0x45]),
+                false => 0.0,
+            })
+            .collect();
+        let bytes = filtered_whole(&force, 1);
+        let shuffled = shuffle(&le_bytes(&force), 4);
+        assert_ne!(
+            bytes,
+            fixed_deflate::zlib_small(&shuffled).unwrap(),
+            "a plane was stored"
+        );
+        let series: [Vec<f32>; 3] = [
+            force,
+            vec![0.0; n],
+            (0..n).map(|i| (i / 50) as f32).collect(),
+        ];
+        let dir = tempfile::tempdir().unwrap();
+        let file = hdf5::File::create(dir.path().join("small.h5")).unwrap();
+        let ds = file
+            .new_dataset::<f32>()
+            .shape([3, n])
+            .chunk([1, n])
+            .shuffle()
+            .deflate(1)
+            .create("v")
+            .unwrap();
+        for (i, v) in series.iter().enumerate() {
+            write_chunk(&ds, &[i, 0], &filtered_whole(v, 1)).unwrap();
+        }
+        assert_eq!(ds.read_raw::<f32>().unwrap(), series.concat());
+        let load: Vec<f64> = noise(n).iter().map(|&b| 1.0 + f64::from(b) / 7.0).collect();
+        let ds = file
+            .new_dataset::<f64>()
+            .shape([1, n])
+            .chunk([1, n])
+            .shuffle()
+            .deflate(1)
+            .create("w")
+            .unwrap();
+        write_chunk(&ds, &[0, 0], &filtered_whole(&load, 1)).unwrap();
+        assert_eq!(ds.read_raw::<f64>().unwrap(), load);
     }
 
     // A block of modal coordinates (issue 37): 21 rows of noisy f64 and 11 zero rows,

@@ -239,11 +239,21 @@ pub fn zlib_small(bytes: &[u8]) -> Option<Vec<u8>> {
     }
     let mut out = Vec::with_capacity(n + n / 8 + 16);
     out.extend_from_slice(&ZLIB_HEADER);
-    let mut w = BitWriter {
-        out,
-        acc: 0,
-        bits: 0,
-    };
+    let mut out = put_fixed_lz(out, bytes);
+    if out.len() - ZLIB_HEADER.len() > n + 5 {
+        out.truncate(ZLIB_HEADER.len());
+        push_stored_block(&mut out, bytes, true);
+    }
+    out.extend_from_slice(&libdeflater::adler32(bytes).to_be_bytes());
+    Some(out)
+}
+
+/// `bytes` (at most [`MAX_INPUT`]) as one final block with the fixed codes after `out`
+/// (which ends on a byte boundary): a greedy pass with a small hash table finds the repeats.
+/// Matches reach back only within `bytes`.
+pub fn put_fixed_lz(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
+    let n = bytes.len();
+    let mut w = BitWriter::new(out);
     w.put(1, 1); // BFINAL
     w.put(1, 2); // BTYPE 01: fixed Huffman codes
     let mut table = [u16::MAX; 1 << HASH_BITS];
@@ -275,13 +285,7 @@ pub fn zlib_small(bytes: &[u8]) -> Option<Vec<u8>> {
         i += 1;
     }
     put_symbol(&mut w, 256); // end of block
-    let mut out = w.finish();
-    if out.len() - ZLIB_HEADER.len() > n + 5 {
-        out.truncate(ZLIB_HEADER.len());
-        push_stored_block(&mut out, bytes, true);
-    }
-    out.extend_from_slice(&libdeflater::adler32(bytes).to_be_bytes());
-    Some(out)
+    w.finish()
 }
 
 #[cfg(test)]
