@@ -148,30 +148,37 @@ fn put_plane(w: &mut BitWriter, bytes: &[u8]) {
     if data < FIXED_BELOW {
         return put_fixed(w, &plane);
     }
-    if near_uniform(&freq[..256], data) {
+    if collides_within(&freq[..256], data, STORED_PERCENT) {
         return put_stored_runs(w, &plane);
     }
     put_dynamic(w, &plane, &code_lengths(&freq, 15));
 }
 
-/// Whether bytes with these counts (n in all) are near enough to uniform that a Huffman
-/// code would save little: their collision probability Σ c(c − 1) / (n(n − 1)) is at most
-/// 2.5/256 (uniform bytes: 1/256). Then they are stored, copied instead of coded. Measured
-/// on the bench's coordinate blocks: planes 5 and 6 (1.7 to 2.3, 1.2 to 1.3) stored cost
-/// 60 bytes of a block's 12 300 and save 7 of the 49 µs it took to code them; plane 4
-/// (10 to 13) a code shrinks by a fifth. Integers keep the decision the same on every machine.
-fn near_uniform(counts: &[u32], n: usize) -> bool {
+/// Planes whose bytes collide at most this many percent of uniform bytes' rate are stored,
+/// copied instead of coded: a code would save little ([`collides_within`]). Measured on the
+/// bench's coordinate blocks: planes 5 and 6 (170 to 230 %, 120 to 130 %) stored cost 60
+/// bytes of a block's 12 300 and save 7 of the 49 µs it took to code them; plane 4 (1 000
+/// to 1 300 %) a code shrinks by a fifth.
+const STORED_PERCENT: u128 = 250;
+
+/// Whether bytes with these counts (`n` in all) collide at most `percent` % as often as
+/// uniform bytes would: Σ c(c − 1) / (n(n − 1)) is an unbiased estimate of the collision
+/// probability Σ p² (1/256 for uniform bytes). Near uniform, entropy coding saves
+/// 8 − H ≈ (256 Σ p² − 1) / (2 ln 2) bits a byte. Integers keep the decision the same on
+/// every machine.
+pub(super) fn collides_within(counts: &[u32], n: usize, percent: u128) -> bool {
     let pairs: u128 = counts
         .iter()
         .map(|&c| u128::from(c) * u128::from(c.saturating_sub(1)))
         .sum();
     let n = n as u128;
-    pairs * 256 * 10 <= 25 * n * n.saturating_sub(1)
+    // 256 Σ c(c − 1) ≤ (percent / 100) n(n − 1)
+    pairs * 256 * 100 <= percent * n * n.saturating_sub(1)
 }
 
 /// Byte counts, in four tables so that neighbouring equal bytes do not wait on each
 /// other's count.
-fn count_bytes(bytes: &[u8], tables: &mut [[u32; 256]; 4]) {
+pub(super) fn count_bytes(bytes: &[u8], tables: &mut [[u32; 256]; 4]) {
     let quads = bytes.chunks_exact(4);
     for &b in quads.remainder() {
         tables[0][b as usize] += 1;
