@@ -43,31 +43,37 @@ pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
 /// end on a byte boundary (after a stored block or the zlib header). Issue 37: the zero rows
 /// that pad a block of modal coordinates end each of its byte planes.
 pub fn push_zero_run(out: &mut Vec<u8>, len: usize) {
-    let mut w = BitWriter {
-        out: std::mem::take(out),
-        acc: 0,
-        bits: 0,
-    };
+    let mut w = BitWriter::new(std::mem::take(out));
     w.put(0, 1); // BFINAL 0
     w.put(1, 2); // BTYPE 01: fixed Huffman codes
-    put_symbol(&mut w, 0);
-    let mut left = len.saturating_sub(1);
-    while left >= MIN_MATCH {
-        // never leave 1 or 2 bytes, which no copy can take
-        let l = match left > MAX_MATCH && left - MAX_MATCH < MIN_MATCH {
-            true => left - MIN_MATCH,
-            false => left.min(MAX_MATCH),
-        };
-        put_match(&mut w, l, 1);
-        left -= l;
-    }
-    for _ in 0..left {
-        put_symbol(&mut w, 0);
-    }
+    put_zeros(&mut w, len);
     put_symbol(&mut w, 256); // end of block
     w.put(0, 3); // a stored block, not final: padded to the byte boundary by `finish`
     *out = w.finish();
     out.extend_from_slice(&[0, 0, 0xFF, 0xFF]); // LEN 0, NLEN
+}
+
+/// A run of `len` (≥ 1) zeros with the fixed codes: a zero, then copies at distance 1.
+pub(super) fn put_zeros(w: &mut BitWriter, len: usize) {
+    put_symbol(w, 0);
+    let left = run_copies(len, |l| put_match(w, l, 1));
+    (0..left).for_each(|_| put_symbol(w, 0));
+}
+
+/// The copies that write a run of `len` (≥ 1) zeros after its first one (a literal):
+/// lengths of at most 258, none leaving 1 or 2 bytes, which no copy can take; returns what
+/// is left for literals (0 to 2 bytes).
+pub(super) fn run_copies(len: usize, mut each: impl FnMut(usize)) -> usize {
+    let mut left = len.saturating_sub(1);
+    while left >= MIN_MATCH {
+        let l = match left > MAX_MATCH && left - MAX_MATCH < MIN_MATCH {
+            true => left - MIN_MATCH,
+            false => left.min(MAX_MATCH),
+        };
+        each(l);
+        left -= l;
+    }
+    left
 }
 
 /// RFC 1951 §3.2.5: base length of length codes 257..=285 and their extra bits.

@@ -12,13 +12,12 @@
 //!
 //! Any zlib reader reads the stream: HDF5's deflate filter, h5py, xarray.
 
-use super::fixed_deflate::{length_symbol, put_match, put_symbol, BitWriter, ZLIB_HEADER};
+use super::fixed_deflate::{
+    length_symbol, put_symbol, put_zeros, run_copies, BitWriter, ZLIB_HEADER,
+};
 
 /// Zero runs shorter than this stay literals (a zero is a short code in these planes).
 const MIN_RUN: usize = 32;
-/// Longest copy in deflate, and the shortest.
-const MAX_MATCH: usize = 258;
-const MIN_MATCH: usize = 3;
 /// Literal/length symbols (0..=285) and the end of a block.
 const SYMBOLS: usize = 286;
 const END_OF_BLOCK: usize = 256;
@@ -82,21 +81,6 @@ fn zero_runs(bytes: &[u8]) -> Vec<(usize, usize)> {
     }
     close(&mut start, bytes.len());
     runs
-}
-
-/// The copies that write a run of `len` zeros after its first one (as literal): lengths of
-/// at most 258, none left of 1 or 2 bytes; what no copy can take comes back as literals.
-fn run_copies(len: usize, mut each: impl FnMut(usize)) -> usize {
-    let mut left = len - 1;
-    while left >= MIN_MATCH {
-        let l = match left > MAX_MATCH && left - MAX_MATCH < MIN_MATCH {
-            true => left - MIN_MATCH,
-            false => left.min(MAX_MATCH),
-        };
-        each(l);
-        left -= l;
-    }
-    left
 }
 
 /// A plane's bytes between its zero runs, and the runs.
@@ -190,18 +174,6 @@ pub(super) fn count_bytes(bytes: &[u8], tables: &mut [[u32; 256]; 4]) {
     }
 }
 
-/// A run of zeros: a zero, then copies at distance 1 (`copy`: writes one copy's length).
-fn put_run(
-    w: &mut BitWriter,
-    run: usize,
-    zero: impl Fn(&mut BitWriter),
-    mut copy: impl FnMut(&mut BitWriter, usize),
-) {
-    zero(w);
-    let left = run_copies(run, |l| copy(w, l));
-    (0..left).for_each(|_| zero(w));
-}
-
 /// Planes with fewer bytes than this between their zero runs go in a block with the fixed
 /// codes: a code of their own would cost more to build than it could save.
 const FIXED_BELOW: usize = 256;
@@ -213,7 +185,7 @@ fn put_fixed(w: &mut BitWriter, plane: &Plane) {
     for (piece, run) in plane.pieces() {
         piece.iter().for_each(|&b| put_symbol(w, b.into()));
         if run > 0 {
-            put_run(w, run, |w| put_symbol(w, 0), |w, l| put_match(w, l, 1));
+            put_zeros(w, run);
         }
     }
     put_symbol(w, END_OF_BLOCK);
@@ -235,7 +207,7 @@ fn put_stored_runs(w: &mut BitWriter, plane: &Plane) {
             // a block with the fixed codes for the run
             w.put(0, 1);
             w.put(1, 2);
-            put_run(w, run, |w| put_symbol(w, 0), |w, l| put_match(w, l, 1));
+            put_zeros(w, run);
             put_symbol(w, END_OF_BLOCK);
         }
     }
@@ -250,14 +222,16 @@ fn put_dynamic(w: &mut BitWriter, plane: &Plane, lit: &[u8]) {
     for (piece, run) in plane.pieces() {
         w.put_literals(piece, &table);
         if run > 0 {
-            let zero = |w: &mut BitWriter| w.put(table[0].0, table[0].1);
-            put_run(w, run, zero, |w, l| {
+            // a zero, then copies at distance 1, then what no copy could take
+            w.put(table[0].0, table[0].1);
+            let left = run_copies(run, |l| {
                 let (sym, extra_bits, extra) = length_symbol(l);
                 let s = 257 + sym as usize;
                 w.put(codes[s], lit[s].into());
                 w.put(extra, extra_bits);
                 w.put(0, 1); // distance code 0: the one code, 0
             });
+            (0..left).for_each(|_| w.put(table[0].0, table[0].1));
         }
     }
     w.put(codes[END_OF_BLOCK], lit[END_OF_BLOCK].into());

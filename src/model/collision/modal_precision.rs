@@ -24,10 +24,10 @@ use crate::model::outcome::ModalHistory;
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ModalRounding {
     /// Φ_j: the largest |φ_j| over the shape points, per stepped mode.
-    pub shape_max: Vec<f64>,
+    shape_max: Vec<f64>,
     /// φ_j at the probe points, probe-major (`[probe][mode]`), and the static shape there.
-    pub probe_shapes: Vec<Vec<f64>>,
-    pub probe_static: Vec<f64>,
+    probe_shapes: Vec<Vec<f64>>,
+    probe_static: Vec<f64>,
 }
 
 impl ModalRounding {
@@ -79,7 +79,9 @@ impl ModalRounding {
         if !(y_max > 0.0 && y_max.is_finite()) || m.modes != self.shape_max.len() {
             return;
         }
-        let terms = (m.modes + 3) as f64; // the modes, the load, the shape, and a margin
+        // a share for each mode, the load, the shape, and the product of the load's and the
+        // shape's errors (at most a share: neither error exceeds its value)
+        let terms = (m.modes + 3) as f64;
         let share = 0.5 * f32_ulp(y_max) / terms;
         let steps: Vec<f64> = self
             .shape_max
