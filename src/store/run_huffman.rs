@@ -363,31 +363,31 @@ fn code_lengths(freq: &[u32], limit: u8) -> Vec<u8> {
 /// The depth of each leaf of a Huffman tree over `used` (packed frequency and symbol,
 /// ascending), handed to `each`.
 fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
-    // two queues: the leaves (sorted) and the merged nodes (made in ascending order)
+    // two queues: the leaves (sorted) and the merged nodes (made in ascending order); the
+    // nodes' weights and parents only (a leaf's weight is in `used`)
     let n = used.len();
-    let mut weight = [0u64; 2 * SYMBOLS];
-    let mut parent = [0u16; 2 * SYMBOLS];
-    for (w, &p) in weight.iter_mut().zip(used) {
-        *w = p >> 16;
-    }
-    let (mut leaf, mut node) = (0, n);
-    for made in n..2 * n - 1 {
+    let mut weight = vec![0u64; n];
+    let mut parent = vec![0u16; 2 * n - 1];
+    let (mut leaf, mut node) = (0, 0);
+    for made in 0..n - 1 {
         let mut take = || {
-            let from_leaf = leaf < n && (node >= made || weight[leaf] <= weight[node]);
-            let i = if from_leaf { leaf } else { node };
-            if from_leaf {
-                leaf += 1;
-            } else {
-                node += 1;
+            let from_leaf = leaf < n && (node >= made || used[leaf] >> 16 <= weight[node]);
+            let (i, w) = match from_leaf {
+                true => (leaf, used[leaf] >> 16),
+                false => (n + node, weight[node]),
+            };
+            match from_leaf {
+                true => leaf += 1,
+                false => node += 1,
             }
-            i
+            (i, w)
         };
-        let (a, b) = (take(), take());
-        weight[made] = weight[a] + weight[b];
-        parent[a] = made as u16;
-        parent[b] = made as u16;
+        let ((a, wa), (b, wb)) = (take(), take());
+        weight[made] = wa + wb;
+        parent[a] = (n + made) as u16;
+        parent[b] = (n + made) as u16;
     }
-    let mut depth = [0u16; 2 * SYMBOLS];
+    let mut depth = vec![0u16; 2 * n - 1];
     for i in (0..2 * n - 2).rev() {
         depth[i] = depth[usize::from(parent[i])] + 1;
     }
