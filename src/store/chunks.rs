@@ -208,8 +208,8 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
 
 /// A small chunk (under [`PLANE_MIN_VALUES`] values; a history's scalar series): its
 /// leading planes of noise stored and the rest in one block with the fixed codes, without
-/// libdeflate's set-up of several µs per call (`fixed_deflate`). Issue 37: the fixed codes'
-/// hash search found nothing in the noise planes (the low bytes of a series of f32) and
+/// libdeflate's set-up of several µs per call (`fixed_deflate`). Issue 37: the fixed codes
+/// found nothing to shorten in the noise planes (the low bytes of a series of f32) and
 /// coded each of their bytes in 8 or 9 bits; stored they are copied, in 8.
 fn deflate_small(shuffled: &[u8], n: usize, size: usize, level: u8) -> Vec<u8> {
     let segments = match size > 1 {
@@ -223,7 +223,7 @@ fn deflate_small(shuffled: &[u8], n: usize, size: usize, level: u8) -> Vec<u8> {
     let (out, rest) = leading_segments(shuffled, &segments);
     let mut out = match rest.is_empty() {
         true => out,
-        false => fixed_deflate::put_fixed_lz(out, rest),
+        false => fixed_deflate::put_fixed_runs(out, rest),
     };
     out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
     out
