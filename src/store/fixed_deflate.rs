@@ -27,15 +27,12 @@ const MAX_MATCH: usize = 258;
 /// "fastest", the one libdeflate writes at levels 0 and 1; 0x7801 is a multiple of 31).
 pub const ZLIB_HEADER: [u8; 2] = [0x78, 0x01];
 
-/// RFC 1951 §3.2.4: a stored block of at most 65 535 bytes, starting on a byte boundary:
-/// BFINAL, BTYPE 00 and padding in one byte, then LEN and its one's complement
-/// (little-endian), then the bytes.
+/// RFC 1951 §3.2.4: a stored block of at most 65 535 bytes after `out`, which ends on a byte
+/// boundary ([`BitWriter::stored_block`]).
 pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
-    let len = u16::try_from(block.len()).expect("a stored block holds at most 65 535 bytes");
-    out.push(u8::from(last));
-    out.extend_from_slice(&len.to_le_bytes());
-    out.extend_from_slice(&(!len).to_le_bytes());
-    out.extend_from_slice(block);
+    let mut w = BitWriter::new(std::mem::take(out));
+    w.stored_block(block, last);
+    *out = w.finish();
 }
 
 /// A run of `len` (≥ 1) zero bytes as a non-final block with the fixed codes (a literal,
@@ -45,13 +42,21 @@ pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
 /// that pad a block of modal coordinates end each of its byte planes.
 pub fn push_zero_run(out: &mut Vec<u8>, len: usize) {
     let mut w = BitWriter::new(std::mem::take(out));
-    w.put(0, 1); // BFINAL 0
-    w.put(1, 2); // BTYPE 01: fixed Huffman codes
-    put_zeros(&mut w, len);
-    put_symbol(&mut w, 256); // end of block
-    w.put(0, 3); // a stored block, not final: padded to the byte boundary by `finish`
+    put_zero_block(&mut w, len);
+    w.stored_block(&[], false);
     *out = w.finish();
-    out.extend_from_slice(&[0, 0, 0xFF, 0xFF]); // LEN 0, NLEN
+}
+
+/// The block types of RFC 1951 §3.2.3 (BTYPE): stored, the fixed codes, codes of its own.
+pub(super) const STORED: u32 = 0;
+pub(super) const FIXED: u32 = 1;
+pub(super) const DYNAMIC: u32 = 2;
+
+/// A non-final block with the fixed codes that holds a run of `len` (≥ 1) zeros.
+pub(super) fn put_zero_block(w: &mut BitWriter, len: usize) {
+    w.block_header(false, FIXED);
+    put_zeros(w, len);
+    put_symbol(w, 256); // end of block
 }
 
 /// A run of `len` (≥ 1) zeros with the fixed codes: a zero, then copies at distance 1.
@@ -122,6 +127,23 @@ impl BitWriter {
             acc: 0,
             bits: 0,
         }
+    }
+
+    /// A block's header: BFINAL, then its type (BTYPE: [`STORED`], [`FIXED`], [`DYNAMIC`]).
+    pub(super) fn block_header(&mut self, last: bool, kind: u32) {
+        self.put(u32::from(last), 1);
+        self.put(kind, 2);
+    }
+
+    /// A stored block (RFC 1951 §3.2.4) of at most 65 535 bytes: its header, padding to the
+    /// byte boundary, LEN and its one's complement (little-endian), then the bytes.
+    pub(super) fn stored_block(&mut self, block: &[u8], last: bool) {
+        let len = u16::try_from(block.len()).expect("a stored block holds at most 65 535 bytes");
+        self.block_header(last, STORED);
+        self.align();
+        self.extend_bytes(&len.to_le_bytes());
+        self.extend_bytes(&(!len).to_le_bytes());
+        self.extend_bytes(block);
     }
 
     /// Whole bytes, on a byte boundary (nothing pending).
@@ -257,8 +279,7 @@ pub fn zlib_small(bytes: &[u8]) -> Option<Vec<u8>> {
 /// zero force after the contact, a slowly moving bat).
 pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
     let mut w = BitWriter::new(out);
-    w.put(1, 1); // BFINAL
-    w.put(1, 2); // BTYPE 01: fixed Huffman codes
+    w.block_header(true, FIXED);
     let n = bytes.len();
     let mut i = 0;
     while i < n {

@@ -13,7 +13,8 @@
 //! Any zlib reader reads the stream: HDF5's deflate filter, h5py, xarray.
 
 use super::fixed_deflate::{
-    length_symbol, put_symbol, put_zeros, run_copies, BitWriter, ZLIB_HEADER,
+    length_symbol, put_symbol, put_zero_block, put_zeros, run_copies, BitWriter, DYNAMIC, FIXED,
+    ZLIB_HEADER,
 };
 
 /// Zero runs shorter than this stay literals (a zero is a short code in these planes).
@@ -34,8 +35,7 @@ pub fn zlib_planes(shuffled: &[u8], plane_len: usize) -> Vec<u8> {
     for plane in shuffled.chunks(plane_len.max(1)) {
         put_plane(&mut w, plane);
     }
-    w.put(1, 1); // BFINAL
-    w.put(1, 2); // BTYPE 01, the fixed codes
+    w.block_header(true, FIXED);
     put_symbol(&mut w, END_OF_BLOCK);
     let mut out = w.finish();
     out.extend_from_slice(&libdeflater::adler32(shuffled).to_be_bytes());
@@ -180,8 +180,7 @@ const FIXED_BELOW: usize = 256;
 
 /// A plane in one block with the fixed codes.
 fn put_fixed(w: &mut BitWriter, plane: &Plane) {
-    w.put(0, 1);
-    w.put(1, 2);
+    w.block_header(false, FIXED);
     for (piece, run) in plane.pieces() {
         piece.iter().for_each(|&b| put_symbol(w, b.into()));
         if run > 0 {
@@ -196,19 +195,10 @@ fn put_fixed(w: &mut BitWriter, plane: &Plane) {
 fn put_stored_runs(w: &mut BitWriter, plane: &Plane) {
     for (piece, run) in plane.pieces() {
         for block in piece.chunks(u16::MAX as usize) {
-            w.put(0, 3); // not final, BTYPE 00
-            w.align();
-            let len = block.len() as u16;
-            w.extend_bytes(&len.to_le_bytes());
-            w.extend_bytes(&(!len).to_le_bytes());
-            w.extend_bytes(block);
+            w.stored_block(block, false);
         }
         if run > 0 {
-            // a block with the fixed codes for the run
-            w.put(0, 1);
-            w.put(1, 2);
-            put_zeros(w, run);
-            put_symbol(w, END_OF_BLOCK);
+            put_zero_block(w, run);
         }
     }
 }
@@ -217,7 +207,7 @@ fn put_stored_runs(w: &mut BitWriter, plane: &Plane) {
 fn put_dynamic(w: &mut BitWriter, plane: &Plane, lit: &[u8]) {
     let codes = canonical_codes(lit);
     // one distance code (distance 1), of length 1, whether or not a copy uses it
-    put_header(w, lit, &[1], false);
+    put_header(w, lit, &[1]);
     let table: [(u32, u32); 256] = std::array::from_fn(|b| (codes[b], u32::from(lit[b])));
     for (piece, run) in plane.pieces() {
         w.put_literals(piece, &table);
@@ -237,8 +227,9 @@ fn put_dynamic(w: &mut BitWriter, plane: &Plane, lit: &[u8]) {
     w.put(codes[END_OF_BLOCK], lit[END_OF_BLOCK].into());
 }
 
-/// A dynamic block's header: BFINAL, BTYPE 10, the code lengths run-length coded.
-fn put_header(w: &mut BitWriter, lit: &[u8], dist: &[u8], last: bool) {
+/// A dynamic block's header (never the last block: `zlib_planes` ends every stream with an
+/// empty one): BFINAL 0, BTYPE 10, the code lengths run-length coded.
+fn put_header(w: &mut BitWriter, lit: &[u8], dist: &[u8]) {
     let n_lit = 257 + lit[257..].iter().rposition(|&l| l > 0).map_or(0, |p| p + 1);
     let lengths: Vec<u8> = lit[..n_lit].iter().chain(dist).copied().collect();
     let rle = length_runs(&lengths);
@@ -252,8 +243,7 @@ fn put_header(w: &mut BitWriter, lit: &[u8], dist: &[u8], last: bool) {
             .rposition(|&s| cl[s] > 0)
             .map_or(0, |p| p + 1),
     );
-    w.put(u32::from(last), 1);
-    w.put(2, 2);
+    w.block_header(false, DYNAMIC);
     w.put((n_lit - 257) as u32, 5);
     w.put((dist.len() - 1) as u32, 5);
     w.put((n_cl - 4) as u32, 4);
