@@ -459,6 +459,26 @@ mod tests {
         crate::model::xorshift::bytes(0x9E37_79B9_7F4A_7C15, n)
     }
 
+    /// A dataset of `shape` with HDF5's shuffle and deflate(1) filters, a chunk per row (the
+    /// whole of a 1-D one), as the store creates its variables.
+    fn filtered_dataset<T: hdf5::H5Type>(
+        file: &hdf5::File,
+        name: &str,
+        shape: &[usize],
+    ) -> hdf5::Dataset {
+        let mut chunk = shape.to_vec();
+        if chunk.len() > 1 {
+            chunk[0] = 1;
+        }
+        file.new_dataset::<T>()
+            .shape(shape.to_vec())
+            .chunk(chunk)
+            .shuffle()
+            .deflate(1)
+            .create(name)
+            .unwrap()
+    }
+
     // Noise is uniform; a constant, a ramp over a few values and the exponent byte of
     // smooth floats are not.
     #[test]
@@ -497,14 +517,7 @@ mod tests {
 
         let dir = tempfile::tempdir().unwrap();
         let file = hdf5::File::create(dir.path().join("planes.h5")).unwrap();
-        let ds = file
-            .new_dataset::<f32>()
-            .shape([2, n])
-            .chunk([1, n])
-            .shuffle()
-            .deflate(1)
-            .create("v")
-            .unwrap();
+        let ds = filtered_dataset::<f32>(&file, "v", &[2, n]);
         let noisy: Vec<f32> = noise(4 * n)
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], 0x3f]))
@@ -514,60 +527,6 @@ mod tests {
         let back = ds.read_raw::<f32>().unwrap();
         assert_eq!(&back[..n], &v[..]);
         assert_eq!(&back[n..], &noisy[..]);
-    }
-
-    // A history's scalar series (issue 37): 200 f32 whose low planes are noise during the
-    // contact and zero after it, as a force has. Its noise planes go in stored, the rest with
-    // the fixed codes, and HDF5's own filter (zlib) reads the chunk back; so do a series of
-    // zeros, one without noise planes and an f64 one.
-    #[test]
-    fn small_chunks_with_stored_planes_read_back_through_hdf5() {
-        let n = 200;
-        let force: Vec<f32> = noise(4 * n)
-            .chunks_exact(4)
-            .enumerate()
-            .map(|(i, b)| match i < 70 {
-                true => f32::from_le_bytes([b[0], b[1], b[2] & 0x7f, 0x45]),
-                false => 0.0,
-            })
-            .collect();
-        let bytes = filtered_whole(&force, 1);
-        let shuffled = shuffle(&le_bytes(&force), 4);
-        assert_ne!(
-            bytes,
-            fixed_deflate::zlib_small(&shuffled).unwrap(),
-            "a plane was stored"
-        );
-        let series: [Vec<f32>; 3] = [
-            force,
-            vec![0.0; n],
-            (0..n).map(|i| (i / 50) as f32).collect(),
-        ];
-        let dir = tempfile::tempdir().unwrap();
-        let file = hdf5::File::create(dir.path().join("small.h5")).unwrap();
-        let ds = file
-            .new_dataset::<f32>()
-            .shape([3, n])
-            .chunk([1, n])
-            .shuffle()
-            .deflate(1)
-            .create("v")
-            .unwrap();
-        for (i, v) in series.iter().enumerate() {
-            write_chunk(&ds, &[i, 0], &filtered_whole(v, 1)).unwrap();
-        }
-        assert_eq!(ds.read_raw::<f32>().unwrap(), series.concat());
-        let load: Vec<f64> = noise(n).iter().map(|&b| 1.0 + f64::from(b) / 7.0).collect();
-        let ds = file
-            .new_dataset::<f64>()
-            .shape([1, n])
-            .chunk([1, n])
-            .shuffle()
-            .deflate(1)
-            .create("w")
-            .unwrap();
-        write_chunk(&ds, &[0, 0], &filtered_whole(&load, 1)).unwrap();
-        assert_eq!(ds.read_raw::<f64>().unwrap(), load);
     }
 
     // A block of modal coordinates (issue 37): 21 rows of noisy f64 and 11 zero rows,
@@ -595,14 +554,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let file = hdf5::File::create(dir.path().join("modal.h5")).unwrap();
         let cases = [v.clone(), block(1), block(rows), vec![0.0; rows * t]];
-        let ds = file
-            .new_dataset::<f64>()
-            .shape([cases.len(), rows, t])
-            .chunk([1, rows, t])
-            .shuffle()
-            .deflate(1)
-            .create("q")
-            .unwrap();
+        let ds = filtered_dataset::<f64>(&file, "q", &[cases.len(), rows, t]);
         for (k, c) in cases.iter().enumerate() {
             write_chunk(&ds, &[k, 0, 0], &filtered_whole(c, 1)).unwrap();
         }
@@ -647,7 +599,9 @@ mod tests {
 
     // Small chunks go out with fixed Huffman codes (`store::fixed_deflate`); HDF5's
     // deflate filter (zlib's inflate, RFC 1950/1951) reads them back: a force history that
-    // ends in zeros, a constant, noise (stored) and a few f64 summaries.
+    // ends in zeros, a constant, noise (stored), a force whose low planes are noise during
+    // the contact (those planes stored, the rest with the fixed codes, issue 37), an f64
+    // series of that kind, and a few f64 summaries.
     #[test]
     fn small_chunks_read_back_through_hdf5() {
         let force: Vec<f32> = (0..200)
@@ -660,21 +614,29 @@ mod tests {
             })
             .collect();
         let constant = vec![-27.25f32; 200];
+        let noisy_force: Vec<f32> = noise(800)
+            .chunks_exact(4)
+            .enumerate()
+            .map(|(i, b)| match i < 70 {
+                true => f32::from_le_bytes([b[0], b[1], b[2] & 0x7f, 0x45]),
+                false => 0.0,
+            })
+            .collect();
+        let shuffled = shuffle(&le_bytes(&noisy_force), 4);
+        assert_ne!(
+            filtered_whole(&noisy_force, 1),
+            fixed_deflate::zlib_small(&shuffled).unwrap(),
+            "a plane was stored"
+        );
         let noisy: Vec<f32> = noise(800)
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], 0x3f]))
             .collect();
         let dir = tempfile::tempdir().unwrap();
         let file = hdf5::File::create(dir.path().join("small.h5")).unwrap();
-        let ds = file
-            .new_dataset::<f32>()
-            .shape([3, 200])
-            .chunk([1, 200])
-            .shuffle()
-            .deflate(1)
-            .create("v")
-            .unwrap();
-        for (row, values) in [&force, &constant, &noisy].into_iter().enumerate() {
+        let ds = filtered_dataset::<f32>(&file, "v", &[4, 200]);
+        let rows = [&force, &constant, &noisy, &noisy_force];
+        for (row, values) in rows.into_iter().enumerate() {
             let bytes = filtered_whole(values, 1);
             assert_eq!(bytes[..2], fixed_deflate::ZLIB_HEADER);
             write_chunk(&ds, &[row, 0], &bytes).unwrap();
@@ -684,17 +646,17 @@ mod tests {
         assert!(filtered_whole(&constant, 1).len() < 40);
         assert!(filtered_whole(&noisy, 1).len() <= 800 + 2 + 5 + 4);
         let back = ds.read_raw::<f32>().unwrap();
-        assert_eq!(back, [force, constant, noisy].concat());
+        assert_eq!(back, [force, constant, noisy, noisy_force].concat());
+        let load: Vec<f64> = noise(200)
+            .iter()
+            .map(|&b| 1.0 + f64::from(b) / 7.0)
+            .collect();
+        let ld = filtered_dataset::<f64>(&file, "w", &[1, 200]);
+        write_chunk(&ld, &[0, 0], &filtered_whole(&load, 1)).unwrap();
+        assert_eq!(ld.read_raw::<f64>().unwrap(), load);
 
         let summary: Vec<f64> = (0..45).map(|i| 30.0 + (i as f64 * 0.1).cos()).collect();
-        let sd = file
-            .new_dataset::<f64>()
-            .shape([45])
-            .chunk([45])
-            .shuffle()
-            .deflate(1)
-            .create("s")
-            .unwrap();
+        let sd = filtered_dataset::<f64>(&file, "s", &[45]);
         write_chunk(&sd, &[0], &filtered(&summary, &[45], &[45], f64::NAN, 1)).unwrap();
         assert_eq!(sd.read_raw::<f64>().unwrap(), summary);
     }
