@@ -70,10 +70,16 @@ pub const RESERVED_NAMES: &[&str] = &[
     "bat_mode",
     "shape_point",
     "history",
-    // `/uncertainty` (issue 36)
+];
+
+/// The names `/uncertainty` (issue 36) gives its variables beside the study's coordinates:
+/// reserved too ([`is_reserved`]); `store::build::uncertainty` writes them.
+pub const UNCERTAINTY_NAMES: &[&str] = &[
     "percentile",
+    "exit_speed",
     "exit_speed_mean",
     "exit_speed_std",
+    "bbcor",
     "bbcor_mean",
     "bbcor_std",
     "sweet_spot_position",
@@ -87,6 +93,20 @@ pub const RESERVED_NAMES: &[&str] = &[
     "bbcor_max_std",
     "bbcor_max_above_limit",
 ];
+
+/// Whether the results file uses `name` for a variable of its own beside a study's
+/// coordinates ([`RESERVED_NAMES`], [`UNCERTAINTY_NAMES`]).
+pub fn is_reserved(name: &str) -> bool {
+    RESERVED_NAMES.contains(&name) || UNCERTAINTY_NAMES.contains(&name)
+}
+
+/// Every reserved name once: [`RESERVED_NAMES`], then the names only `/uncertainty` uses.
+pub fn reserved_names() -> impl Iterator<Item = &'static str> {
+    let own = UNCERTAINTY_NAMES
+        .iter()
+        .filter(|n| !RESERVED_NAMES.contains(n));
+    RESERVED_NAMES.iter().chain(own).copied()
+}
 
 /// A stable identifier of one point: a hash of its canonical (fully resolved) parameters.
 pub type PointId = u64;
@@ -264,6 +284,22 @@ pub struct PointRecord {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // `/uncertainty`'s names are reserved (issue 36), and the listing a refusal prints holds
+    // every reserved name once.
+    #[test]
+    fn uncertainty_names_are_reserved_and_listed_once() {
+        let listed: Vec<&str> = reserved_names().collect();
+        for n in UNCERTAINTY_NAMES.iter().chain(RESERVED_NAMES) {
+            assert!(is_reserved(n), "{n}");
+            assert_eq!(listed.iter().filter(|l| *l == n).count(), 1, "{n}");
+        }
+        assert_eq!(
+            listed.len(),
+            RESERVED_NAMES.len() + 15,
+            "15 names of /uncertainty's own"
+        );
+    }
 
     fn shape(density: Vec<f64>) -> ResultShape {
         ResultShape {

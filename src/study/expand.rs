@@ -13,7 +13,7 @@ use super::source::{keys, Seg};
 use super::syntax::{check_base_types, check_param_keys, check_path};
 use super::types::{AxisValues, StudyFile};
 use crate::results::ResultShape;
-use crate::results::RESERVED_NAMES;
+use crate::results::{is_reserved, reserved_names};
 use std::collections::HashMap;
 use std::path::Path;
 use yaml_serde::{Mapping, Value};
@@ -378,10 +378,10 @@ fn check_stored_names(
         for name in std::iter::once(&sd.name).chain(coords) {
             let problem = if !plain_name(name) {
                 Some("a name of letters, digits, `_`, `-`, `.` (not starting with `.`)".to_string())
-            } else if RESERVED_NAMES.contains(&name.as_str()) {
+            } else if is_reserved(name) {
                 Some(format!(
                     "a name the results file does not use for its own variables ({})",
-                    RESERVED_NAMES.join(", ")
+                    reserved_names().collect::<Vec<_>>().join(", ")
                 ))
             } else {
                 seen.insert(name, &d.name)
