@@ -14,7 +14,8 @@
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
 //! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
 //! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
-//! [`session`] (an open output), [`merge`](mod@merge) (shards → one file), [`lock`] (one
+//! [`session`] (an open output), [`writeback`] (the final file sent to the disk as it is
+//! written), [`merge`](mod@merge) (shards → one file), [`lock`] (one
 //! process per output).
 
 pub mod build;
@@ -37,6 +38,7 @@ pub mod placer;
 pub mod read;
 pub mod run_huffman;
 pub mod session;
+pub mod writeback;
 
 pub use encode::{EncodedRecord, RecordEncoder};
 pub use error::StoreError;

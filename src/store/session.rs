@@ -12,6 +12,7 @@ use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
 use super::paths::{journal_path, partial_path, remove_if_exists};
 use super::placer::{HistoryPlacer, Place};
 use super::read;
+use super::writeback::Writeback;
 use crate::pointset::PointSet;
 use crate::results::{PointRecord, ResultShape, StudyInfo};
 use std::path::{Path, PathBuf};
@@ -41,6 +42,8 @@ pub struct Session {
     placer: Option<HistoryPlacer>,
     /// Where the histories the run has not placed are, once the placer gave up.
     history_tail: Option<build::HistoryTail>,
+    /// Starts the final file's writeback as the placer writes it (`store::writeback`).
+    writeback: Writeback,
     flush_interval: Duration,
     sync_interval: Duration,
     last_flush: Instant,
@@ -220,6 +223,7 @@ impl Session {
             encoder: RecordEncoder::new(path, info),
             placer: None,
             history_tail: None,
+            writeback: Writeback::new(&partial_path(path)),
             flush_interval: opts.flush_interval,
             sync_interval: opts.sync_interval,
             last_flush: Instant::now(),
@@ -371,11 +375,14 @@ impl Session {
         struct IntoFile<'a> {
             skeleton: &'a mut build::Skeleton,
             info: &'a StudyInfo,
+            writeback: &'a mut Writeback,
         }
         impl Place for IntoFile<'_> {
             type Error = StoreError;
             fn place(&mut self, index: usize, framed: &[u8]) -> Result<(), StoreError> {
-                build::place_history(self.skeleton, self.info, index, framed)
+                build::place_history(self.skeleton, self.info, index, framed)?;
+                self.writeback.wrote(framed.len());
+                Ok(())
             }
         }
         let mut file = IntoFile {
@@ -384,6 +391,7 @@ impl Session {
                 .as_mut()
                 .expect("prepared with the first record"),
             info: &self.info,
+            writeback: &mut self.writeback,
         };
         if !placer.arrived(index, framed, &self.done, &mut file)? {
             let placer = self.placer.take().expect("checked above");
