@@ -24,6 +24,8 @@ extern "C" {
         data_size: usize,
         buf: *const c_void,
     ) -> herr_t;
+    // libhdf5 ≥ 1.10.2; the -sys crate does not declare it
+    fn H5Fget_eoa(file_id: hid_t, eoa: *mut u64) -> herr_t;
 }
 
 /// A value stored in a summary chunk: its little-endian bytes (HDF5's native types here).
@@ -399,6 +401,38 @@ pub fn write_chunk(ds: &Dataset, start: &[usize], bytes: &[u8]) -> hdf5::Result<
         ));
     }
     Ok(())
+}
+
+/// The end of `file`'s allocated space (HDF5's end of allocation, "EOA"), an offset in
+/// the file (results files have no user block).
+fn end_of_allocation(file: hid_t) -> Option<u64> {
+    let mut eoa = 0u64;
+    // SAFETY: a query on an open file id, into a local
+    let r = hdf5::sync::sync(|| unsafe { H5Fget_eoa(file, &mut eoa) });
+    (r >= 0).then_some(eoa)
+}
+
+/// [`write_chunk`] into a dataset of `file`, and the offset in the file where the chunk's
+/// bytes went, when it is known: the results file allocates everything at its end
+/// (`FileSpaceStrategy::None`, `build::skeleton`), so a chunk that moved the end of
+/// allocation by exactly its own length lies at the old end. A write that allocated
+/// something else too (a dataset's first chunk creates its chunk index) gives `None`.
+/// The journal records chunks by this offset instead of their bytes (`store::by_reference`),
+/// and a resume checks the bytes it finds there against their checksum, so an offset that
+/// were wrong would only cost the point's recomputation.
+pub fn write_chunk_at_end(
+    ds: &Dataset,
+    file: hid_t,
+    start: &[usize],
+    bytes: &[u8],
+) -> hdf5::Result<Option<u64>> {
+    let before = end_of_allocation(file);
+    write_chunk(ds, start, bytes)?;
+    let after = end_of_allocation(file);
+    Ok(match (before, after) {
+        (Some(b), Some(a)) if a.checked_sub(b) == Some(bytes.len() as u64) => Some(b),
+        _ => None,
+    })
 }
 
 #[cfg(test)]

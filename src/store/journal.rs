@@ -1,19 +1,22 @@
 //! The append-only journal `OUT.h5.journal`: the source of truth while a study runs.
 //!
-//! Format 2 (little endian):
-//! - header: magic `BATSJRN2`, u32 `n` = length of the header JSON, the JSON ([`JournalHeader`]),
+//! Format 3 (little endian):
+//! - header: magic `BATSJRN3`, u32 `n` = length of the header JSON, the JSON ([`JournalHeader`]),
 //!   u32 CRC-32 of the JSON;
 //! - then records, each: u32 magic `REC2`, u32 payload length, u32 CRC-32 of the payload, the
 //!   payload: the point's summary ([`encode_summary`]) followed, when it has histories, by
-//!   each stored history variable's chunk exactly as the results file stores it (u32 length,
-//!   then the shuffled and deflated bytes; `store::encode` makes them on the workers); the
-//!   modal coordinates are as many chunks as the point has blocks of modes (the record's
-//!   chunks beyond one per variable).
+//!   each stored history variable's chunk exactly as the results file stores it: either its
+//!   bytes (u32 length, then the shuffled and deflated bytes; `store::encode` makes them on
+//!   the workers), or, when the run has already written the chunk into `OUT.h5.partial`,
+//!   where it is there (u32 length with [`IN_FILE`] set, u64 offset in that file, u32 CRC-32
+//!   of the chunk; `store::by_reference`). The modal coordinates are as many chunks as the
+//!   point has blocks of modes (the record's chunks beyond one per variable).
 //!
 //! Records are only appended. A run killed mid-write leaves at worst a torn last record; a
 //! record whose magic, length or checksum is wrong ends the journal (it and everything after it
 //! are dropped and truncated away on resume; those points are simply computed again).
 //!
+//! Format 2 (`BATSJRN2`) is format 3 without chunks in the file, and is read as it is.
 //! Format 1 (`BATSJRN1`: histories as raw f64, FNV-1a checksums) is recognised and refused
 //! with a message saying to start over with `--force` (issue 22: its histories would have to
 //! be compressed again at the end, the very cost format 2 moved to the workers).
@@ -27,7 +30,8 @@ use std::io::{BufReader, IoSlice, Read, Seek, SeekFrom, Write};
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 
-const MAGIC: &[u8; 8] = b"BATSJRN2";
+const MAGIC: &[u8; 8] = b"BATSJRN3";
+const MAGIC_V2: &[u8; 8] = b"BATSJRN2";
 const MAGIC_V1: &[u8; 8] = b"BATSJRN1";
 const REC_MAGIC: u32 = u32::from_le_bytes(*b"REC2");
 /// Bytes before each record's payload: magic, length, checksum.
@@ -101,19 +105,66 @@ pub fn put_history_chunk(bytes: &[u8], out: &mut Vec<u8>) {
     out.extend_from_slice(bytes);
 }
 
-/// Every history chunk of a payload (after its summary part), or `None` if they do not add
-/// up to the payload.
-pub fn history_chunks(payload: &[u8]) -> Option<Vec<&[u8]>> {
+/// Set in a history chunk's length word: the chunk is not in the record but in the results
+/// file the run is writing, at the offset that follows (format 3).
+pub const IN_FILE: u32 = 1 << 31;
+
+/// One history chunk of a record: its bytes, or where the run wrote them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Piece<'a> {
+    Bytes(&'a [u8]),
+    /// `len` bytes at offset `at` of `OUT.h5.partial`, whose CRC-32 is `sum`.
+    InFile { at: u64, len: u32, sum: u32 },
+}
+
+/// Append a reference to a history chunk in the results file to a payload ([`Piece::InFile`]).
+pub fn put_history_in_file(at: u64, len: u32, sum: u32, out: &mut Vec<u8>) {
+    debug_assert!(len < IN_FILE);
+    out.extend_from_slice(&(IN_FILE | len).to_le_bytes());
+    out.extend_from_slice(&at.to_le_bytes());
+    out.extend_from_slice(&sum.to_le_bytes());
+}
+
+/// Every history chunk of a payload (after its summary part), bytes or references, or
+/// `None` if they do not add up to the payload.
+pub fn history_pieces(payload: &[u8]) -> Option<Vec<Piece<'_>>> {
     let mut c = Cursor {
         b: payload,
         p: OK_SUMMARY_LEN,
     };
     let mut out = Vec::new();
     while c.p < payload.len() {
-        let len = c.u32()? as usize;
-        out.push(c.take(len)?);
+        let word = c.u32()?;
+        out.push(match word & IN_FILE {
+            0 => Piece::Bytes(c.take(word as usize)?),
+            _ => Piece::InFile {
+                at: c.u64()?,
+                len: word & !IN_FILE,
+                sum: c.u32()?,
+            },
+        });
     }
     Some(out)
+}
+
+/// Every history chunk of a payload whose chunks are all in it, or `None` if they do not
+/// add up to the payload or one is in the results file (a resume puts those back in the
+/// journal first: `store::by_reference`).
+pub fn history_chunks(payload: &[u8]) -> Option<Vec<&[u8]>> {
+    history_pieces(payload)?
+        .into_iter()
+        .map(|p| match p {
+            Piece::Bytes(b) => Some(b),
+            Piece::InFile { .. } => None,
+        })
+        .collect()
+}
+
+/// Whether a payload holds histories of which some are in the results file.
+pub(super) fn refers_to_file(payload: &[u8]) -> bool {
+    decode_summary(payload).is_some_and(|(_, history)| history)
+        && history_pieces(payload)
+            .is_some_and(|p| p.iter().any(|p| matches!(p, Piece::InFile { .. })))
 }
 
 struct Cursor<'a> {
@@ -179,6 +230,8 @@ pub struct RecordMeta {
     pub index: usize,
     pub id: u64,
     pub ok: bool,
+    /// Some of its history chunks are in the results file, not in the record.
+    pub in_file: bool,
 }
 
 /// Result of scanning a journal (the records themselves went to the scan's visitor).
@@ -207,7 +260,7 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
              continue; run again with --force to start over",
         ));
     }
-    if &magic != MAGIC {
+    if &magic != MAGIC && &magic != MAGIC_V2 {
         return Err(bad("not a batstudy journal (wrong magic bytes)"));
     }
     let mut n = [0u8; 4];
@@ -230,8 +283,9 @@ fn read_header(r: &mut impl Read, path: &Path) -> Result<(JournalHeader, u64), S
     Ok((header, (8 + 4 + n + 4) as u64))
 }
 
-/// The name a journal's header is written under before it is renamed into place.
-fn unfinished_path(path: &Path) -> std::path::PathBuf {
+/// The name a journal's header is written under before it is renamed into place (and a
+/// journal rewritten on resume, `store::by_reference`).
+pub(super) fn unfinished_path(path: &Path) -> std::path::PathBuf {
     let mut name = path.as_os_str().to_os_string();
     name.push(".new");
     std::path::PathBuf::from(name)
@@ -262,7 +316,7 @@ pub fn ends_in_header(path: &Path) -> Result<bool, StoreError> {
         .read_to_end(&mut head)
         .map_err(io)?;
     let magic = head.len().min(8);
-    if head[..magic] != MAGIC[..magic] {
+    if head[..magic] != MAGIC[..magic] && head[..magic] != MAGIC_V2[..magic] {
         return Ok(false);
     }
     if head.len() < 12 {
@@ -305,13 +359,14 @@ pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, Stor
         }
         // The whole payload: a failed point's message follows the fixed part and may be
         // longer than OK_SUMMARY_LEN.
-        let Some((rec, _)) = decode_summary(&payload) else {
+        let Some((rec, has_history)) = decode_summary(&payload) else {
             break;
         };
         visit(RecordMeta {
             index: rec.index,
             id: rec.id,
             ok: rec.result.is_ok(),
+            in_file: has_history && refers_to_file(&payload),
         });
         pos += REC_PREFIX as u64 + len;
     }
@@ -323,7 +378,7 @@ pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, Stor
     })
 }
 
-fn split_prefix(pre: &[u8; REC_PREFIX]) -> (u32, u64, u32) {
+pub(super) fn split_prefix(pre: &[u8; REC_PREFIX]) -> (u32, u64, u32) {
     (
         u32::from_le_bytes(pre[0..4].try_into().unwrap()),
         u32::from_le_bytes(pre[4..8].try_into().unwrap()) as u64,

@@ -19,6 +19,7 @@
 //! process per output).
 
 pub mod build;
+pub mod by_reference;
 pub mod chunks;
 pub mod dimscale;
 pub mod encode;

@@ -52,6 +52,11 @@ impl HistoryPlacer {
         }
     }
 
+    /// The framed record of point `index`, if it is held ahead of the cursor.
+    pub fn held(&self, index: usize) -> Option<&[u8]> {
+        self.held.get(&index).map(Vec::as_slice)
+    }
+
     /// Point `index` has just been stored (`done` says which points are), with its framed
     /// record when it has histories. Writes every history the cursor can now pass, in order.
     /// Returns false when the placer gives up (too much held): call [`Self::tail`] then.

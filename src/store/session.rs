@@ -9,12 +9,16 @@ use super::error::StoreError;
 use super::header::JournalHeader;
 use super::journal::{self, JournalWriter};
 use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
-use super::paths::{journal_path, partial_path, remove_if_exists};
+use super::by_reference::{self, Recovered};
+use super::paths::{
+    journal_path, partial_path, previous_partial_path, remove_if_exists, set_aside_partial,
+};
 use super::placer::{HistoryPlacer, Place};
 use super::read;
 use super::writeback::Writeback;
 use crate::pointset::PointSet;
 use crate::results::{PointRecord, ResultShape, StudyInfo};
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -44,6 +48,15 @@ pub struct Session {
     history_tail: Option<build::HistoryTail>,
     /// Starts the final file's writeback as the placer writes it (`store::writeback`).
     writeback: Writeback,
+    /// The journal names history chunks in the final file (`store::by_reference`): the file
+    /// is kept if the session ends unfinished, for the resume.
+    names_file: bool,
+    /// It has named some since the journal was last made durable: the file is made durable
+    /// first.
+    names_unsynced: bool,
+    /// Points stored whose records the placer holds and the journal does not have yet
+    /// (journalled at the next flush, or once placed).
+    unjournalled: BTreeSet<usize>,
     flush_interval: Duration,
     sync_interval: Duration,
     last_flush: Instant,
@@ -52,6 +65,9 @@ pub struct Session {
     pub resumed: usize,
     /// Bytes of torn or corrupt journal tail dropped on resume.
     pub dropped_bytes: u64,
+    /// On resume: the records whose history chunks were read back from the interrupted
+    /// run's file, and those dropped because a chunk was not there intact.
+    pub recovered: Recovered,
 }
 
 fn check_info(info: &StudyInfo, path: &Path) -> Result<(), StoreError> {
@@ -98,6 +114,7 @@ impl Drop for BegunFile {
 /// its bats, when a one-bat study leaves cores idle (issue 7: the file's fixed cost, off the
 /// critical path). Replaces a stale `OUT.h5.partial`; touches nothing else.
 pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> {
+    set_aside_partial(path)?;
     let partial = partial_path(path);
     let skeleton = build::begin_skeleton(shape, &partial)?;
     Ok(BegunFile {
@@ -156,6 +173,8 @@ pub fn open_begun(
         s.resume_journal(&want)?;
         return Ok(s);
     }
+    // no journal names anything in an interrupted run's file any more
+    remove_if_exists(&previous_partial_path(path))?;
     if opts.resume && path.exists() {
         s.resume_finished_file(&want)?;
         return Ok(s);
@@ -196,7 +215,7 @@ fn take_begun(
             Ok(b.skeleton.take())
         }
         None => {
-            remove_if_exists(&partial_path(path))?;
+            set_aside_partial(path)?;
             Ok(None)
         }
     }
@@ -224,33 +243,53 @@ impl Session {
             placer: None,
             history_tail: None,
             writeback: Writeback::new(&partial_path(path)),
+            names_file: false,
+            names_unsynced: false,
+            unjournalled: BTreeSet::new(),
             flush_interval: opts.flush_interval,
             sync_interval: opts.sync_interval,
             last_flush: Instant::now(),
             last_sync: Instant::now(),
             resumed: 0,
             dropped_bytes: 0,
+            recovered: Recovered::default(),
         }
     }
 
     /// Continue an interrupted run: the journal's valid records are done, its torn tail is
     /// cut, and new records are appended after them.
     fn resume_journal(&mut self, want: &JournalHeader) -> Result<(), StoreError> {
-        let n_points = self.info.shape.n_points();
         let jpath = self.journal_path.clone();
-        let done = &mut self.done;
-        let scan = journal::scan(&jpath, |r| {
-            if r.index < n_points {
-                done.insert(r.index);
-            }
-        })?;
+        let (mut scan, names_file) = self.scan_journal()?;
         if let Some(e) = scan.header.mismatch(want, &jpath) {
             return Err(e);
         }
-        self.resumed = self.done.count();
         self.dropped_bytes = scan.dropped_bytes;
+        let prev = previous_partial_path(&self.path);
+        if names_file {
+            // the chunks the interrupted run wrote into its file, back into the journal
+            self.recovered = by_reference::bring_back(&jpath, &scan, &prev)?;
+            (scan, _) = self.scan_journal()?;
+        }
+        remove_if_exists(&prev)?;
+        self.resumed = self.done.count();
         self.journal = Some(JournalWriter::append_to(&jpath, &scan)?);
         Ok(())
+    }
+
+    /// Scan the journal: its valid records are the points done; and whether some name
+    /// history chunks in the interrupted run's file.
+    fn scan_journal(&mut self) -> Result<(journal::Scan, bool), StoreError> {
+        let n_points = self.info.shape.n_points();
+        self.done = PointSet::new(n_points);
+        let (done, mut names_file) = (&mut self.done, false);
+        let scan = journal::scan(&self.journal_path, |r| {
+            if r.index < n_points {
+                done.insert(r.index);
+            }
+            names_file |= r.in_file;
+        })?;
+        Ok((scan, names_file))
     }
 
     /// Continue a finished (possibly partial, e.g. interrupted-then-finished) file: its
@@ -351,23 +390,53 @@ impl Session {
         if self.done.contains(index) {
             return Ok(());
         }
-        let j = self.journal.as_mut().expect("open session has a journal");
-        j.append(&rec.framed)?;
         self.done.insert(index);
         if let Some(g) = self.gathered.as_mut() {
             g.put(&rec.summary);
         }
-        if j.buffered_bytes() >= 1 << 22 || self.last_flush.elapsed() >= self.flush_interval {
-            j.flush()?;
-            self.last_flush = Instant::now();
-        }
-        self.sync_if_due()?;
         self.prepare_final_file()?;
-        self.place_histories(index, rec.has_history.then_some(rec.framed))
+        if rec.has_history && self.placer.is_some() {
+            // journalled once placed, by where its chunks went; if the placer holds it, whole
+            // at the next flush (`store::by_reference`)
+            self.unjournalled.insert(index);
+            self.place_histories(index, Some(rec.framed))?;
+        } else {
+            self.journal_mut().append(&rec.framed)?;
+            self.place_histories(index, None)?;
+        }
+        if self.last_flush.elapsed() >= self.flush_interval
+            || self.journal_mut().buffered_bytes() >= 1 << 22
+        {
+            self.flush_journal()?;
+        }
+        self.sync_if_due()
+    }
+
+    fn journal_mut(&mut self) -> &mut JournalWriter {
+        self.journal.as_mut().expect("open session has a journal")
+    }
+
+    /// Hand the journal's records to the OS, and first the records the placer holds that
+    /// are not in it yet, whole: a killed run loses no point that finished before the last
+    /// flush, as when every record was journalled on arrival.
+    fn flush_journal(&mut self) -> Result<(), StoreError> {
+        let Some(j) = self.journal.as_mut() else {
+            return Ok(());
+        };
+        if let Some(placer) = self.placer.as_ref() {
+            for index in std::mem::take(&mut self.unjournalled) {
+                j.append(placer.held(index).expect("a record not journalled is held"))?;
+            }
+        }
+        j.flush()?;
+        self.last_flush = Instant::now();
+        Ok(())
     }
 
     /// Hand a stored point to the placer, which writes the histories its cursor can now pass
-    /// into the final file (in flat-index order; `store::placer`).
+    /// into the final file (in flat-index order; `store::placer`). Each point it writes that
+    /// is not in the journal yet is journalled then, by where its chunks went (whole when
+    /// that is not known).
     fn place_histories(&mut self, index: usize, framed: Option<Vec<u8>>) -> Result<(), StoreError> {
         let Some(placer) = self.placer.as_mut() else {
             return Ok(());
@@ -376,12 +445,24 @@ impl Session {
             skeleton: &'a mut build::Skeleton,
             info: &'a StudyInfo,
             writeback: &'a mut Writeback,
+            /// The points not in the journal yet; the records of those placed, to journal,
+            /// and whether one names chunks in the file.
+            unjournalled: &'a mut BTreeSet<usize>,
+            records: Vec<Vec<u8>>,
+            names_file: bool,
         }
         impl Place for IntoFile<'_> {
             type Error = StoreError;
             fn place(&mut self, index: usize, framed: &[u8]) -> Result<(), StoreError> {
-                build::place_history(self.skeleton, self.info, index, framed)?;
+                let offsets = build::place_history(self.skeleton, self.info, index, framed)?;
                 self.writeback.wrote(framed.len());
+                if !self.unjournalled.remove(&index) {
+                    return Ok(());
+                }
+                match by_reference::record_in_file(framed, &offsets) {
+                    Some(r) => (self.records.push(r), self.names_file = true),
+                    None => (self.records.push(framed.to_vec()), ()),
+                };
                 Ok(())
             }
         }
@@ -392,8 +473,21 @@ impl Session {
                 .expect("prepared with the first record"),
             info: &self.info,
             writeback: &mut self.writeback,
+            unjournalled: &mut self.unjournalled,
+            records: Vec::new(),
+            names_file: false,
         };
-        if !placer.arrived(index, framed, &self.done, &mut file)? {
+        let kept_up = placer.arrived(index, framed, &self.done, &mut file)?;
+        let (records, names_file) = (file.records, file.names_file);
+        if names_file {
+            (self.names_file, self.names_unsynced) = (true, true);
+        }
+        for r in records {
+            self.journal_mut().append(&r)?;
+        }
+        if !kept_up {
+            // what it holds goes to the journal before the placer goes
+            self.flush_journal()?;
             let placer = self.placer.take().expect("checked above");
             self.history_tail = Some(placer.tail(false));
         }
@@ -403,30 +497,41 @@ impl Session {
     /// fsync the journal when `sync_interval` has passed since the last time.
     fn sync_if_due(&mut self) -> Result<(), StoreError> {
         if self.last_sync.elapsed() >= self.sync_interval {
-            if let Some(j) = self.journal.as_mut() {
-                j.sync()?;
-            }
+            self.sync_journal()?;
             self.last_sync = Instant::now();
         }
         Ok(())
+    }
+
+    /// Make the journal durable, and first the final file when the journal names chunks in
+    /// it that may not be durable yet.
+    fn sync_journal(&mut self) -> Result<(), StoreError> {
+        self.flush_journal()?;
+        if self.names_unsynced {
+            let partial = partial_path(&self.path);
+            self.writeback
+                .sync()
+                .map_err(|e| StoreError::io(&partial, "sync the unfinished file", e))?;
+            self.names_unsynced = false;
+        }
+        match self.journal.as_mut() {
+            Some(j) => j.sync(),
+            None => Ok(()),
+        }
     }
 
     /// Call when no record arrived for a while (e.g. on the channel's `recv_timeout`): hands
     /// buffered records to the OS, and fsyncs if one is due, so that slow points are not left
     /// only in this process's memory.
     pub fn idle(&mut self) -> Result<(), StoreError> {
-        let j = self.journal.as_mut().expect("open session has a journal");
-        j.flush()?;
-        self.last_flush = Instant::now();
+        self.flush_journal()?;
         self.sync_if_due()?;
         self.prepare_final_file()
     }
 
     /// Make everything written so far durable (e.g. on Ctrl-C, before exiting to resume later).
     pub fn flush(&mut self) -> Result<(), StoreError> {
-        if let Some(j) = self.journal.as_mut() {
-            j.sync()?;
-        }
+        self.sync_journal()?;
         self.last_flush = Instant::now();
         self.last_sync = Instant::now();
         Ok(())
@@ -439,6 +544,7 @@ impl Session {
         // To the OS, not fsync'd: the journal is removed only after the finished file is
         // fsync'd and renamed into place, and a power loss before that loses at most what an
         // unfinished run would (issue 7: one fsync less on every run's critical path).
+        self.flush_journal()?;
         let Some(mut j) = self.journal.take() else {
             return Err(self.reject("the session is already finished".into()));
         };
@@ -484,11 +590,10 @@ impl Session {
 
 impl Drop for Session {
     fn drop(&mut self) {
-        if let Some(j) = self.journal.as_mut() {
-            let _ = j.sync();
-        }
-        // a session dropped without finishing leaves no half-made final file behind
-        if self.skeleton.take().is_some() {
+        let _ = self.sync_journal();
+        // A session dropped without finishing leaves no half-made final file behind, unless
+        // its journal names history chunks in it: the resume reads them back from there.
+        if self.skeleton.take().is_some() && !self.names_file {
             let _ = std::fs::remove_file(partial_path(&self.path));
         }
     }

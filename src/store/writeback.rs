@@ -9,7 +9,8 @@
 //! work while the workers compute, and leaves the final fsync only the last few MiB and
 //! the metadata.
 //!
-//! It is only a hint: durability still comes from the final fsync, so a failed or
+//! It is only a hint: durability still comes from the final fsync (and from
+//! [`Writeback::sync`] before the journal names chunks in the file, `store::by_reference`), so a failed or
 //! unsupported request changes nothing but the time (and is ignored), and other systems
 //! than Linux skip it.
 
@@ -54,6 +55,17 @@ impl Writeback {
         if let Some(f) = &self.file {
             start_writeback(f);
         }
+    }
+}
+
+impl Writeback {
+    /// Make the file's bytes durable (`fdatasync`): before a journal record that names them
+    /// is (`store::by_reference`).
+    pub fn sync(&mut self) -> std::io::Result<()> {
+        if self.file.is_none() {
+            self.file = Some(File::open(&self.path)?);
+        }
+        self.file.as_ref().expect("opened above").sync_data()
     }
 }
 

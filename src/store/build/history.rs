@@ -149,12 +149,14 @@ pub enum HistoryTail {
 /// Write one point's histories: the chunks of its framed journal record (`framed`, made by
 /// `store::encode` on the worker), as they are. `store::placer` calls this in flat-index
 /// order while the run goes on; [`write_histories`] continues from where it stopped.
+/// Returns where in the file each chunk went, in the record's order, where that is known
+/// (`chunks::write_chunk_at_end`; the journal's record then names them, `store::by_reference`).
 pub fn place_history(
     sk: &mut Skeleton,
     info: &StudyInfo,
     index: usize,
     framed: &[u8],
-) -> Result<(), StoreError> {
+) -> Result<Vec<Option<u64>>, StoreError> {
     let out = sk.out.clone();
     let mut into = Into {
         created: &sk.history,
@@ -162,8 +164,10 @@ pub fn place_history(
         shapes: sk.shapes.as_mut(),
         info,
         out: &out,
+        offsets: Some((sk.f.id(), Vec::new())),
     };
-    into.point(index, &framed[REC_PREFIX..], &out, 0)
+    into.point(index, &framed[REC_PREFIX..], &out, 0)?;
+    Ok(into.offsets.map(|(_, o)| o).unwrap_or_default())
 }
 
 /// Where a point's histories go: the variables of [`create_history`], and the bats' mode
@@ -175,6 +179,8 @@ struct Into<'a> {
     shapes: Option<&'a mut BatShapes>,
     info: &'a StudyInfo,
     out: &'a Path,
+    /// The file's id and, chunk by chunk, where each went (when asked for).
+    offsets: Option<(hdf5_sys::h5i::hid_t, Vec<Option<u64>>)>,
 }
 
 impl Into<'_> {
@@ -208,6 +214,9 @@ impl Into<'_> {
             let tail = &shape[rank..];
             for (b, bytes) in pieces.by_ref().take(count).enumerate() {
                 if tail.iter().product::<usize>() == 0 {
+                    if let Some((_, o)) = self.offsets.as_mut() {
+                        o.push(None);
+                    }
                     continue;
                 }
                 let mut start = idx.clone();
@@ -215,8 +224,14 @@ impl Into<'_> {
                 if *k == l::MODAL_COORDINATE {
                     start[rank] = b * self.block;
                 }
-                chunks::write_chunk(ds, &start, bytes)
-                    .ctx_with(self.out, || format!("write a history of {}", ds.name()))?;
+                let what = || format!("write a history of {}", ds.name());
+                match self.offsets.as_mut() {
+                    Some((file, o)) => o.push(
+                        chunks::write_chunk_at_end(ds, *file, &start, bytes)
+                            .ctx_with(self.out, what)?,
+                    ),
+                    None => chunks::write_chunk(ds, &start, bytes).ctx_with(self.out, what)?,
+                }
             }
         }
         if let (Some(shapes), Some((rec, _))) =
@@ -248,6 +263,7 @@ pub(super) fn write_histories(
         shapes: sk.shapes.as_mut(),
         info,
         out,
+        offsets: None,
     };
     let from = match tail {
         HistoryTail::Held(held) => {
