@@ -108,6 +108,7 @@ fn a_journal_cut_inside_its_header_resumes_and_garbage_is_refused() {
         &b""[..],
         &b"BATSJ"[..],
         &b"BATSJRN2\x40\x00\x00\x00{\"a\""[..],
+        &b"BATSJRN3\x40\x00\x00\x00{\"a\""[..],
     ]
     .into_iter()
     .enumerate()
@@ -139,4 +140,45 @@ fn a_journal_cut_inside_its_header_resumes_and_garbage_is_refused() {
         std::fs::read(format!("{p}.journal")).unwrap(),
         b"not a journal at all"
     );
+}
+
+/// Each history written once (issue 37): a run killed with SIGKILL leaves `OUT.h5.partial`,
+/// whose history chunks its journal names instead of holding them, so the journal is a small
+/// fraction of the histories; `--resume` reads them back and completes the same data as an
+/// uninterrupted run, and leaves nothing behind.
+#[test]
+fn a_killed_run_journals_its_histories_by_their_place_in_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.yaml");
+    std::fs::write(&study, STUDY).unwrap();
+    let study = study.to_str().unwrap();
+    let reference = dir.path().join("reference.h5");
+    batstudy_ok(&["run", study, "-o", reference.to_str().unwrap(), "-q"]);
+    let want = data(&reference);
+
+    let path = dir.path().join("killed.h5");
+    let p = path.to_str().unwrap();
+    let (journal, partial) = (format!("{p}.journal"), format!("{p}.partial"));
+    let mut child = batstudy(&["run", study, "-o", p, "-j", "1", "-q"])
+        .spawn()
+        .unwrap();
+    // killed once the run has written a few hundred kB of histories, and handed its journal
+    // records to the OS (every 50 ms)
+    while std::fs::metadata(&partial).map_or(0, |m| m.len()) < 400_000 && !path.exists() {
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    std::thread::sleep(Duration::from_millis(60));
+    let _ = child.kill(); // SIGKILL
+    let _ = child.wait();
+    assert!(!path.exists(), "the run finished before it was killed");
+    let (j, f) = (
+        std::fs::metadata(&journal).unwrap().len(),
+        std::fs::metadata(&partial).unwrap().len(),
+    );
+    assert!(j * 5 < f, "journal {j} bytes, unfinished file {f}");
+    batstudy_ok(&["run", study, "-o", p, "-j", "2", "-q", "--resume"]);
+    assert_eq!(data(&path), want);
+    for left in [journal, partial, format!("{p}.partial.prev")] {
+        assert!(!Path::new(&left).exists(), "{left} left behind");
+    }
 }

@@ -416,6 +416,81 @@ fn torn_journal_resume_equals_uninterrupted() {
     assert_eq!(dump(&path), dump(&clean));
 }
 
+/// Each history written once (issue 37, `store::by_reference`): the points the placer wrote
+/// as they arrived are journalled by where their chunks are in `OUT.h5.partial`, not with
+/// them, and a session that ends unfinished keeps that file. The resume reads every chunk
+/// back, checked against its CRC-32, and completes the same file as an uninterrupted run;
+/// with the file damaged, the points whose chunks changed are dropped and computed again,
+/// and the result is still the same.
+#[test]
+fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F64);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+    let with_history = |k: usize| matches!(&outcome(&info, k), Ok(o) if o.history.is_some());
+    let first: Vec<usize> = (0..18).collect();
+    let in_file = first.iter().filter(|&&k| with_history(k)).count();
+    assert!(in_file >= 10, "{in_file} of 18 points have histories");
+
+    for damage in [false, true] {
+        let path = dir.path().join(format!("out-{damage}.h5"));
+        let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+        for &k in &first {
+            s.write(record(&info, k)).unwrap();
+        }
+        s.flush().unwrap();
+        drop(s); // killed: no finish
+        let (journal, partial) = (store::journal_path(&path), store::partial_path(&path));
+        assert!(partial.exists(), "the file the journal names is kept");
+        // the records with their histories in them, for scale
+        let encoder = store::RecordEncoder::new(&path, &info);
+        let whole: usize = first
+            .iter()
+            .map(|&k| encoder.encode(record(&info, k)).unwrap().framed.len())
+            .sum();
+        let len = std::fs::metadata(&journal).unwrap().len() as usize;
+        assert!(
+            len * 3 < whole * 2,
+            "journal {len} bytes, {whole} for the records with their histories"
+        );
+        if damage {
+            // one byte changed in the force history of each of the last three points placed
+            let places = all_chunks(&partial, "history");
+            let (_, force) = places.iter().find(|(name, _)| name == "force").unwrap();
+            let mut force = force.clone();
+            force.sort_by_key(|&(_, addr, _)| addr);
+            let mut bytes = std::fs::read(&partial).unwrap();
+            for (_, addr, size) in &force[force.len() - 3..] {
+                bytes[(addr + size / 2) as usize] ^= 0x5A;
+            }
+            std::fs::write(&partial, bytes).unwrap();
+        }
+
+        let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+        let r = s.recovered;
+        // every point with histories but the first, whose chunks made the variables' chunk
+        // indexes as they were written (so their places are not known: journalled whole)
+        assert_eq!(r.kept + r.dropped, in_file - 1, "{r:?}");
+        assert_eq!(r.dropped, if damage { 3 } else { 0 }, "{r:?}");
+        assert_eq!(s.n_done(), first.len() - r.dropped);
+        let prev = path.with_extension("h5.partial.prev");
+        assert!(
+            !prev.exists(),
+            "the set-aside file is removed once read back"
+        );
+        for k in 0..27 {
+            if !s.is_done(k) {
+                s.write(record(&info, k)).unwrap();
+            }
+        }
+        s.finish().unwrap();
+        assert_eq!(dump(&path), dump(&clean), "damaged: {damage}");
+        assert!(!partial.exists() && !journal.exists());
+    }
+}
+
 #[test]
 fn resume_from_finished_partial_file() {
     let _g = shared();

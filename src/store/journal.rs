@@ -114,7 +114,11 @@ pub const IN_FILE: u32 = 1 << 31;
 pub enum Piece<'a> {
     Bytes(&'a [u8]),
     /// `len` bytes at offset `at` of `OUT.h5.partial`, whose CRC-32 is `sum`.
-    InFile { at: u64, len: u32, sum: u32 },
+    InFile {
+        at: u64,
+        len: u32,
+        sum: u32,
+    },
 }
 
 /// Append a reference to a history chunk in the results file to a payload ([`Piece::InFile`]).

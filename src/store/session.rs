@@ -4,12 +4,12 @@
 //! [`begin`] makes the file's skeleton ahead of the session.
 
 use super::build;
+use super::by_reference::{self, Recovered};
 use super::encode::{EncodedRecord, RecordEncoder};
 use super::error::StoreError;
 use super::header::JournalHeader;
 use super::journal::{self, JournalWriter};
 use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
-use super::by_reference::{self, Recovered};
 use super::paths::{
     journal_path, partial_path, previous_partial_path, remove_if_exists, set_aside_partial,
 };
