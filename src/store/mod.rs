@@ -1,12 +1,14 @@
 //! The HDF5 results store (docs/layout.md): one study → one self-describing HDF5 file.
 //!
 //! Crash safety: finished points are appended to `OUT.h5.journal` (checksummed records,
-//! handed to the OS every 50 ms and fsync'd every second); the journal is the only state
-//! while a run is in progress. [`Session::finish`] writes `OUT.h5.partial` from the journal,
-//! fsyncs it, renames it to `OUT.h5` and only then removes the journal. A run killed at any
-//! moment therefore leaves either a journal (whose torn tail, if any, is dropped on resume) or
-//! a finished file; `--resume` continues from the journal, or from the finished file's records
-//! when no journal is left. The final file's data depend only on the set of records, never on
+//! handed to the OS every 50 ms and fsync'd every second); the journal is the source of truth
+//! while a run is in progress. The histories the placer has written into `OUT.h5.partial` are
+//! journalled by where they are there, each chunk with its checksum ([`by_reference`]).
+//! [`Session::finish`] completes `OUT.h5.partial` from the journal, fsyncs it, renames it to
+//! `OUT.h5` and only then removes the journal. A run killed at any moment therefore leaves
+//! either a journal (whose torn tail, if any, is dropped on resume; the chunks it names are
+//! read back from the killed run's file and checked) or a finished file; `--resume` continues
+//! from the journal, or from the finished file's records when no journal is left. The final file's data depend only on the set of records, never on
 //! their order or on interruptions, so a resumed run's data equal an uninterrupted run's.
 //!
 //! Modules, from the bottom up: [`layout`] (names, units), [`error`], [`header`] (what
@@ -14,7 +16,8 @@
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
 //! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
 //! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
-//! [`session`] (an open output), [`writeback`] (the final file sent to the disk as it is
+//! [`by_reference`] (histories journalled by their place in the file), [`session`] (an open
+//! output), [`writeback`] (the final file sent to the disk as it is
 //! written), [`merge`](mod@merge) (shards → one file), [`lock`] (one
 //! process per output).
 
