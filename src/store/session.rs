@@ -418,14 +418,18 @@ impl Session {
 
     /// Hand the journal's records to the OS, and first the records the placer holds that
     /// are not in it yet, whole: a killed run loses no point that finished before the last
-    /// flush, as when every record was journalled on arrival.
+    /// flush, as when every record was journalled on arrival. (A record neither held nor
+    /// journalled is one whose placing failed: the run stops with that error, and its point
+    /// is computed again on resume.)
     fn flush_journal(&mut self) -> Result<(), StoreError> {
         let Some(j) = self.journal.as_mut() else {
             return Ok(());
         };
         if let Some(placer) = self.placer.as_ref() {
             for index in std::mem::take(&mut self.unjournalled) {
-                j.append(placer.held(index).expect("a record not journalled is held"))?;
+                if let Some(framed) = placer.held(index) {
+                    j.append(framed)?;
+                }
             }
         }
         j.flush()?;
