@@ -79,6 +79,18 @@ fn bench_quick_reports_every_section_and_no_targets() {
     );
     assert!(wh.modal_file_bytes_per_point < wh.file_bytes_per_point);
     assert!(wh.modal_headroom > 0.0 && wh.modal_disk_headroom > 0.0);
+    // issue 37: each history written once. On one thread the records come in order and the
+    // writer places each as it comes, so the journal names where the histories are instead
+    // of holding them: a small part of the file's bytes (it held them all before).
+    for (journal, file) in [
+        (wh.journal_bytes_per_point, wh.file_bytes_per_point),
+        (
+            wh.modal_journal_bytes_per_point,
+            wh.modal_file_bytes_per_point,
+        ),
+    ] {
+        assert!(journal > 0.0 && journal * 4.0 < file, "{journal} {file}");
+    }
     let m = &r.memory;
     assert_eq!(m.large_summary.points, 10_000);
     assert!(m.history_bytes_in_memory > 0);
@@ -148,6 +160,8 @@ fn bench_quick_json_has_every_section_and_key() {
         "disk_bytes_per_second",
         "disk_headroom",
         "modal_file_bytes_per_point",
+        "journal_bytes_per_point",
+        "modal_journal_bytes_per_point",
         "modal_worker_points_per_second",
         "modal_writer_points_per_second",
         "modal_headroom",

@@ -36,6 +36,9 @@ pub struct WriterHeadroom {
     pub headroom: f64,
     /// Bytes of the finished file per point (the histories, nearly all of it).
     pub file_bytes_per_point: f64,
+    /// Bytes of the journal per point just before the finish (issue 37: the histories the
+    /// writer placed in the file as they came are journalled by their place there).
+    pub journal_bytes_per_point: f64,
     /// The disk under the bench's directory: bytes/s of a sequential write made durable
     /// (`fdatasync`), pseudo-random bytes so that no layer can skip them.
     pub disk_bytes_per_second: f64,
@@ -46,6 +49,7 @@ pub struct WriterHeadroom {
     pub disk_headroom: f64,
     /// The same history study with the displacement in modal form: the figures above.
     pub modal_file_bytes_per_point: f64,
+    pub modal_journal_bytes_per_point: f64,
     pub modal_worker_points_per_second: f64,
     pub modal_worker_encode_share: f64,
     pub modal_writer_points_per_second: f64,
@@ -67,6 +71,7 @@ struct WriterRun {
     worker: f64,
     encode_share: f64,
     file_bytes_per_point: f64,
+    journal_bytes_per_point: f64,
 }
 
 /// Seconds spent computing, encoding and appending (the worker's and the writer's sides
@@ -144,6 +149,7 @@ fn writer_run(name: &str, block: &str, omegas: usize, dir: &Path) -> Result<Writ
     let mut session =
         store::open(&path, &info, &store::StoreOptions::default()).map_err(err("open"))?;
     let s = compute_encode_append(&study, &bats, history.as_ref(), &mut session)?;
+    let journal_bytes = session.journal_bytes() as f64;
     let t0 = Instant::now();
     session.finish().map_err(err("finish"))?;
     let finish = t0.elapsed().as_secs_f64();
@@ -158,6 +164,7 @@ fn writer_run(name: &str, block: &str, omegas: usize, dir: &Path) -> Result<Writ
         worker: n / (s.compute + s.encode),
         encode_share: s.encode / (s.compute + s.encode),
         file_bytes_per_point,
+        journal_bytes_per_point: journal_bytes / n,
     })
 }
 
@@ -181,10 +188,12 @@ pub(super) fn bench_writer_headroom(
         worker_encode_share: g.encode_share,
         headroom: g.writer / g.worker,
         file_bytes_per_point: g.file_bytes_per_point,
+        journal_bytes_per_point: g.journal_bytes_per_point,
         disk_bytes_per_second: disk,
         disk_probe_mib: disk_mib,
         disk_headroom: disk / (g.file_bytes_per_point * g.worker),
         modal_file_bytes_per_point: m.file_bytes_per_point,
+        modal_journal_bytes_per_point: m.journal_bytes_per_point,
         modal_worker_points_per_second: m.worker,
         modal_worker_encode_share: m.encode_share,
         modal_writer_points_per_second: m.writer,

@@ -247,6 +247,15 @@ pub(super) fn print_headroom(out: &mut dyn Write, wh: &WriterHeadroom, cores: us
             wh.modal_disk_headroom
         ),
     );
+    line(
+        out,
+        format!(
+            "the journal: {:.1} KB per history point on the grid, {:.1} KB in modal form (the \
+             histories placed in the file as they came are journalled by their place there)",
+            wh.journal_bytes_per_point / 1e3,
+            wh.modal_journal_bytes_per_point / 1e3
+        ),
+    );
     for (form, headroom, disk) in [
         ("grid", wh.headroom, wh.disk_headroom),
         ("modal", wh.modal_headroom, wh.modal_disk_headroom),

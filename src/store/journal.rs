@@ -614,6 +614,11 @@ impl JournalWriter {
         ))
     }
 
+    /// Bytes written and buffered: the header and every record appended.
+    pub fn bytes(&self) -> u64 {
+        self.len
+    }
+
     /// What a scan of this journal would find once it is flushed: the header it was created
     /// (or scanned) with and every record appended. The writer knows its own extent, so
     /// finishing a run need not read the journal twice (issue 7).

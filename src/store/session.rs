@@ -332,6 +332,12 @@ impl Session {
         self.done.contains(index)
     }
 
+    /// Bytes of the journal so far, written and buffered (what a history point costs the
+    /// journal: `batstudy bench`).
+    pub fn journal_bytes(&self) -> u64 {
+        self.journal.as_ref().map_or(0, JournalWriter::bytes)
+    }
+
     /// Number of points stored so far (including those recovered on resume).
     pub fn n_done(&self) -> usize {
         self.done.count()
