@@ -587,6 +587,8 @@ impl Session {
         std::fs::File::open(&partial)
             .and_then(|f| f.sync_all())
             .map_err(|e| StoreError::io(&partial, "sync the finished file", e))?;
+        // durable whole: nothing left for the drop to sync
+        self.names_unsynced = false;
         std::fs::rename(&partial, &self.path)
             .map_err(|e| StoreError::io(&self.path, "rename the finished file into place", e))?;
         journal::sync_parent_dir(&self.path);
