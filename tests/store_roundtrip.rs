@@ -491,6 +491,52 @@ fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
     }
 }
 
+/// The file a resume reads chunks back from is only ever read, and never through a
+/// symbolic link: one planted in place of the killed run's `OUT.h5.partial` (pointing at a
+/// copy of it) is set aside as it is, not followed, so every point it would have given is
+/// computed again and the copy is left as it was; a stale `OUT.h5.partial.prev` does not
+/// outlive a fresh run's start.
+#[test]
+fn a_planted_link_is_not_followed_and_a_stale_set_aside_file_is_removed() {
+    let _g = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let info = study(true, HistoryPrecision::F64);
+    let clean = dir.path().join("clean.h5");
+    full_run(&info, &clean);
+    let path = dir.path().join("out.h5");
+    let prev = path.with_extension("h5.partial.prev");
+    std::fs::write(&prev, b"stale").unwrap();
+    let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+    assert!(!prev.exists(), "a fresh run removes a stale set-aside file");
+    for k in 0..18 {
+        s.write(record(&info, k)).unwrap();
+    }
+    s.flush().unwrap();
+    drop(s); // killed
+    let partial = store::partial_path(&path);
+    let copy = dir.path().join("elsewhere.h5");
+    std::fs::rename(&partial, &copy).unwrap();
+    std::os::unix::fs::symlink(&copy, &partial).unwrap();
+    let before = std::fs::read(&copy).unwrap();
+
+    let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+    assert_eq!(s.recovered.kept, 0, "{:?}", s.recovered);
+    assert!(s.recovered.dropped > 0, "{:?}", s.recovered);
+    for k in 0..27 {
+        if !s.is_done(k) {
+            s.write(record(&info, k)).unwrap();
+        }
+    }
+    s.finish().unwrap();
+    assert_eq!(dump(&path), dump(&clean));
+    assert_eq!(
+        std::fs::read(&copy).unwrap(),
+        before,
+        "the link's target untouched"
+    );
+    assert!(!prev.exists() && !partial.exists());
+}
+
 #[test]
 fn resume_from_finished_partial_file() {
     let _g = shared();
