@@ -492,8 +492,13 @@ impl Session {
         if names_file {
             (self.names_file, self.names_unsynced) = (true, true);
         }
-        for r in records {
-            self.journal_mut().append(&r)?;
+        if !records.is_empty() {
+            // to the OS at once, as the whole records were: a kill loses no point placed
+            let j = self.journal_mut();
+            for r in records {
+                j.append(&r)?;
+            }
+            j.flush()?;
         }
         if !kept_up {
             // what it holds goes to the journal before the placer goes
