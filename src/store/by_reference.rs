@@ -15,7 +15,7 @@
 //!   process loses neither. Before the journal is made durable, the file is
 //!   (`Session::sync_if_due`), so a power loss does not lose them either.
 //! - A killed or interrupted run leaves its `OUT.h5.partial` in place. The next run sets it
-//!   aside as `OUT.h5.partial.prev` before it begins its own (`Session`'s `set_aside_partial`).
+//!   aside as `OUT.h5.partial.prev` before it begins its own (`paths::set_aside_partial`).
 //! - On resume, [`bring_back`] rewrites the journal whole: each chunk is read back from
 //!   the set-aside file at its offset and checked against its length and CRC-32. A record
 //!   with a chunk missing or changed is dropped, and its point is computed again.
