@@ -353,23 +353,30 @@ fn code_lengths(freq: &[u32], limit: u8) -> Vec<u8> {
 /// The depth of each leaf of a Huffman tree over `used` (packed frequency and symbol,
 /// ascending), handed to `each`.
 fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
-    // two queues: the leaves (sorted) and the merged nodes (made in ascending order); the
-    // nodes' weights and parents only (a leaf's weight is in `used`)
+    // Two queues: the leaves (sorted) and the merged nodes (made in ascending order); the
+    // nodes' weights and parents only. On the stack, and the lighter of the two heads taken
+    // without a branch (a leaf on a tie): an exhausted queue's head weighs more than any
+    // node, so that which queue gives the next node is a select, where a branch mispredicted
+    // half the time (issue 37: 1.2 of the 2.3 µs a code took).
     let n = used.len();
-    let mut weight = vec![0u64; n];
-    let mut parent = vec![0u16; 2 * n - 1];
+    let mut leaves = [u64::MAX; SYMBOLS + 1];
+    leaves[..n]
+        .iter_mut()
+        .zip(used)
+        .for_each(|(l, &u)| *l = u >> 16);
+    let mut weight = [u64::MAX; SYMBOLS];
+    let mut parent = [0u16; 2 * SYMBOLS];
     let (mut leaf, mut node) = (0, 0);
     for made in 0..n - 1 {
         let mut take = || {
-            let from_leaf = leaf < n && (node >= made || used[leaf] >> 16 <= weight[node]);
+            let (lw, nw) = (leaves[leaf], weight[node]);
+            let from_leaf = lw <= nw;
             let (i, w) = match from_leaf {
-                true => (leaf, used[leaf] >> 16),
-                false => (n + node, weight[node]),
+                true => (leaf, lw),
+                false => (n + node, nw),
             };
-            match from_leaf {
-                true => leaf += 1,
-                false => node += 1,
-            }
+            leaf += usize::from(from_leaf);
+            node += usize::from(!from_leaf);
             (i, w)
         };
         let ((a, wa), (b, wb)) = (take(), take());
@@ -377,7 +384,7 @@ fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
         parent[a] = (n + made) as u16;
         parent[b] = (n + made) as u16;
     }
-    let mut depth = vec![0u16; 2 * n - 1];
+    let mut depth = [0u16; 2 * SYMBOLS];
     for i in (0..2 * n - 2).rev() {
         depth[i] = depth[usize::from(parent[i])] + 1;
     }
