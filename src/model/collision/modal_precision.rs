@@ -62,6 +62,31 @@ impl ModalRounding {
     fn largest_displacement(&self, m: &ModalHistory) -> f64 {
         let n = m.modes;
         let mut largest = 0.0_f64;
+        let probes = match self.probe_shapes.as_slice() {
+            [a, b, c] if a.len() == n && b.len() == n && c.len() == n => [a, b, c],
+            _ => return self.largest_displacement_by_probe(m),
+        };
+        for (t, q) in m.coordinate.chunks_exact(n.max(1)).enumerate() {
+            let p = m.bat_load.get(t).copied().unwrap_or(0.0);
+            // the three probes' sums side by side, each in the order of its modes: three
+            // independent chains where one after the other waited on each addition
+            let mut y = [0.0_f64; 3];
+            for (j, &qj) in q.iter().enumerate() {
+                for (yk, phi) in y.iter_mut().zip(probes) {
+                    *yk += phi[j] * qj;
+                }
+            }
+            for (yk, s) in y.iter().zip(&self.probe_static) {
+                largest = largest.max((yk + s * p).abs());
+            }
+        }
+        largest
+    }
+
+    /// [`Self::largest_displacement`] one probe at a time (any number of probes).
+    fn largest_displacement_by_probe(&self, m: &ModalHistory) -> f64 {
+        let n = m.modes;
+        let mut largest = 0.0_f64;
         for (t, q) in m.coordinate.chunks_exact(n.max(1)).enumerate() {
             let p = m.bat_load.get(t).copied().unwrap_or(0.0);
             for (phi, s) in self.probe_shapes.iter().zip(&self.probe_static) {
@@ -83,10 +108,10 @@ impl ModalRounding {
         // shape's errors (at most a share: neither error exceeds its value)
         let terms = (m.modes + 3) as f64;
         let share = 0.5 * f32_ulp(y_max) / terms;
-        let steps: Vec<f64> = self
+        let steps: Vec<Step> = self
             .shape_max
             .iter()
-            .map(|&phi| step_for(share, phi))
+            .map(|&phi| Step::new(step_for(share, phi)))
             .collect();
         for row in m.coordinate.chunks_exact_mut(m.modes.max(1)) {
             for (q, &step) in row.iter_mut().zip(&steps) {
@@ -95,11 +120,11 @@ impl ModalRounding {
         }
         let largest = |v: &[f64]| v.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
         let (s_max, p_max) = (largest(&m.static_shape), largest(&m.bat_load));
-        let load_step = step_for(share, s_max);
+        let load_step = Step::new(step_for(share, s_max));
         m.bat_load
             .iter_mut()
             .for_each(|p| *p = round_to(*p, load_step));
-        let shape_step = step_for(share, p_max);
+        let shape_step = Step::new(step_for(share, p_max));
         m.static_shape
             .iter_mut()
             .for_each(|s| *s = round_to(*s, shape_step));
@@ -126,14 +151,31 @@ fn step_for(share: f64, weight: f64) -> f64 {
 /// (to the nearest, ties to even), in two additions where `f64::round` is a libm call.
 const ROUND_TO_INTEGER: f64 = 6_755_399_441_055_744.0;
 
+/// A power-of-two step and its reciprocal, computed once: a division for every value
+/// rounded was most of the rounding's time (issue 37).
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    size: f64,
+    inverse: f64,
+}
+
+impl Step {
+    fn new(size: f64) -> Self {
+        Step {
+            size,
+            inverse: 1.0 / size, // exact: a power of two (∞ for 0, which keeps x)
+        }
+    }
+}
+
 /// `x` to the nearest multiple of `step` (a power of two; 0 keeps x): exact in f64, the
-/// division and product only move the exponent. +0.0 for zero (a −0.0 would count as a
-/// value when the store trims zero modes). A value already coarser than the step (|x| ≥
-/// 2^51 steps) is kept as it is.
-fn round_to(x: f64, step: f64) -> f64 {
-    let y = x * (1.0 / step); // exact: a power of two
-    match step.is_normal() && y.abs() < 2_251_799_813_685_248.0 {
-        true => ((y + ROUND_TO_INTEGER) - ROUND_TO_INTEGER) * step,
+/// product by the reciprocal and by the step only move the exponent. +0.0 for zero (a −0.0
+/// would count as a value when the store trims zero modes). A value already coarser than
+/// the step (|x| ≥ 2^51 steps) is kept as it is.
+fn round_to(x: f64, step: Step) -> f64 {
+    let y = x * step.inverse;
+    match step.size.is_normal() && y.abs() < 2_251_799_813_685_248.0 {
+        true => ((y + ROUND_TO_INTEGER) - ROUND_TO_INTEGER) * step.size,
         false => x,
     }
 }
@@ -147,7 +189,7 @@ mod tests {
     fn rounding_is_within_half_a_step() {
         let step = 2f64.powi(-30);
         for x in [1.234_567_890_123e-3, -7.7e-9, 3.0e-10, -1.0e-12, 0.0] {
-            let r = round_to(x, step);
+            let r = round_to(x, Step::new(step));
             assert!((r - x).abs() <= step / 2.0, "{x}");
             assert_eq!((r / step).fract(), 0.0, "{x}: a multiple of the step");
             assert!(r.to_bits() != (-0.0_f64).to_bits(), "{x}: no −0.0");
