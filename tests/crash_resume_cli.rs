@@ -35,16 +35,29 @@ fn data(path: &Path) -> (Vec<String>, Vec<u64>) {
     )
 }
 
+/// The study written into `dir`, and its uninterrupted run there (`-j 2`): their paths.
+fn study_and_reference(dir: &Path) -> (String, std::path::PathBuf) {
+    let study = dir.join("study.yaml");
+    std::fs::write(&study, STUDY).unwrap();
+    let reference = dir.join("reference.h5");
+    let study = study.to_str().unwrap().to_string();
+    batstudy_ok(&[
+        "run",
+        &study,
+        "-o",
+        reference.to_str().unwrap(),
+        "-j",
+        "2",
+        "-q",
+    ]);
+    (study, reference)
+}
+
 #[test]
 fn killed_runs_resume_to_the_uninterrupted_result() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.yaml");
-    std::fs::write(&study, STUDY).unwrap();
-    let study = study.to_str().unwrap();
-
-    let reference = dir.path().join("reference.h5");
-    let r = reference.to_str().unwrap();
-    batstudy_ok(&["run", study, "-o", r, "-j", "2", "-q"]);
+    let (study, reference) = study_and_reference(dir.path());
+    let study = study.as_str();
     let want = data(&reference);
     assert_eq!(want.0.len(), 5 * 3 * 111);
     assert!(want.1.iter().any(|&x| x != 0), "mode shapes written");
@@ -97,11 +110,8 @@ fn killed_runs_resume_to_the_uninterrupted_result() {
 #[test]
 fn a_journal_cut_inside_its_header_resumes_and_garbage_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.yaml");
-    std::fs::write(&study, STUDY).unwrap();
-    let study = study.to_str().unwrap();
-    let reference = dir.path().join("reference.h5");
-    batstudy_ok(&["run", study, "-o", reference.to_str().unwrap(), "-q"]);
+    let (study, reference) = study_and_reference(dir.path());
+    let study = study.as_str();
     let header = std::fs::read(format!("{}.journal", reference.to_str().unwrap())).ok();
     assert!(header.is_none(), "a finished run leaves no journal");
     for (k, bytes) in [
@@ -149,11 +159,8 @@ fn a_journal_cut_inside_its_header_resumes_and_garbage_is_refused() {
 #[test]
 fn a_killed_run_journals_its_histories_by_their_place_in_the_file() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.yaml");
-    std::fs::write(&study, STUDY).unwrap();
-    let study = study.to_str().unwrap();
-    let reference = dir.path().join("reference.h5");
-    batstudy_ok(&["run", study, "-o", reference.to_str().unwrap(), "-q"]);
+    let (study, reference) = study_and_reference(dir.path());
+    let study = study.as_str();
     let want = data(&reference);
 
     let path = dir.path().join("killed.h5");

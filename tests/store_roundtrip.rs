@@ -264,6 +264,27 @@ fn full_run(info: &StudyInfo, path: &Path) -> store::Summary {
     s.finish().unwrap()
 }
 
+/// A fresh session of `path` that stores `points`, in that order, and is killed: flushed,
+/// then dropped without finishing.
+fn killed_after(path: &Path, info: &StudyInfo, points: &[usize]) {
+    let mut s = store::open(path, info, &opts(false, false)).unwrap();
+    for &k in points {
+        s.write(record(info, k)).unwrap();
+    }
+    s.flush().unwrap();
+    drop(s);
+}
+
+/// Store every point `s` does not have yet, and finish.
+fn complete(mut s: store::Session, info: &StudyInfo) {
+    for k in 0..info.shape.n_points() {
+        if !s.is_done(k) {
+            s.write(record(info, k)).unwrap();
+        }
+    }
+    s.finish().unwrap();
+}
+
 /// Everything a file holds, as a comparable string (f64 Debug round-trips bits).
 fn dump(path: &Path) -> String {
     let back = store::read_results(path).unwrap();
@@ -436,12 +457,7 @@ fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
 
     for damage in [false, true] {
         let path = dir.path().join(format!("out-{damage}.h5"));
-        let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
-        for &k in &first {
-            s.write(record(&info, k)).unwrap();
-        }
-        s.flush().unwrap();
-        drop(s); // killed: no finish
+        killed_after(&path, &info, &first);
         let (journal, partial) = (store::journal_path(&path), store::partial_path(&path));
         assert!(partial.exists(), "the file the journal names is kept");
         // the records with their histories in them, for scale
@@ -468,7 +484,7 @@ fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
             std::fs::write(&partial, bytes).unwrap();
         }
 
-        let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+        let s = store::open(&path, &info, &opts(true, false)).unwrap();
         let r = s.recovered;
         // every point with histories but the first, whose chunks made the variables' chunk
         // indexes as they were written (so their places are not known: journalled whole)
@@ -480,12 +496,7 @@ fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
             !prev.exists(),
             "the set-aside file is removed once read back"
         );
-        for k in 0..27 {
-            if !s.is_done(k) {
-                s.write(record(&info, k)).unwrap();
-            }
-        }
-        s.finish().unwrap();
+        complete(s, &info);
         assert_eq!(dump(&path), dump(&clean), "damaged: {damage}");
         assert!(!partial.exists() && !journal.exists());
     }
@@ -506,28 +517,18 @@ fn a_planted_link_is_not_followed_and_a_stale_set_aside_file_is_removed() {
     let path = dir.path().join("out.h5");
     let prev = path.with_extension("h5.partial.prev");
     std::fs::write(&prev, b"stale").unwrap();
-    let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
+    killed_after(&path, &info, &(0..18).collect::<Vec<_>>());
     assert!(!prev.exists(), "a fresh run removes a stale set-aside file");
-    for k in 0..18 {
-        s.write(record(&info, k)).unwrap();
-    }
-    s.flush().unwrap();
-    drop(s); // killed
     let partial = store::partial_path(&path);
     let copy = dir.path().join("elsewhere.h5");
     std::fs::rename(&partial, &copy).unwrap();
     std::os::unix::fs::symlink(&copy, &partial).unwrap();
     let before = std::fs::read(&copy).unwrap();
 
-    let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+    let s = store::open(&path, &info, &opts(true, false)).unwrap();
     assert_eq!(s.recovered.kept, 0, "{:?}", s.recovered);
     assert!(s.recovered.dropped > 0, "{:?}", s.recovered);
-    for k in 0..27 {
-        if !s.is_done(k) {
-            s.write(record(&info, k)).unwrap();
-        }
-    }
-    s.finish().unwrap();
+    complete(s, &info);
     assert_eq!(dump(&path), dump(&clean));
     assert_eq!(
         std::fs::read(&copy).unwrap(),
@@ -553,14 +554,9 @@ fn resume_from_finished_partial_file() {
     let sum = s.finish().unwrap();
     assert_eq!((sum.n_done, sum.n_points), (10, 27));
     assert!(store::inspect(&path).unwrap().contains("17 not computed"));
-    let mut s = store::open(&path, &info, &opts(true, false)).unwrap();
+    let s = store::open(&path, &info, &opts(true, false)).unwrap();
     assert_eq!(s.n_done(), 10);
-    for k in 0..27 {
-        if !s.is_done(k) {
-            s.write(record(&info, k)).unwrap();
-        }
-    }
-    s.finish().unwrap();
+    complete(s, &info);
     assert_eq!(dump(&path), dump(&clean));
 }
 
