@@ -166,9 +166,12 @@ pub fn history_chunks(payload: &[u8]) -> Option<Vec<&[u8]>> {
 
 /// Whether a payload holds histories of which some are in the results file.
 pub(super) fn refers_to_file(payload: &[u8]) -> bool {
-    decode_summary(payload).is_some_and(|(_, history)| history)
-        && history_pieces(payload)
-            .is_some_and(|p| p.iter().any(|p| matches!(p, Piece::InFile { .. })))
+    decode_summary(payload).is_some_and(|(_, history)| history) && names_file_chunks(payload)
+}
+
+/// Whether the history chunks after a payload's summary name some in the results file.
+fn names_file_chunks(payload: &[u8]) -> bool {
+    history_pieces(payload).is_some_and(|p| p.iter().any(|p| matches!(p, Piece::InFile { .. })))
 }
 
 struct Cursor<'a> {
@@ -370,7 +373,7 @@ pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, Stor
             index: rec.index,
             id: rec.id,
             ok: rec.result.is_ok(),
-            in_file: has_history && refers_to_file(&payload),
+            in_file: has_history && names_file_chunks(&payload),
         });
         pos += REC_PREFIX as u64 + len;
     }

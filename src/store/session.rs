@@ -469,10 +469,9 @@ impl Session {
                 if !self.unjournalled.remove(&index) {
                     return Ok(());
                 }
-                match by_reference::record_in_file(framed, &offsets) {
-                    Some(r) => (self.records.push(r), self.names_file = true),
-                    None => (self.records.push(framed.to_vec()), ()),
-                };
+                let record = by_reference::record_in_file(framed, &offsets);
+                self.names_file |= record.is_some();
+                self.records.push(record.unwrap_or_else(|| framed.to_vec()));
                 Ok(())
             }
         }

@@ -49,23 +49,23 @@ impl Writeback {
             return;
         }
         self.pending = 0;
-        if self.file.is_none() {
-            self.file = File::open(&self.path).ok();
-        }
-        if let Some(f) = &self.file {
+        if let Ok(f) = self.opened() {
             start_writeback(f);
         }
     }
-}
 
-impl Writeback {
     /// Make the file's bytes durable (`fdatasync`): before a journal record that names them
     /// is (`store::by_reference`).
     pub fn sync(&mut self) -> std::io::Result<()> {
+        self.opened()?.sync_data()
+    }
+
+    /// The file, opened at the first request that needs it.
+    fn opened(&mut self) -> std::io::Result<&File> {
         if self.file.is_none() {
             self.file = Some(File::open(&self.path)?);
         }
-        self.file.as_ref().expect("opened above").sync_data()
+        Ok(self.file.as_ref().expect("opened above"))
     }
 }
 
