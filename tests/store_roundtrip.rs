@@ -264,6 +264,14 @@ fn full_run(info: &StudyInfo, path: &Path) -> store::Summary {
     s.finish().unwrap()
 }
 
+/// The history study (f64 histories) and its uninterrupted run, `DIR/clean.h5`.
+fn history_study_run_clean(dir: &Path) -> (StudyInfo, PathBuf) {
+    let info = study(true, HistoryPrecision::F64);
+    let clean = dir.join("clean.h5");
+    full_run(&info, &clean);
+    (info, clean)
+}
+
 /// A fresh session of `path` that stores `points`, in that order, and is killed: flushed,
 /// then dropped without finishing.
 fn killed_after(path: &Path, info: &StudyInfo, points: &[usize]) {
@@ -447,9 +455,7 @@ fn torn_journal_resume_equals_uninterrupted() {
 fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
     let _g = shared();
     let dir = tempfile::tempdir().unwrap();
-    let info = study(true, HistoryPrecision::F64);
-    let clean = dir.path().join("clean.h5");
-    full_run(&info, &clean);
+    let (info, clean) = history_study_run_clean(dir.path());
     let with_history = |k: usize| matches!(&outcome(&info, k), Ok(o) if o.history.is_some());
     let first: Vec<usize> = (0..18).collect();
     let in_file = first.iter().filter(|&&k| with_history(k)).count();
@@ -511,9 +517,7 @@ fn histories_journalled_by_place_resume_and_damage_is_recomputed() {
 fn a_planted_link_is_not_followed_and_a_stale_set_aside_file_is_removed() {
     let _g = shared();
     let dir = tempfile::tempdir().unwrap();
-    let info = study(true, HistoryPrecision::F64);
-    let clean = dir.path().join("clean.h5");
-    full_run(&info, &clean);
+    let (info, clean) = history_study_run_clean(dir.path());
     let path = dir.path().join("out.h5");
     let prev = path.with_extension("h5.partial.prev");
     std::fs::write(&prev, b"stale").unwrap();
@@ -543,9 +547,7 @@ fn resume_from_finished_partial_file() {
     let _g = shared();
     // interrupted, then finished incomplete (e.g. Ctrl-C path or a shard), then resumed
     let dir = tempfile::tempdir().unwrap();
-    let info = study(true, HistoryPrecision::F64);
-    let clean = dir.path().join("clean.h5");
-    full_run(&info, &clean);
+    let (info, clean) = history_study_run_clean(dir.path());
     let path = dir.path().join("out.h5");
     let mut s = store::open(&path, &info, &opts(false, false)).unwrap();
     for k in 0..10 {
@@ -659,9 +661,7 @@ fn child_writer() {
 fn kill9_at_several_moments() {
     let _g = SERIAL.write().unwrap_or_else(|e| e.into_inner());
     let dir = tempfile::tempdir().unwrap();
-    let info = study(true, HistoryPrecision::F64);
-    let clean = dir.path().join("clean.h5");
-    full_run(&info, &clean);
+    let (_, clean) = history_study_run_clean(dir.path());
     let exe = std::env::current_exe().unwrap();
     for (n, ms) in [30u64, 120, 250, 600].into_iter().enumerate() {
         let path = dir.path().join(format!("k{n}.h5"));
