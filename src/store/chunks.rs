@@ -48,6 +48,7 @@ macro_rules! chunk_value {
             fn write_le(self, out: &mut [u8]) {
                 out[..Self::SIZE].copy_from_slice(&self.to_le_bytes());
             }
+            #[inline(always)]
             fn le_word(self) -> u64 {
                 let mut b = [0u8; 8];
                 b[..Self::SIZE].copy_from_slice(&self.to_le_bytes());
@@ -139,21 +140,75 @@ pub fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     run_huffman::zlib_planes(&shuffle_values(values), values.len())
 }
 
-/// HDF5's shuffle of `values` (byte j of value i at j·n + i), eight values at a time: byte j
-/// of eight values gathered into one word and stored at once (issue 37: byte by byte, the
-/// stores were a third of encoding a block of modal coordinates).
+/// [`filtered_runs`] of a chunk of modal coordinates: modes `rows` of `q` (row-major
+/// [time][`modes`], `n_samples` rows), mode-major ([mode][time]), then zero rows up to
+/// `block` modes; the same bytes, made without the zero rows and without the mode-major
+/// copy (issue 37: the transposed copy, and shuffling and scanning the zero rows, were a
+/// third of encoding a block).
+pub fn filtered_coordinates(
+    q: &[f64],
+    modes: usize,
+    n_samples: usize,
+    rows: std::ops::Range<usize>,
+    block: usize,
+    level: u8,
+) -> Vec<u8> {
+    let zeros = block.saturating_sub(rows.len()) * n_samples;
+    if level == 0 {
+        let mut raw = le_bytes(&mode_major(q, modes, n_samples, rows));
+        raw.resize(raw.len() + 8 * zeros, 0);
+        return raw;
+    }
+    let n = rows.len() * n_samples;
+    run_huffman::zlib_padded_planes(&shuffle_modes(q, modes, n_samples, rows), n, zeros)
+}
+
+/// Modes `rows` of `q` (row-major [time][`modes`]) mode-major: [mode][time].
+fn mode_major(q: &[f64], modes: usize, n_samples: usize, rows: std::ops::Range<usize>) -> Vec<f64> {
+    rows.flat_map(|j| (0..n_samples).map(move |t| q[t * modes + j]))
+        .collect()
+}
+
+/// [`shuffle_values`] of [`mode_major`]`(q, modes, n_samples, rows)`, made from `q` as it
+/// is: eight samples of a mode gathered, their bytes transposed, each row stored at once.
+fn shuffle_modes(
+    q: &[f64],
+    modes: usize,
+    n_samples: usize,
+    rows: std::ops::Range<usize>,
+) -> Vec<u8> {
+    let n = rows.len() * n_samples;
+    let mut out = vec![0u8; 8 * n];
+    let whole = n_samples - n_samples % 8;
+    for (r, j) in rows.enumerate() {
+        let at = r * n_samples;
+        for t in (0..whole).step_by(8) {
+            let words = std::array::from_fn(|k| q[(t + k) * modes + j].to_bits());
+            for (p, row) in transpose_bytes(words).iter().enumerate() {
+                out[p * n + at + t..][..8].copy_from_slice(&row.to_le_bytes());
+            }
+        }
+        for t in whole..n_samples {
+            for (p, b) in q[t * modes + j].to_le_bytes().into_iter().enumerate() {
+                out[p * n + at + t] = b;
+            }
+        }
+    }
+    out
+}
+
+/// HDF5's shuffle of `values` (byte j of value i at j·n + i), eight values at a time: the
+/// eight values' bytes as an 8 × 8 byte matrix, transposed in registers, each row then
+/// stored at once (issue 37: byte by byte, the stores were a third of encoding a block of
+/// modal coordinates; gathering each row by shifts was still a quarter of it).
 fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
     let n = values.len();
     let mut out = vec![0u8; n * T::SIZE];
     let whole = n - n % 8;
     for (b, eight) in values[..whole].chunks_exact(8).enumerate() {
-        let words: [u64; 8] = std::array::from_fn(|k| eight[k].le_word());
-        for j in 0..T::SIZE {
-            let gathered = words
-                .iter()
-                .enumerate()
-                .fold(0u64, |acc, (k, w)| acc | ((w >> (8 * j)) & 0xFF) << (8 * k));
-            out[j * n + 8 * b..][..8].copy_from_slice(&gathered.to_le_bytes());
+        let rows = transpose_bytes(std::array::from_fn(|k| eight[k].le_word()));
+        for (j, row) in rows.iter().enumerate().take(T::SIZE) {
+            out[j * n + 8 * b..][..8].copy_from_slice(&row.to_le_bytes());
         }
     }
     let mut e = [0u8; 16];
@@ -164,6 +219,29 @@ fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
         }
     }
     out
+}
+
+/// The transpose of an 8 × 8 byte matrix whose row k is word k (byte j at bits 8j): word j
+/// of the result holds byte j of every row, row k's at bits 8k. Three rounds of swaps:
+/// the off-diagonal 4 × 4 blocks, then the 2 × 2 blocks within them, then single bytes.
+#[inline(always)]
+fn transpose_bytes(mut w: [u64; 8]) -> [u64; 8] {
+    for (shift, mask, pairs) in [
+        (
+            32,
+            0x0000_0000_FFFF_FFFF_u64,
+            [(0, 4), (1, 5), (2, 6), (3, 7)],
+        ),
+        (16, 0x0000_FFFF_0000_FFFF, [(0, 2), (1, 3), (4, 6), (5, 7)]),
+        (8, 0x00FF_00FF_00FF_00FF, [(0, 1), (2, 3), (4, 5), (6, 7)]),
+    ] {
+        for (a, b) in pairs {
+            let t = ((w[a] >> shift) ^ w[b]) & mask;
+            w[a] ^= t << shift;
+            w[b] ^= t;
+        }
+    }
+    w
 }
 
 /// Fewest values in a chunk for its byte planes to be judged one by one (below it the
@@ -438,6 +516,56 @@ pub fn write_chunk_at_end(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    // A block of modal coordinates made from the coordinates as they are, without its zero
+    // rows, is byte for byte the chunk of its mode-major, zero-padded copy (the stream the
+    // whole planes give, Adler-32 included): for sample counts that are and are not
+    // multiples of eight, zero tails shorter than a run, −0.0, and coordinates rounded to a
+    // power-of-two step (low bytes zero, as stored).
+    #[test]
+    fn coordinate_chunks_are_those_of_their_padded_blocks() {
+        use crate::store::modal::{coordinate_block_rows, coordinate_blocks};
+        let mut x = 0x9E37_79B9_7F4A_7C15_u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for (n_samples, modes, used, block) in [
+            (200, 21, 21, 32),
+            (200, 40, 37, 32),
+            (13, 5, 4, 4),
+            (3, 6, 5, 4),
+            (8, 3, 3, 3),
+        ] {
+            let mut q = vec![0.0; n_samples * modes];
+            for t in 0..n_samples {
+                for j in 0..used {
+                    let step = 2f64.powi(-20 - j as i32);
+                    q[t * modes + j] = (next() * 1e-3 / step).round() * step;
+                }
+            }
+            q[n_samples * modes - 1] = -0.0; // a value (in the last mode, past `used`)
+            for level in [0, 1] {
+                let whole: Vec<Vec<u8>> = coordinate_blocks(&q, n_samples, block)
+                    .iter()
+                    .map(|b| match level {
+                        0 => le_bytes(b),
+                        _ => filtered_runs(b, level),
+                    })
+                    .collect();
+                let direct: Vec<Vec<u8>> = coordinate_block_rows(&q, n_samples, block)
+                    .into_iter()
+                    .map(|rows| filtered_coordinates(&q, modes, n_samples, rows, block, level))
+                    .collect();
+                assert_eq!(
+                    direct, whole,
+                    "{n_samples} samples, {modes} modes, level {level}"
+                );
+            }
+        }
+    }
 
     // HDF5's shuffle transposes bytes (H5Zshuffle.c): for two 2-byte elements AB CD the
     // stored bytes are A C B D.

@@ -10,7 +10,7 @@ use super::error::StoreError;
 use super::header::history_vars;
 use super::journal;
 use super::layout::{self, HistoryDims};
-use super::modal::{coordinate_blocks, padded_points, ModalExtents};
+use super::modal::{coordinate_block_rows, padded_points, ModalExtents};
 use crate::model::outcome::HistoryPrecision;
 use crate::results::{PointRecord, StudyInfo};
 use std::path::{Path, PathBuf};
@@ -40,11 +40,11 @@ struct StoredHistory {
     level: u8,
 }
 
-/// One chunk's stored bytes: the values in `precision`, shuffled and deflated at `level`;
-/// the modal coordinates (`runs`), mostly runs of zeros, by the encoder made for them.
-fn chunk(values: &[f64], precision: HistoryPrecision, level: u8, runs: bool) -> Vec<u8> {
+/// One chunk's stored bytes: the values in `precision`, shuffled and deflated at `level`
+/// (the modal coordinates, mostly runs of zeros, have an encoder of their own:
+/// `chunks::filtered_coordinates`).
+fn chunk(values: &[f64], precision: HistoryPrecision, level: u8) -> Vec<u8> {
     match precision {
-        HistoryPrecision::F64 if runs => chunks::filtered_runs(values, level),
         HistoryPrecision::F64 => chunks::filtered_whole(values, level),
         HistoryPrecision::F32 => {
             let a: Vec<f32> = values.iter().map(|&x| x as f32).collect();
@@ -54,24 +54,34 @@ fn chunk(values: &[f64], precision: HistoryPrecision, level: u8, runs: bool) -> 
 }
 
 impl StoredHistory {
-    /// The chunks of variable `k` of this point (`a`: its values), or why they do not fit:
-    /// one chunk, but a block of modes per chunk for the modal coordinates.
-    fn chunks_of(&self, k: usize, a: &[f64]) -> Result<Vec<Vec<f64>>, String> {
-        let (nt, ext) = (self.n_samples, &self.modal);
+    /// The stored chunks of variable `k` of this point (`a`: its values, `precision`: its
+    /// stored precision), or why they do not fit: one chunk, but a block of modes per chunk
+    /// for the modal coordinates.
+    fn chunks_of(
+        &self,
+        k: usize,
+        a: &[f64],
+        precision: HistoryPrecision,
+    ) -> Result<Vec<Vec<u8>>, String> {
+        let (nt, ext, level) = (self.n_samples, &self.modal, self.level);
         let fits = |want: usize| match a.len() == want {
-            true => Ok(vec![a.to_vec()]),
+            true => Ok(vec![chunk(a, precision, level)]),
             false => Err(format!("{} values, expected {want}", a.len())),
         };
         match layout::HISTORY_VARS[k].2 {
             HistoryDims::Time => fits(nt),
             HistoryDims::TimeZ => fits(nt * self.nz),
             HistoryDims::ShapePoint if a.len() <= ext.points => {
-                Ok(vec![padded_points(a, ext.points)])
+                Ok(vec![chunk(&padded_points(a, ext.points), precision, level)])
             }
             HistoryDims::ModeTime
                 if a.len() % nt.max(1) == 0 && a.len() / nt.max(1) <= ext.modes =>
             {
-                Ok(coordinate_blocks(a, nt, ext.block))
+                let modes = a.len() / nt.max(1);
+                Ok(coordinate_block_rows(a, nt, ext.block)
+                    .into_iter()
+                    .map(|rows| chunks::filtered_coordinates(a, modes, nt, rows, ext.block, level))
+                    .collect())
             }
             HistoryDims::ShapePoint => Err(format!("{} values, at most {}", a.len(), ext.points)),
             HistoryDims::ModeTime => Err(format!(
@@ -154,16 +164,15 @@ impl RecordEncoder {
         journal::encode_summary(&rec, stored.is_some(), &mut framed);
         if let Some((h, st)) = stored {
             for &(k, precision) in &st.vars {
-                let values = st.chunks_of(k, layout::history_array(h, k)).map_err(|e| {
+                let chunks = st.chunks_of(k, layout::history_array(h, k), precision);
+                let chunks = chunks.map_err(|e| {
                     self.reject(format!(
                         "point {}: history {} has {e}",
                         rec.index,
                         layout::HISTORY_VARS[k].0.name
                     ))
                 })?;
-                let runs = layout::HISTORY_VARS[k].2 == HistoryDims::ModeTime;
-                for v in values {
-                    let bytes = chunk(&v, precision, st.level, runs);
+                for bytes in chunks {
                     journal::put_history_chunk(&bytes, &mut framed);
                 }
             }

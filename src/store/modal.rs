@@ -7,6 +7,7 @@
 use super::layout::{self, MODE_BLOCK};
 use crate::model::outcome::HistoryRequest;
 use crate::results::{ShapeSource, StudyInfo};
+use std::ops::Range;
 
 /// The modal form's dims: the most modes and shape points of a study's bats, and the modes
 /// per chunk.
@@ -47,18 +48,28 @@ fn rows_used(q: &[f64], n_samples: usize) -> usize {
         .map_or(0, |j| j + 1)
 }
 
-/// A history's coordinates (row-major [time][modes]) as blocks of `block` modes, each
-/// mode-major ([mode][time]), zero rows after the last mode: as many blocks as reach the
-/// last mode with a value other than +0.0. A history read back from the file (zeros after
-/// its blocks) so gives the same blocks as the run that computed it.
-pub fn coordinate_blocks(q: &[f64], n_samples: usize, block: usize) -> Vec<Vec<f64>> {
-    let modes = q.len() / n_samples.max(1);
+/// The modes of each block of a history's coordinates (row-major [time][modes]): blocks of
+/// `block` modes, as many as reach the last mode with a value other than +0.0, each up to
+/// that mode (the rest of its rows are zero). A history read back from the file (zeros
+/// after its blocks) so gives the same blocks as the run that computed it.
+pub fn coordinate_block_rows(q: &[f64], n_samples: usize, block: usize) -> Vec<Range<usize>> {
     let used = rows_used(q, n_samples);
     (0..used.div_ceil(block))
-        .map(|b| {
+        .map(|b| b * block..((b + 1) * block).min(used))
+        .collect()
+}
+
+/// A history's coordinates (row-major [time][modes]) as blocks of `block` modes, each
+/// mode-major ([mode][time]), zero rows after the last mode: the chunks of
+/// [`coordinate_block_rows`] as values.
+pub fn coordinate_blocks(q: &[f64], n_samples: usize, block: usize) -> Vec<Vec<f64>> {
+    let modes = q.len() / n_samples.max(1);
+    coordinate_block_rows(q, n_samples, block)
+        .into_iter()
+        .map(|rows| {
             let mut out = vec![0.0; block * n_samples];
-            for j in b * block..((b + 1) * block).min(modes) {
-                let row = &mut out[(j - b * block) * n_samples..][..n_samples];
+            for (r, j) in rows.enumerate() {
+                let row = &mut out[r * n_samples..][..n_samples];
                 for (t, v) in row.iter_mut().enumerate() {
                     *v = q[t * modes + j];
                 }
