@@ -61,23 +61,34 @@ impl ModalRounding {
     /// A lower bound of the history's largest |y|: the largest at the probe points.
     fn largest_displacement(&self, m: &ModalHistory) -> f64 {
         let n = m.modes;
-        let mut largest = 0.0_f64;
         let probes = match self.probe_shapes.as_slice() {
-            [a, b, c] if a.len() == n && b.len() == n && c.len() == n => [a, b, c],
+            [a, b, c] if a.len() == n && b.len() == n && c.len() == n && n > 0 => [a, b, c],
             _ => return self.largest_displacement_by_probe(m),
         };
-        for (t, q) in m.coordinate.chunks_exact(n.max(1)).enumerate() {
-            let p = m.bat_load.get(t).copied().unwrap_or(0.0);
-            // the three probes' sums side by side, each in the order of its modes: three
-            // independent chains where one after the other waited on each addition
-            let mut y = [0.0_f64; 3];
-            for (j, &qj) in q.iter().enumerate() {
-                for (yk, phi) in y.iter_mut().zip(probes) {
-                    *yk += phi[j] * qj;
+        let phi = [&probes[0][..n], &probes[1][..n], &probes[2][..n]];
+        let zero = vec![0.0; n];
+        let mut largest = 0.0_f64;
+        // four samples at a time, the three probes' sums of each side by side, every sum in
+        // the order of its modes: twelve independent chains where three waited on each
+        // addition (issue 37), each sum the same as one at a time
+        for (g, four) in m.coordinate.chunks(4 * n).enumerate() {
+            let row = |r: usize| &four.get(r * n..(r + 1) * n).unwrap_or(&zero)[..n];
+            let q = [row(0), row(1), row(2), row(3)];
+            let mut y = [[0.0_f64; 3]; 4];
+            for j in 0..n {
+                let at = [phi[0][j], phi[1][j], phi[2][j]];
+                for (yr, qr) in y.iter_mut().zip(&q) {
+                    let qj = qr[j];
+                    for (yk, a) in yr.iter_mut().zip(at) {
+                        *yk += a * qj;
+                    }
                 }
             }
-            for (yk, s) in y.iter().zip(&self.probe_static) {
-                largest = largest.max((yk + s * p).abs());
+            for (r, yr) in y.iter().enumerate().take(four.len() / n) {
+                let p = m.bat_load.get(4 * g + r).copied().unwrap_or(0.0);
+                for (yk, s) in yr.iter().zip(&self.probe_static) {
+                    largest = largest.max((yk + s * p).abs());
+                }
             }
         }
         largest
@@ -172,10 +183,13 @@ impl Step {
 /// product by the reciprocal and by the step only move the exponent. +0.0 for zero (a −0.0
 /// would count as a value when the store trims zero modes). A value already coarser than
 /// the step (|x| ≥ 2^51 steps) is kept as it is.
+#[inline(always)]
 fn round_to(x: f64, step: Step) -> f64 {
     let y = x * step.inverse;
+    let rounded = ((y + ROUND_TO_INTEGER) - ROUND_TO_INTEGER) * step.size;
+    // a select, not a branch: the loops over a history's values vectorise
     match step.size.is_normal() && y.abs() < 2_251_799_813_685_248.0 {
-        true => ((y + ROUND_TO_INTEGER) - ROUND_TO_INTEGER) * step.size,
+        true => rounded,
         false => x,
     }
 }
