@@ -9,7 +9,22 @@ fn git(args: &[&str]) -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// The results file's HDF5 driver (`store::direct`), in C: its structures differ between
+/// HDF5 1.10 and 2.x, and the compiler sets their fields by name from the headers of the
+/// HDF5 linked (`DEP_HDF5_INCLUDE`, from the -sys crate's `links = "hdf5"`).
+fn compile_driver() {
+    let source = "src/store/direct/driver.c";
+    println!("cargo:rerun-if-changed={source}");
+    let mut build = cc::Build::new();
+    build.file(source).warnings(true).extra_warnings(true);
+    if let Ok(dir) = std::env::var("DEP_HDF5_INCLUDE") {
+        build.include(dir);
+    }
+    build.compile("batstudy_direct_driver");
+}
+
 fn main() {
+    compile_driver();
     if let Some(commit) = git(&["rev-parse", "HEAD"]) {
         println!("cargo:rustc-env=BATSTUDY_GIT_COMMIT={commit}");
         let dirty =

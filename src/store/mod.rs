@@ -25,6 +25,7 @@ pub mod build;
 pub mod by_reference;
 pub mod chunks;
 pub mod dimscale;
+pub mod direct;
 pub mod encode;
 pub mod error;
 pub mod fixed_deflate;

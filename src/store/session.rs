@@ -5,8 +5,9 @@
 
 use super::build;
 use super::by_reference::{self, Recovered};
+use super::direct;
 use super::encode::{EncodedRecord, RecordEncoder};
-use super::error::StoreError;
+use super::error::{H5Ctx, StoreError};
 use super::header::JournalHeader;
 use super::journal::{self, JournalWriter};
 use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
@@ -57,6 +58,11 @@ pub struct Session {
     /// Points stored whose records the placer holds and the journal does not have yet
     /// (journalled at the next flush, or once placed).
     unjournalled: BTreeSet<usize>,
+    /// Records of placed points that name their chunks in the final file, waiting for those
+    /// chunks to reach the OS (the file's driver gathers them, `store::direct`), and the
+    /// history bytes placed since they last did.
+    placed: Vec<Vec<u8>>,
+    placed_bytes: usize,
     flush_interval: Duration,
     sync_interval: Duration,
     last_flush: Instant,
@@ -246,6 +252,8 @@ impl Session {
             names_file: false,
             names_unsynced: false,
             unjournalled: BTreeSet::new(),
+            placed: Vec::new(),
+            placed_bytes: 0,
             flush_interval: opts.flush_interval,
             sync_interval: opts.sync_interval,
             last_flush: Instant::now(),
@@ -428,6 +436,7 @@ impl Session {
     /// journalled is one whose placing failed: the run stops with that error, and its point
     /// is computed again on resume.)
     fn flush_journal(&mut self) -> Result<(), StoreError> {
+        self.journal_placed()?;
         let Some(j) = self.journal.as_mut() else {
             return Ok(());
         };
@@ -441,6 +450,29 @@ impl Session {
         j.flush()?;
         self.last_flush = Instant::now();
         Ok(())
+    }
+
+    /// Journal the records of the points placed since the last time, once the chunks they
+    /// name are in the OS: the final file's driver gathers what it is given and sends it
+    /// around the page cache in large writes (`store::direct`), so a record could otherwise
+    /// name bytes a kill would lose. Every [`direct::GATHER_BYTES`] placed, and at every
+    /// flush (at most 50 ms apart): a kill loses at most the points placed since, which
+    /// are computed again on resume, as the records still in the journal's buffer are.
+    fn journal_placed(&mut self) -> Result<(), StoreError> {
+        self.placed_bytes = 0;
+        if self.placed.is_empty() {
+            return Ok(());
+        }
+        if let Some(skeleton) = self.skeleton.as_ref() {
+            skeleton
+                .write_gathered()
+                .ctx(&self.path, "write the unfinished file's gathered bytes")?;
+        }
+        let j = self.journal.as_mut().expect("open session has a journal");
+        for r in std::mem::take(&mut self.placed) {
+            j.append(&r)?;
+        }
+        j.flush()
     }
 
     /// Hand a stored point to the placer, which writes the histories its cursor can now pass
@@ -460,12 +492,14 @@ impl Session {
             unjournalled: &'a mut BTreeSet<usize>,
             records: Vec<Vec<u8>>,
             names_file: bool,
+            placed_bytes: &'a mut usize,
         }
         impl Place for IntoFile<'_> {
             type Error = StoreError;
             fn place(&mut self, index: usize, framed: &[u8]) -> Result<(), StoreError> {
                 let offsets = build::place_history(self.skeleton, self.info, index, framed)?;
                 self.writeback.wrote(framed.len());
+                *self.placed_bytes += framed.len();
                 if !self.unjournalled.remove(&index) {
                     return Ok(());
                 }
@@ -485,19 +519,16 @@ impl Session {
             unjournalled: &mut self.unjournalled,
             records: Vec::new(),
             names_file: false,
+            placed_bytes: &mut self.placed_bytes,
         };
         let kept_up = placer.arrived(index, framed, &self.done, &mut file)?;
         let (records, names_file) = (file.records, file.names_file);
         if names_file {
             (self.names_file, self.names_unsynced) = (true, true);
         }
-        if !records.is_empty() {
-            // to the OS at once, as the whole records were: a kill loses no point placed
-            let j = self.journal_mut();
-            for r in records {
-                j.append(&r)?;
-            }
-            j.flush()?;
+        self.placed.extend(records);
+        if self.placed_bytes >= direct::GATHER_BYTES {
+            self.journal_placed()?;
         }
         if !kept_up {
             // what it holds goes to the journal before the placer goes

@@ -42,6 +42,13 @@ pub struct Skeleton {
     pub(super) shapes: Option<BatShapes>,
 }
 
+impl Skeleton {
+    /// Send what the file's driver has gathered to the OS (`store::direct`).
+    pub fn write_gathered(&self) -> hdf5::Result<()> {
+        crate::store::direct::write_gathered(&self.f)
+    }
+}
+
 /// Create `out` with everything but the results (see [`Skeleton`]).
 pub fn create_skeleton(
     info: &StudyInfo,
@@ -73,11 +80,18 @@ pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton,
     // Whatever is at `out` (a stale `.partial`, or a symbolic link planted there) is removed,
     // not followed, and the file is created exclusively (O_EXCL: no link is followed).
     crate::store::paths::remove_if_exists(out)?;
-    let f = hdf5::File::with_options()
-        .with_fapl(|p| p.chunk_cache(1, 0, 1.0).libver_v110())
-        .with_fcpl(|p| p.file_space_strategy(hdf5::file::FileSpaceStrategy::None))
-        .create_excl(out)
-        .ctx(out, "create the results file")?;
+    // Written around the page cache where it can be (`store::direct`).
+    let fapl = hdf5::plist::FileAccess::build()
+        .chunk_cache(1, 0, 1.0)
+        .libver_v110()
+        .finish()
+        .ctx(out, "make the results file's access properties")?;
+    let fcpl = hdf5::plist::FileCreate::build()
+        .file_space_strategy(hdf5::file::FileSpaceStrategy::None)
+        .finish()
+        .ctx(out, "make the results file's creation properties")?;
+    let f =
+        crate::store::direct::create_excl(out, &fapl, &fcpl).ctx(out, "create the results file")?;
     let dims = &study_shape.dims;
     let chunk = summary_chunk(dims);
     let att = Attacher::default();
