@@ -127,7 +127,10 @@ pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     if level == 0 {
         return le_bytes(values); // no filters: the values as they are
     }
-    deflate_planes(&shuffle_values(values), T::SIZE, level)
+    with_scratch(values.len() * T::SIZE, |out| {
+        shuffle_values_into(values, out);
+        deflate_planes(out, T::SIZE, level)
+    })
 }
 
 /// [`filtered_whole`] for values whose bytes are mostly runs of zeros between planes that
@@ -137,7 +140,10 @@ pub fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     if level == 0 {
         return le_bytes(values);
     }
-    run_huffman::zlib_planes(&shuffle_values(values), values.len())
+    with_scratch(values.len() * T::SIZE, |out| {
+        shuffle_values_into(values, out);
+        run_huffman::zlib_planes(out, values.len())
+    })
 }
 
 /// [`filtered_runs`] of a chunk of modal coordinates: modes `rows` of `q` (row-major
@@ -160,7 +166,10 @@ pub fn filtered_coordinates(
         return raw;
     }
     let n = rows.len() * n_samples;
-    run_huffman::zlib_padded_planes(&shuffle_modes(q, modes, n_samples, rows), n, zeros)
+    with_scratch(8 * n, |out| {
+        shuffle_modes_into(q, modes, n_samples, rows, out);
+        run_huffman::zlib_padded_planes(out, n, zeros)
+    })
 }
 
 /// Modes `rows` of `q` (row-major [time][`modes`]) mode-major: [mode][time].
@@ -169,16 +178,17 @@ fn mode_major(q: &[f64], modes: usize, n_samples: usize, rows: std::ops::Range<u
         .collect()
 }
 
-/// [`shuffle_values`] of [`mode_major`]`(q, modes, n_samples, rows)`, made from `q` as it
-/// is: eight samples of a mode gathered, their bytes transposed, each row stored at once.
-fn shuffle_modes(
+/// [`shuffle_values_into`] of [`mode_major`]`(q, modes, n_samples, rows)` into `out`, made
+/// from `q` as it is: eight samples of a mode gathered, their bytes transposed, each row
+/// stored at once.
+fn shuffle_modes_into(
     q: &[f64],
     modes: usize,
     n_samples: usize,
     rows: std::ops::Range<usize>,
-) -> Vec<u8> {
+    out: &mut [u8],
+) {
     let n = rows.len() * n_samples;
-    let mut out = vec![0u8; 8 * n];
     let whole = n_samples - n_samples % 8;
     for (r, j) in rows.enumerate() {
         let at = r * n_samples;
@@ -194,16 +204,14 @@ fn shuffle_modes(
             }
         }
     }
-    out
 }
 
-/// HDF5's shuffle of `values` (byte j of value i at j·n + i), eight values at a time: the
+/// HDF5's shuffle of `values` (byte j of value i at j·n + i) into `out`, eight values at a time: the
 /// eight values' bytes as an 8 × 8 byte matrix, transposed in registers, each row then
 /// stored at once (issue 37: byte by byte, the stores were a third of encoding a block of
 /// modal coordinates; gathering each row by shifts was still a quarter of it).
-fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
+fn shuffle_values_into<T: ChunkValue>(values: &[T], out: &mut [u8]) {
     let n = values.len();
-    let mut out = vec![0u8; n * T::SIZE];
     let whole = n - n % 8;
     for (b, eight) in values[..whole].chunks_exact(8).enumerate() {
         let rows = transpose_bytes(std::array::from_fn(|k| eight[k].le_word()));
@@ -218,7 +226,31 @@ fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
             out[j * n + i] = b;
         }
     }
+}
+
+/// [`shuffle_values_into`] a new buffer.
+#[cfg(test)]
+fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
+    let mut out = vec![0u8; values.len() * T::SIZE];
+    shuffle_values_into(values, &mut out);
     out
+}
+
+thread_local! {
+    /// Each thread's buffer for the shuffled bytes of the chunk it encodes: allocated and
+    /// zeroed once, where a buffer a chunk cost a tenth of a block's encoding (issue 37).
+    static SCRATCH: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
+}
+
+/// `f` on this thread's scratch buffer, `len` bytes long (every byte is `f`'s to write).
+fn with_scratch<R>(len: usize, f: impl FnOnce(&mut [u8]) -> R) -> R {
+    SCRATCH.with(|s| {
+        let mut s = s.borrow_mut();
+        if s.len() < len {
+            s.resize(len, 0);
+        }
+        f(&mut s[..len])
+    })
 }
 
 /// The transpose of an 8 × 8 byte matrix whose row k is word k (byte j at bits 8j): word j
@@ -483,7 +515,7 @@ pub fn write_chunk(ds: &Dataset, start: &[usize], bytes: &[u8]) -> hdf5::Result<
 
 /// The end of `file`'s allocated space (HDF5's end of allocation, "EOA"), an offset in
 /// the file (results files have no user block).
-fn end_of_allocation(file: hid_t) -> Option<u64> {
+pub fn end_of_allocation(file: hid_t) -> Option<u64> {
     let mut eoa = 0u64;
     // SAFETY: a query on an open file id, into a local
     let r = hdf5::sync::sync(|| unsafe { H5Fget_eoa(file, &mut eoa) });

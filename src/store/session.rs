@@ -5,7 +5,6 @@
 
 use super::build;
 use super::by_reference::{self, Recovered};
-use super::direct;
 use super::encode::{EncodedRecord, RecordEncoder};
 use super::error::{H5Ctx, StoreError};
 use super::header::JournalHeader;
@@ -19,7 +18,7 @@ use super::read;
 use super::writeback::Writeback;
 use crate::pointset::PointSet;
 use crate::results::{PointRecord, ResultShape, StudyInfo};
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, VecDeque};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -58,11 +57,10 @@ pub struct Session {
     /// Points stored whose records the placer holds and the journal does not have yet
     /// (journalled at the next flush, or once placed).
     unjournalled: BTreeSet<usize>,
-    /// Records of placed points that name their chunks in the final file, waiting for those
-    /// chunks to reach the OS (the file's driver gathers them, `store::direct`), and the
-    /// history bytes placed since they last did.
-    placed: Vec<Vec<u8>>,
-    placed_bytes: usize,
+    /// Records of placed points, in the order placed, each with an offset of the final file
+    /// its chunks lie below, waiting for those chunks to reach the OS (the file's driver
+    /// gathers them and writes them around the page cache, `store::direct`).
+    placed: VecDeque<(u64, Vec<u8>)>,
     flush_interval: Duration,
     sync_interval: Duration,
     last_flush: Instant,
@@ -252,8 +250,7 @@ impl Session {
             names_file: false,
             names_unsynced: false,
             unjournalled: BTreeSet::new(),
-            placed: Vec::new(),
-            placed_bytes: 0,
+            placed: VecDeque::new(),
             flush_interval: opts.flush_interval,
             sync_interval: opts.sync_interval,
             last_flush: Instant::now(),
@@ -452,14 +449,9 @@ impl Session {
         Ok(())
     }
 
-    /// Journal the records of the points placed since the last time, once the chunks they
-    /// name are in the OS: the final file's driver gathers what it is given and sends it
-    /// around the page cache in large writes (`store::direct`), so a record could otherwise
-    /// name bytes a kill would lose. Every [`direct::GATHER_BYTES`] placed, and at every
-    /// flush (at most 50 ms apart): a kill loses at most the points placed since, which
-    /// are computed again on resume, as the records still in the journal's buffer are.
+    /// Journal every record of a placed point, once everything the final file's driver has
+    /// gathered is in the OS (waiting for it): at each flush, at most 50 ms apart.
     fn journal_placed(&mut self) -> Result<(), StoreError> {
-        self.placed_bytes = 0;
         if self.placed.is_empty() {
             return Ok(());
         }
@@ -468,11 +460,26 @@ impl Session {
                 .write_gathered()
                 .ctx(&self.path, "write the unfinished file's gathered bytes")?;
         }
+        self.journal_placed_below(u64::MAX)
+    }
+
+    /// Journal the records of placed points whose chunks lie below `end` of the final file,
+    /// in the order placed, and hand them to the OS. A record names where its chunks are
+    /// (`store::by_reference`), so it goes only once they are in the OS: a kill loses at
+    /// most the points placed since, which are computed again on resume, as those whose
+    /// records were still in the journal's buffer are.
+    fn journal_placed_below(&mut self, end: u64) -> Result<(), StoreError> {
         let j = self.journal.as_mut().expect("open session has a journal");
-        for r in std::mem::take(&mut self.placed) {
-            j.append(&r)?;
+        let mut any = false;
+        while let Some((_, r)) = self.placed.front().filter(|(e, _)| *e <= end) {
+            j.append(r)?;
+            self.placed.pop_front();
+            any = true;
         }
-        j.flush()
+        match any {
+            true => j.flush(),
+            false => Ok(()),
+        }
     }
 
     /// Hand a stored point to the placer, which writes the histories its cursor can now pass
@@ -492,14 +499,12 @@ impl Session {
             unjournalled: &'a mut BTreeSet<usize>,
             records: Vec<Vec<u8>>,
             names_file: bool,
-            placed_bytes: &'a mut usize,
         }
         impl Place for IntoFile<'_> {
             type Error = StoreError;
             fn place(&mut self, index: usize, framed: &[u8]) -> Result<(), StoreError> {
                 let offsets = build::place_history(self.skeleton, self.info, index, framed)?;
                 self.writeback.wrote(framed.len());
-                *self.placed_bytes += framed.len();
                 if !self.unjournalled.remove(&index) {
                     return Ok(());
                 }
@@ -519,16 +524,23 @@ impl Session {
             unjournalled: &mut self.unjournalled,
             records: Vec::new(),
             names_file: false,
-            placed_bytes: &mut self.placed_bytes,
         };
         let kept_up = placer.arrived(index, framed, &self.done, &mut file)?;
         let (records, names_file) = (file.records, file.names_file);
         if names_file {
             (self.names_file, self.names_unsynced) = (true, true);
         }
-        self.placed.extend(records);
-        if self.placed_bytes >= direct::GATHER_BYTES {
-            self.journal_placed()?;
+        if !records.is_empty() {
+            let skeleton = self
+                .skeleton
+                .as_ref()
+                .expect("prepared with the first record");
+            let end = skeleton.end_of_allocation().unwrap_or(u64::MAX);
+            self.placed.extend(records.into_iter().map(|r| (end, r)));
+            let in_os = skeleton
+                .in_os()
+                .ctx(&self.path, "write the unfinished file")?;
+            self.journal_placed_below(in_os)?;
         }
         if !kept_up {
             // what it holds goes to the journal before the placer goes

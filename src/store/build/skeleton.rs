@@ -43,9 +43,19 @@ pub struct Skeleton {
 }
 
 impl Skeleton {
-    /// Send what the file's driver has gathered to the OS (`store::direct`).
+    /// Send what the file's driver has gathered to the OS, waiting for it (`store::direct`).
     pub fn write_gathered(&self) -> hdf5::Result<()> {
         crate::store::direct::write_gathered(&self.f)
+    }
+
+    /// An offset below which every byte written to the file is in the OS (`store::direct`).
+    pub fn in_os(&self) -> hdf5::Result<u64> {
+        crate::store::direct::in_os(&self.f)
+    }
+
+    /// The file's end of allocation: every byte written so far lies below it.
+    pub fn end_of_allocation(&self) -> Option<u64> {
+        crate::store::chunks::end_of_allocation(self.f.id())
     }
 }
 

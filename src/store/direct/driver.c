@@ -30,6 +30,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,10 +52,24 @@ typedef struct {
     haddr_t eof; /* the file's size with the buffer written */
     dev_t dev;
     ino_t ino;
-    unsigned char *buf; /* BUFFER_BYTES, aligned */
-    haddr_t start;      /* the file offset of buf[0]: a multiple of ALIGN */
-    size_t len;         /* bytes in the buffer */
-    size_t in_os;       /* buf[0..in_os] is in the file already */
+    unsigned char *bufs[2]; /* BUFFER_BYTES each, aligned: one gathers, one is written */
+    unsigned char *buf;     /* the one gathering */
+    haddr_t start;          /* the file offset of buf[0]: a multiple of ALIGN */
+    size_t len;             /* bytes in the buffer */
+    size_t in_os;           /* buf[0..in_os] is in the file already */
+    /* The writer of whole blocks: a thread, so that the disk works while HDF5 goes on
+     * (a write with O_DIRECT returns when the disk has the bytes). One block at a time. */
+    pthread_t thread;
+    int thread_running;
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    int busy;   /* a block is handed over and not written yet */
+    int quit;
+    const unsigned char *job;
+    size_t job_len;
+    haddr_t job_at;
+    int failed;  /* errno of a block that could not be written, or 0 */
+    int refused; /* the file system refused O_DIRECT: blocks go through the page cache */
 } direct_t;
 
 static const H5FD_class_t *direct_class(void);
@@ -92,6 +107,57 @@ static int pread_all(int fd, unsigned char *p, size_t size, haddr_t at) {
     return 0;
 }
 
+/* One block to the disk: with O_DIRECT, or through the page cache where the file system
+ * refuses it (EINVAL, once: then always). errno on failure. */
+static int write_block(direct_t *f, const unsigned char *p, size_t size, haddr_t at) {
+    if (!f->refused && pwrite_all(f->direct, p, size, at) == 0)
+        return 0;
+    if (!f->refused && errno != EINVAL)
+        return errno ? errno : EIO;
+    f->refused = 1;
+    return pwrite_all(f->fd, p, size, at) == 0 ? 0 : (errno ? errno : EIO);
+}
+
+static void *block_writer(void *arg) {
+    direct_t *f = arg;
+    pthread_mutex_lock(&f->mu);
+    for (;;) {
+        while (!f->busy && !f->quit)
+            pthread_cond_wait(&f->cv, &f->mu);
+        if (!f->busy)
+            break;
+        const unsigned char *p = f->job;
+        size_t size = f->job_len;
+        haddr_t at = f->job_at;
+        pthread_mutex_unlock(&f->mu);
+        int e = write_block(f, p, size, at);
+        pthread_mutex_lock(&f->mu);
+        if (e != 0 && f->failed == 0)
+            f->failed = e;
+        f->busy = 0;
+        pthread_cond_broadcast(&f->cv);
+    }
+    pthread_mutex_unlock(&f->mu);
+    return NULL;
+}
+
+/* Wait for the block handed over to be written; -1 if a block could not be. */
+static herr_t wait_idle(direct_t *f) {
+    if (!f->thread_running)
+        return 0;
+    pthread_mutex_lock(&f->mu);
+    while (f->busy)
+        pthread_cond_wait(&f->cv, &f->mu);
+    int e = f->failed;
+    f->failed = 0;
+    pthread_mutex_unlock(&f->mu);
+    if (e != 0) {
+        errno = e;
+        return -1;
+    }
+    return 0;
+}
+
 /* Put the buffer's bytes not in the file yet into the OS, through the page cache; they
  * stay in the buffer, for the whole block's O_DIRECT write. */
 static herr_t to_os(direct_t *f) {
@@ -102,31 +168,46 @@ static herr_t to_os(direct_t *f) {
     return 0;
 }
 
-/* Write the buffer's whole blocks with O_DIRECT (through the page cache where refused),
- * and move the rest to its start. */
+/* Hand the buffer's whole blocks to the block writer (once it is done with the last ones),
+ * and go on gathering in the other buffer, from what is left. Without a thread or with
+ * O_DIRECT refused, they are written here. */
 static herr_t write_blocks(direct_t *f) {
     size_t whole = f->len / ALIGN * ALIGN;
     if (whole == 0)
         return 0;
-    if (f->direct >= 0 && pwrite_all(f->direct, f->buf, whole, f->start) < 0) {
-        if (errno != EINVAL)
-            return -1;
-        close(f->direct); /* this file system takes no O_DIRECT write: no more tries */
-        f->direct = -1;
-    }
-    if (f->direct < 0 && f->in_os < whole &&
-        pwrite_all(f->fd, f->buf + f->in_os, whole - f->in_os, f->start + f->in_os) < 0)
+    if (wait_idle(f) < 0)
         return -1;
-    memmove(f->buf, f->buf + whole, f->len - whole);
+    if (!f->thread_running || f->refused) {
+        int e = f->in_os < whole ? write_block(f, f->buf + f->in_os, whole - f->in_os,
+                                               f->start + f->in_os)
+                                 : 0;
+        if (e != 0) {
+            errno = e;
+            return -1;
+        }
+        memmove(f->buf, f->buf + whole, f->len - whole);
+    } else {
+        unsigned char *next = f->bufs[f->buf == f->bufs[0]];
+        memcpy(next, f->buf + whole, f->len - whole);
+        pthread_mutex_lock(&f->mu);
+        f->job = f->buf;
+        f->job_len = whole;
+        f->job_at = f->start;
+        f->busy = 1;
+        pthread_cond_broadcast(&f->cv);
+        pthread_mutex_unlock(&f->mu);
+        f->buf = next;
+    }
     f->start += whole;
     f->len -= whole;
     f->in_os = f->in_os > whole ? f->in_os - whole : 0;
     return 0;
 }
 
-/* Everything gathered into the OS, and the buffer emptied. */
+/* Everything gathered written (the blocks to the disk, the rest into the OS), and the
+ * buffer emptied. */
 static herr_t write_all_gathered(direct_t *f) {
-    if (write_blocks(f) < 0 || to_os(f) < 0)
+    if (write_blocks(f) < 0 || wait_idle(f) < 0 || to_os(f) < 0)
         return -1;
     f->start += f->len;
     f->len = 0;
@@ -143,6 +224,25 @@ static herr_t begin_at(direct_t *f, haddr_t addr) {
     return pread_all(f->fd, f->buf, f->len, f->start) < 0 ? -1 : 0;
 }
 
+static void free_file(direct_t *f) {
+    if (f->thread_running) {
+        pthread_mutex_lock(&f->mu);
+        f->quit = 1;
+        pthread_cond_broadcast(&f->cv);
+        pthread_mutex_unlock(&f->mu);
+        pthread_join(f->thread, NULL);
+    }
+    pthread_mutex_destroy(&f->mu);
+    pthread_cond_destroy(&f->cv);
+    if (f->direct >= 0)
+        close(f->direct);
+    if (f->fd >= 0)
+        close(f->fd);
+    free(f->bufs[0]);
+    free(f->bufs[1]);
+    free(f);
+}
+
 static H5FD_t *direct_open(const char *name, unsigned flags, hid_t fapl, haddr_t maxaddr) {
     (void)fapl;
     (void)maxaddr;
@@ -156,22 +256,30 @@ static H5FD_t *direct_open(const char *name, unsigned flags, hid_t fapl, haddr_t
     direct_t *f = calloc(1, sizeof(direct_t));
     if (f == NULL)
         return NULL;
-    f->direct = -1;
-    void *buf = NULL;
-    f->fd = posix_memalign(&buf, ALIGN, BUFFER_BYTES) != 0 ? -1 : open(name, o | O_CLOEXEC, 0666);
-    f->buf = buf;
+    f->fd = f->direct = -1;
+    pthread_mutex_init(&f->mu, NULL);
+    pthread_cond_init(&f->cv, NULL);
+    void *a = NULL, *b = NULL;
+    int ok = posix_memalign(&a, ALIGN, BUFFER_BYTES) == 0;
+    f->bufs[0] = a;
+    ok = ok && posix_memalign(&b, ALIGN, BUFFER_BYTES) == 0;
+    f->bufs[1] = b;
+    f->buf = f->bufs[0];
+    f->fd = ok ? open(name, o | O_CLOEXEC, 0666) : -1;
     struct stat st;
     if (f->fd < 0 || fstat(f->fd, &st) < 0) {
-        if (f->fd >= 0)
-            close(f->fd);
-        free(f->buf);
-        free(f);
+        int e = errno;
+        free_file(f);
+        errno = e;
         return NULL;
     }
 #ifdef O_DIRECT
     if (flags & H5F_ACC_RDWR)
         f->direct = open(name, O_WRONLY | O_DIRECT | O_CLOEXEC); /* -1: refused, no matter */
 #endif
+    f->refused = f->direct < 0;
+    if (!f->refused)
+        f->thread_running = pthread_create(&f->thread, NULL, block_writer, f) == 0;
     f->eof = (haddr_t)st.st_size;
     f->dev = st.st_dev;
     f->ino = st.st_ino;
@@ -182,12 +290,10 @@ static H5FD_t *direct_open(const char *name, unsigned flags, hid_t fapl, haddr_t
 static herr_t direct_close(H5FD_t *file) {
     direct_t *f = (direct_t *)file;
     herr_t r = write_all_gathered(f);
-    if (f->direct >= 0 && close(f->direct) < 0)
+    if (f->fd >= 0 && close(f->fd) < 0)
         r = -1;
-    if (close(f->fd) < 0)
-        r = -1;
-    free(f->buf);
-    free(f);
+    f->fd = -1;
+    free_file(f);
     return r;
 }
 
@@ -242,7 +348,8 @@ static herr_t direct_read(H5FD_t *file, H5FD_mem_t type, hid_t dxpl, haddr_t add
     (void)type;
     (void)dxpl;
     direct_t *f = (direct_t *)file;
-    if (touches(f, addr, size) && to_os(f) < 0)
+    /* the block being written may be where this reads: the disk has it first */
+    if (wait_idle(f) < 0 || (touches(f, addr, size) && to_os(f) < 0))
         return -1;
     return pread_all(f->fd, out, size, addr) < 0 ? -1 : 0;
 }
@@ -257,8 +364,9 @@ static herr_t direct_write(H5FD_t *file, H5FD_mem_t type, hid_t dxpl, haddr_t ad
     haddr_t end = f->start + f->len;
     if (size > BLOCK_BYTES || addr < end) {
         /* too large to gather, or below the gathered end (metadata rewritten in place):
-         * through the page cache, the gathered bytes it meets first */
-        if (touches(f, addr, size) && write_all_gathered(f) < 0)
+         * through the page cache, the block being written and the gathered bytes it meets
+         * first */
+        if (wait_idle(f) < 0 || (touches(f, addr, size) && write_all_gathered(f) < 0))
             return -1;
         return pwrite_all(f->fd, data, size, addr) < 0 ? -1 : 0;
     }
@@ -276,7 +384,8 @@ static herr_t direct_write(H5FD_t *file, H5FD_mem_t type, hid_t dxpl, haddr_t ad
 static herr_t direct_flush(H5FD_t *file, hid_t dxpl, hbool_t closing) {
     (void)dxpl;
     (void)closing;
-    return to_os((direct_t *)file);
+    direct_t *f = (direct_t *)file;
+    return wait_idle(f) < 0 || to_os(f) < 0 ? -1 : 0;
 }
 
 static herr_t direct_truncate(H5FD_t *file, hid_t dxpl, hbool_t closing) {
@@ -347,16 +456,39 @@ herr_t batstudy_direct_set(hid_t fapl) {
     return H5Pset_driver(fapl, id, NULL);
 }
 
-/* Write the whole blocks `file` (opened with this driver) has gathered to the disk, and
- * the rest into the OS. Negative on failure, or when the file has another driver. */
-herr_t batstudy_direct_flush(hid_t file) {
+/* The file's driver state, or NULL when `file` has another driver. */
+static direct_t *of_file(hid_t file) {
     void *handle = NULL;
     if (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || handle == NULL)
-        return -1;
+        return NULL;
     direct_t *f = handle;
     /* HDF5 keeps its own copy of a registered class: known by its name */
     if (f->pub.cls == NULL || f->pub.cls->name == NULL ||
         strcmp(f->pub.cls->name, direct_class()->name) != 0)
+        return NULL;
+    return f;
+}
+
+/* Write everything `file` (opened with this driver) has gathered: its whole blocks to the
+ * disk (waiting for them), the rest into the OS. Negative on failure, or when the file has
+ * another driver. */
+herr_t batstudy_direct_flush(hid_t file) {
+    direct_t *f = of_file(file);
+    if (f == NULL)
         return -1;
-    return write_blocks(f) < 0 || to_os(f) < 0 ? -1 : 0;
+    return write_blocks(f) < 0 || wait_idle(f) < 0 || to_os(f) < 0 ? -1 : 0;
+}
+
+/* `*end`: an offset below which every byte `file` (opened with this driver) was given is
+ * in the OS, without waiting for anything. Negative on failure (a block that could not be
+ * written), or when the file has another driver. */
+herr_t batstudy_direct_in_os(hid_t file, uint64_t *end) {
+    direct_t *f = of_file(file);
+    if (f == NULL)
+        return -1;
+    pthread_mutex_lock(&f->mu);
+    int failed = f->failed;
+    *end = f->busy ? f->job_at : f->start + f->in_os;
+    pthread_mutex_unlock(&f->mu);
+    return failed ? -1 : 0;
 }

@@ -11,8 +11,14 @@
 //! is left of the last block stays in the buffer. HDF5 sees the same file byte for byte
 //! (tested), and a file system that refuses `O_DIRECT` is written through the page cache.
 //!
-//! What the buffer holds is in this process only: the store writes it ([`write_gathered`])
-//! before a journal record names those bytes (`store::by_reference`), and before it syncs.
+//! A write with `O_DIRECT` returns when the disk has the bytes, so the whole blocks go from
+//! a thread of the driver's own, one at a time, while HDF5 gathers the next ones in a
+//! second buffer: the disk works while the writer thread goes on, as with the page cache.
+//!
+//! What is gathered, and the block on its way, are not in the OS yet: the store journals a
+//! record that names bytes in the file once [`in_os`] passes them, and at each flush sends
+//! everything ([`write_gathered`]) first (`store::by_reference`, `store::session`); and it
+//! does so before it syncs.
 
 use hdf5::plist::{FileAccess, FileCreate};
 use hdf5_sys::h5::herr_t;
@@ -23,12 +29,8 @@ use std::path::Path;
 extern "C" {
     fn batstudy_direct_set(fapl: hid_t) -> herr_t;
     fn batstudy_direct_flush(file: hid_t) -> herr_t;
+    fn batstudy_direct_in_os(file: hid_t, end: *mut u64) -> herr_t;
 }
-
-/// Bytes placed between two [`write_gathered`] calls for the journal (`store::session`):
-/// each call sends the part of the last 4 KiB block written so far through the page cache,
-/// so that a journal record can name it; the rest of the file goes around it.
-pub const GATHER_BYTES: usize = 256 << 10;
 
 /// Create the HDF5 file at `path` exclusively (it must not exist; no link is followed),
 /// with the access and creation properties `fapl` (given this driver) and `fcpl`.
@@ -52,8 +54,20 @@ pub fn create_excl(path: &Path, fapl: &FileAccess, fcpl: &FileCreate) -> hdf5::R
     })
 }
 
-/// Send what `file` (made by [`create_excl`]) has gathered to the OS: its whole blocks to
-/// the disk, the rest through the page cache.
+/// An offset of `file` (made by [`create_excl`]) below which every byte written is in the
+/// OS, at once: the bytes of the block on its way to the disk, and those gathered after it,
+/// are not yet.
+pub fn in_os(file: &hdf5::File) -> hdf5::Result<u64> {
+    let mut end = 0u64;
+    // SAFETY: an open file id, and a local for the offset
+    match hdf5::sync::sync(|| unsafe { batstudy_direct_in_os(file.id(), &mut end) }) >= 0 {
+        true => Ok(end),
+        false => Err(hdf5::Error::from("could not write the results file")),
+    }
+}
+
+/// Send what `file` (made by [`create_excl`]) has gathered to the OS, waiting for it: its
+/// whole blocks to the disk, the rest through the page cache.
 pub fn write_gathered(file: &hdf5::File) -> hdf5::Result<()> {
     // SAFETY: an open file id
     match hdf5::sync::sync(|| unsafe { batstudy_direct_flush(file.id()) }) >= 0 {
