@@ -251,6 +251,18 @@ pub fn run_settings(
             });
             begun
                 .and_then(|b| store::open_begun(path, info, &o, Some(b)))
+                .inspect(|s| {
+                    if s.recovered.dropped > 0 {
+                        // not an error: those points are computed again; said, since it
+                        // means the unfinished file was changed or lost bytes
+                        eprintln!(
+                            "note: {}: {} points whose histories were not intact in the \
+                             unfinished file are computed again",
+                            path.display(),
+                            s.recovered.dropped
+                        );
+                    }
+                })
                 .map(StoreSink::new)
                 .map_err(|e| {
                     let code = match e.is_bad_input() {
