@@ -187,8 +187,9 @@ impl Step {
 fn round_to(x: f64, step: Step) -> f64 {
     let y = x * step.inverse;
     let rounded = ((y + ROUND_TO_INTEGER) - ROUND_TO_INTEGER) * step.size;
-    // a select, not a branch: the loops over a history's values vectorise
-    match step.size.is_normal() && y.abs() < 2_251_799_813_685_248.0 {
+    // a step is 0 or a normal power of two (`step_for`); for 0 the reciprocal is ∞ and y is
+    // ±∞ or NaN, which fail the test: one comparison, a select the loops vectorise
+    match y.abs() < 2_251_799_813_685_248.0 {
         true => rounded,
         false => x,
     }
