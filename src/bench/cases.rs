@@ -35,7 +35,7 @@ impl Sizes {
             }
         } else {
             Sizes {
-                repeats: 3,
+                repeats: 5,
                 summary_omegas: (60, 30),
                 history_omegas: (40, 10),
                 headroom_omegas: 40,

@@ -140,10 +140,26 @@ fn measure_point(
 ) -> Result<(ScalingPoint, [StoreRun; 4]), String> {
     let [summary, history, scalar, modal] = studies(sz, threads)?;
     let pool = run::build_pool(threads).map_err(err("pool"))?;
-    let (s, rs) = rate(&summary, "summary", dir, &pool, sz.repeats)?;
-    let (h, rh) = rate(&history, "history", dir, &pool, sz.repeats)?;
-    let (c, rc) = rate(&scalar, "history-scalar", dir, &pool, sz.repeats)?;
-    let (m, rm) = rate(&modal, "history-modal", dir, &pool, sz.repeats)?;
+    // the four studies in turn, `repeats` times: what the machine does meanwhile (another
+    // process, the kernel's own threads) falls on all four alike, and their ratios, which
+    // the report gives, do not drift with it as when each study ran its repeats together
+    let cases = [
+        (&summary, "summary"),
+        (&history, "history"),
+        (&scalar, "history-scalar"),
+        (&modal, "history-modal"),
+    ];
+    let mut rates: [Vec<f64>; 4] = Default::default();
+    let mut last: [Option<StoreRun>; 4] = Default::default();
+    for _ in 0..sz.repeats.max(1) {
+        for (k, (study, file)) in cases.iter().enumerate() {
+            let r = store_run(file, study, dir, &pool)?;
+            rates[k].push(r.points_per_second());
+            last[k] = Some(r);
+        }
+    }
+    let [s, h, c, m] = rates.map(median);
+    let [rs, rh, rc, rm] = last.map(|r| r.expect("at least one run"));
     let point = ScalingPoint {
         threads,
         summary_points_per_second: s,

@@ -120,6 +120,9 @@ static int write_block(direct_t *f, const unsigned char *p, size_t size, haddr_t
 
 static void *block_writer(void *arg) {
     direct_t *f = arg;
+#ifdef __linux__
+    pthread_setname_np(pthread_self(), "batstudy-disk"); /* as profilers show it */
+#endif
     pthread_mutex_lock(&f->mu);
     for (;;) {
         while (!f->busy && !f->quit)
