@@ -135,8 +135,11 @@ pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
 
 /// [`filtered_whole`] for values whose bytes are mostly runs of zeros between planes that
 /// repeat little (the modal coordinates kept to the precision they need, issue 37): each
-/// byte plane a deflate block with its own Huffman codes ([`run_huffman`]).
-pub fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
+/// byte plane a deflate block with its own Huffman codes ([`run_huffman`]). The stored
+/// form of a whole, zero-padded block of coordinates, which [`filtered_coordinates`] makes
+/// without the padding (tested against this).
+#[cfg(test)]
+fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     if level == 0 {
         return le_bytes(values);
     }
@@ -146,11 +149,12 @@ pub fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     })
 }
 
-/// [`filtered_runs`] of a chunk of modal coordinates: modes `rows` of `q` (row-major
+/// The stored chunk of a block of modal coordinates: modes `rows` of `q` (row-major
 /// [time][`modes`], `n_samples` rows), mode-major ([mode][time]), then zero rows up to
-/// `block` modes; the same bytes, made without the zero rows and without the mode-major
-/// copy (issue 37: the transposed copy, and shuffling and scanning the zero rows, were a
-/// third of encoding a block).
+/// `block` modes, shuffled and deflated as `filtered_runs` would the whole block; the same
+/// bytes, made without the zero rows and without the mode-major copy (issue 37: the
+/// transposed copy, and shuffling and scanning the zero rows, were a third of encoding a
+/// block).
 pub fn filtered_coordinates(
     q: &[f64],
     modes: usize,
