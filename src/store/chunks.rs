@@ -455,11 +455,18 @@ fn leading_noise(shuffled: &[u8], n: usize, percent: u128) -> Vec<Segment<'_>> {
 /// Measured on displacement chunks: planes 0 and 1 at 100.4 to 101.1 %, plane 2 (which
 /// deflate shrinks by 10 %) at 105.4 to 106.6 %.
 fn looks_uniform(plane: &[u8], percent: u128) -> bool {
-    let mut tables = [[0u32; 256]; 4];
-    run_huffman::count_bytes(plane, &mut tables);
-    let counts: Vec<u32> = (0..256)
-        .map(|b| tables.iter().map(|t| t[b]).sum())
-        .collect();
+    let mut counts = [0u32; 256];
+    if plane.len() < PLANE_MIN_VALUES {
+        // a small chunk's plane (a few hundred bytes, four to seven of them a series): one
+        // table, where zeroing four was most of the count (issue 37)
+        plane.iter().for_each(|&b| counts[usize::from(b)] += 1);
+    } else {
+        let mut tables = [[0u32; 256]; 4];
+        run_huffman::count_bytes(plane, &mut tables);
+        for (b, c) in counts.iter_mut().enumerate() {
+            *c = tables.iter().map(|t| t[b]).sum();
+        }
+    }
     run_huffman::collides_within(&counts, plane.len(), percent)
 }
 
