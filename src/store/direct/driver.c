@@ -181,9 +181,11 @@ static herr_t write_blocks(direct_t *f) {
     if (wait_idle(f) < 0)
         return -1;
     if (!f->thread_running || f->refused) {
-        int e = f->in_os < whole ? write_block(f, f->buf + f->in_os, whole - f->in_os,
-                                               f->start + f->in_os)
-                                 : 0;
+        /* here: O_DIRECT takes whole aligned blocks; the page cache only what it lacks */
+        int e = !f->refused ? write_block(f, f->buf, whole, f->start)
+                : f->in_os < whole
+                    ? write_block(f, f->buf + f->in_os, whole - f->in_os, f->start + f->in_os)
+                    : 0;
         if (e != 0) {
             errno = e;
             return -1;
