@@ -5,6 +5,7 @@
 //! libdeflate makes one about twice as fast as zlib.
 
 use super::fixed_deflate;
+use super::modal::mode_major_block;
 use super::run_huffman;
 use hdf5::Dataset;
 use hdf5_sys::h5::{herr_t, hsize_t};
@@ -163,12 +164,10 @@ pub fn filtered_coordinates(
     block: usize,
     level: u8,
 ) -> Vec<u8> {
-    let zeros = block.saturating_sub(rows.len()) * n_samples;
     if level == 0 {
-        let mut raw = le_bytes(&mode_major(q, modes, n_samples, rows));
-        raw.resize(raw.len() + 8 * zeros, 0);
-        return raw;
+        return le_bytes(&mode_major_block(q, modes, n_samples, rows, block));
     }
+    let zeros = block.saturating_sub(rows.len()) * n_samples;
     let n = rows.len() * n_samples;
     with_scratch(8 * n, |out| {
         shuffle_modes_into(q, modes, n_samples, rows, out);
@@ -176,14 +175,8 @@ pub fn filtered_coordinates(
     })
 }
 
-/// Modes `rows` of `q` (row-major [time][`modes`]) mode-major: [mode][time].
-fn mode_major(q: &[f64], modes: usize, n_samples: usize, rows: std::ops::Range<usize>) -> Vec<f64> {
-    rows.flat_map(|j| (0..n_samples).map(move |t| q[t * modes + j]))
-        .collect()
-}
-
-/// [`shuffle_values_into`] of [`mode_major`]`(q, modes, n_samples, rows)` into `out`, made
-/// from `q` as it is: eight samples of a mode gathered, their bytes transposed, each row
+/// [`shuffle_values_into`] of [`mode_major_block`]`(q, modes, n_samples, rows, ..)` without
+/// its zero rows, into `out`, made from `q` as it is: eight samples of a mode gathered, their bytes transposed, each row
 /// stored at once.
 fn shuffle_modes_into(
     q: &[f64],

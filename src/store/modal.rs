@@ -66,17 +66,24 @@ pub fn coordinate_blocks(q: &[f64], n_samples: usize, block: usize) -> Vec<Vec<f
     let modes = q.len() / n_samples.max(1);
     coordinate_block_rows(q, n_samples, block)
         .into_iter()
-        .map(|rows| {
-            let mut out = vec![0.0; block * n_samples];
-            for (r, j) in rows.enumerate() {
-                let row = &mut out[r * n_samples..][..n_samples];
-                for (t, v) in row.iter_mut().enumerate() {
-                    *v = q[t * modes + j];
-                }
-            }
-            out
-        })
+        .map(|rows| mode_major_block(q, modes, n_samples, rows, block))
         .collect()
+}
+
+/// Modes `rows` of `q` (row-major [time][`modes`]) mode-major ([mode][time]), then zero
+/// rows up to `block` modes: one block's values as its chunk holds them.
+pub fn mode_major_block(
+    q: &[f64],
+    modes: usize,
+    n_samples: usize,
+    rows: Range<usize>,
+    block: usize,
+) -> Vec<f64> {
+    let mut out: Vec<f64> = rows
+        .flat_map(|j| (0..n_samples).map(move |t| q[t * modes + j]))
+        .collect();
+    out.resize(block * n_samples, 0.0);
+    out
 }
 
 /// Mode-major blocks (`rows` × `n_samples`, zero rows beyond the data) back to row-major
