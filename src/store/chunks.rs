@@ -251,10 +251,54 @@ fn with_scratch<R>(len: usize, f: impl FnOnce(&mut [u8]) -> R) -> R {
 }
 
 /// The transpose of an 8 × 8 byte matrix whose row k is word k (byte j at bits 8j): word j
-/// of the result holds byte j of every row, row k's at bits 8k. Three rounds of swaps:
-/// the off-diagonal 4 × 4 blocks, then the 2 × 2 blocks within them, then single bytes.
+/// of the result holds byte j of every row, row k's at bits 8k. On x86-64, whose SSE2 is
+/// always there, three rounds of byte, 16-bit and 32-bit interleaves of rows taken two to
+/// a register (issue 37: the swaps in general-purpose registers below were most of
+/// shuffling a block of modal coordinates).
+#[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn transpose_bytes(mut w: [u64; 8]) -> [u64; 8] {
+fn transpose_bytes(w: [u64; 8]) -> [u64; 8] {
+    use std::arch::x86_64::{
+        __m128i, _mm_cvtsi128_si64, _mm_set_epi64x, _mm_unpackhi_epi16, _mm_unpackhi_epi32,
+        _mm_unpackhi_epi64, _mm_unpackhi_epi8, _mm_unpacklo_epi16, _mm_unpacklo_epi32,
+        _mm_unpacklo_epi8,
+    };
+    // safe calls from Rust 1.87 on, where SSE2 is enabled (always, on x86-64)
+    #[allow(unused_unsafe)]
+    unsafe {
+        let pair = |lo: u64, hi: u64| _mm_set_epi64x(hi as i64, lo as i64);
+        // rows (0, 2) with (1, 3): bytes of rows 0 and 1 interleaved, then of 2 and 3
+        let (r0, r1, r2, r3) = (
+            pair(w[0], w[2]),
+            pair(w[1], w[3]),
+            pair(w[4], w[6]),
+            pair(w[5], w[7]),
+        );
+        let (t0, t1) = (_mm_unpacklo_epi8(r0, r1), _mm_unpackhi_epi8(r0, r1));
+        let (t2, t3) = (_mm_unpacklo_epi8(r2, r3), _mm_unpackhi_epi8(r2, r3));
+        // bytes 0–3 (u0, u2) and 4–7 (u1, u3) of rows 0–3 (u0, u1) and 4–7 (u2, u3)
+        let (u0, u1) = (_mm_unpacklo_epi16(t0, t1), _mm_unpackhi_epi16(t0, t1));
+        let (u2, u3) = (_mm_unpacklo_epi16(t2, t3), _mm_unpackhi_epi16(t2, t3));
+        let words = [
+            _mm_unpacklo_epi32(u0, u2),
+            _mm_unpackhi_epi32(u0, u2),
+            _mm_unpacklo_epi32(u1, u3),
+            _mm_unpackhi_epi32(u1, u3),
+        ];
+        let lo = |x: __m128i| _mm_cvtsi128_si64(x) as u64;
+        let hi = |x: __m128i| _mm_cvtsi128_si64(_mm_unpackhi_epi64(x, x)) as u64;
+        std::array::from_fn(|j| match j % 2 {
+            0 => lo(words[j / 2]),
+            _ => hi(words[j / 2]),
+        })
+    }
+}
+
+/// [`transpose_bytes`] in general-purpose registers, in three rounds of swaps: the
+/// off-diagonal 4 × 4 blocks, then the 2 × 2 blocks within them, then single bytes.
+#[cfg_attr(target_arch = "x86_64", cfg(test))]
+#[inline(always)]
+fn transpose_bytes_swapped(mut w: [u64; 8]) -> [u64; 8] {
     for (shift, mask, pairs) in [
         (
             32,
@@ -272,6 +316,9 @@ fn transpose_bytes(mut w: [u64; 8]) -> [u64; 8] {
     }
     w
 }
+
+#[cfg(not(target_arch = "x86_64"))]
+use transpose_bytes_swapped as transpose_bytes;
 
 /// Fewest values in a chunk for its byte planes to be judged one by one (below it the
 /// whole chunk is deflated: the cost is small and the statistic noisy).
@@ -613,6 +660,34 @@ mod tests {
 
     // Eight values at a time, the shuffle is the byte by byte one, for every value type and
     // for lengths around the blocks of eight.
+    // Both 8 × 8 byte transposes are the transpose by definition (byte k of word j of the
+    // result is byte j of word k), on words of random bytes, zeros and all ones.
+    #[test]
+    fn byte_transposes_transpose() {
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let by_definition = |w: [u64; 8]| -> [u64; 8] {
+            std::array::from_fn(|j| {
+                (0..8).fold(0, |acc, k| acc | ((w[k] >> (8 * j)) & 0xFF) << (8 * k))
+            })
+        };
+        let mut cases: Vec<[u64; 8]> = (0..200).map(|_| std::array::from_fn(|_| next())).collect();
+        cases.push([0; 8]);
+        cases.push([u64::MAX; 8]);
+        cases.push(std::array::from_fn(|k| {
+            0x0706_0504_0302_0100 + 0x0808_0808_0808_0808 * k as u64
+        }));
+        for w in cases {
+            assert_eq!(transpose_bytes(w), by_definition(w), "{w:x?}");
+            assert_eq!(transpose_bytes_swapped(w), by_definition(w), "{w:x?}");
+        }
+    }
+
     #[test]
     fn word_shuffle_is_the_byte_shuffle() {
         for n in [0usize, 1, 7, 8, 9, 16, 1001] {

@@ -174,11 +174,24 @@ impl BitWriter {
         self.acc = 0;
     }
 
-    /// `bytes` as literals of a code whose (reversed code, length ≤ 15) for byte b is
-    /// `table[b]`: three at a time, each three followed by one 8-byte store of the pending
-    /// bits into room made beforehand, advanced by the whole bytes (at most 7 + 45 bits
-    /// pending), where appending 4 bytes every 32 bits took twice as long (issue 37).
-    pub(super) fn put_literals(&mut self, bytes: &[u8], table: &[(u32, u32); 256]) {
+    /// `bytes` as literals of a code whose (reversed code, length ≤ `longest` ≤ 15) for
+    /// byte b is `table[b]`: as many at a time as fit in a word with the 7 bits a byte
+    /// boundary can leave pending, each group followed by one 8-byte store of the pending
+    /// bits into room made beforehand, advanced by the whole bytes. Appending 4 bytes every
+    /// 32 bits took twice as long, and three literals a store whatever the code a third
+    /// longer than groups of four to seven (issue 37).
+    pub(super) fn put_literals(&mut self, bytes: &[u8], table: &[(u32, u32); 256], longest: u32) {
+        match longest {
+            0..=8 => self.put_literals_by::<7>(bytes, table),
+            9 => self.put_literals_by::<6>(bytes, table),
+            10..=11 => self.put_literals_by::<5>(bytes, table),
+            12..=14 => self.put_literals_by::<4>(bytes, table),
+            _ => self.put_literals_by::<3>(bytes, table),
+        }
+    }
+
+    /// [`Self::put_literals`] `K` at a time (K codes and 7 bits fit in 64).
+    fn put_literals_by<const K: usize>(&mut self, bytes: &[u8], table: &[(u32, u32); 256]) {
         while self.bits >= 8 {
             self.out.push(self.acc as u8);
             self.acc >>= 8;
@@ -189,10 +202,10 @@ impl BitWriter {
         // at most 15 bits a literal, and 8 bytes stored past the last whole one
         self.out.resize(at + 2 * bytes.len() + 8, 0);
         let out = &mut self.out[..];
-        let triples = bytes.chunks_exact(3);
-        let rest = triples.remainder();
-        for t in triples {
-            for &b in t {
+        let groups = bytes.chunks_exact(K);
+        let rest = groups.remainder();
+        for g in groups {
+            for &b in g {
                 let (c, l) = table[usize::from(b)];
                 acc |= u64::from(c) << bits;
                 bits += l;
@@ -308,7 +321,7 @@ pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
         let b = bytes[i];
         let run = bytes[i..].iter().take_while(|&&x| x == b).count();
         if run >= 4 {
-            w.put_literals(&bytes[literals..i], &FIXED_BYTES);
+            w.put_literals(&bytes[literals..i], &FIXED_BYTES, 9);
             put_symbol(&mut w, usize::from(b));
             let left = run_copies(run, |l| put_match(&mut w, l, 1));
             (0..left).for_each(|_| put_symbol(&mut w, usize::from(b)));
@@ -316,7 +329,7 @@ pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
         }
         i += run;
     }
-    w.put_literals(&bytes[literals..], &FIXED_BYTES);
+    w.put_literals(&bytes[literals..], &FIXED_BYTES, 9);
     put_symbol(&mut w, 256); // end of block
     w.finish()
 }

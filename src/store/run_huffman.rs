@@ -245,8 +245,9 @@ fn put_dynamic(w: &mut BitWriter, plane: &Plane, lit: &[u8]) {
     // one distance code (distance 1), of length 1, whether or not a copy uses it
     put_header(w, lit, &[1]);
     let table: [(u32, u32); 256] = std::array::from_fn(|b| (codes[b], u32::from(lit[b])));
+    let longest = lit[..256].iter().copied().max().unwrap_or(0).into();
     for (piece, run) in plane.pieces() {
-        w.put_literals(piece, &table);
+        w.put_literals(piece, &table, longest);
         if run > 0 {
             // a zero, then copies at distance 1, then what no copy could take
             w.put(table[0].0, table[0].1);
