@@ -159,23 +159,28 @@ impl RecordEncoder {
             Err(_) => None,
         };
         let stored = history.as_ref().zip(s.history.as_ref());
-        let mut framed = Vec::new();
-        journal::begin_frame(&mut framed);
-        journal::encode_summary(&rec, stored.is_some(), &mut framed);
+        let mut chunks = Vec::new();
         if let Some((h, st)) = stored {
             for &(k, precision) in &st.vars {
-                let chunks = st.chunks_of(k, layout::history_array(h, k), precision);
-                let chunks = chunks.map_err(|e| {
+                let these = st.chunks_of(k, layout::history_array(h, k), precision);
+                chunks.extend(these.map_err(|e| {
                     self.reject(format!(
                         "point {}: history {} has {e}",
                         rec.index,
                         layout::HISTORY_VARS[k].0.name
                     ))
-                })?;
-                for bytes in chunks {
-                    journal::put_history_chunk(&bytes, &mut framed);
-                }
+                })?);
             }
+        }
+        // the record's room made once: grown chunk by chunk, a history's 16 KB were copied
+        // about twice over (issue 37)
+        let chunk_bytes: usize = chunks.iter().map(|c| c.len() + 4).sum();
+        let mut framed =
+            Vec::with_capacity(journal::REC_PREFIX + journal::OK_SUMMARY_LEN + chunk_bytes);
+        journal::begin_frame(&mut framed);
+        journal::encode_summary(&rec, stored.is_some(), &mut framed);
+        for bytes in &chunks {
+            journal::put_history_chunk(bytes, &mut framed);
         }
         journal::end_frame(&mut framed);
         Ok(EncodedRecord {

@@ -46,6 +46,9 @@ pub struct PreparedBat {
     /// Each mode's largest |scaled shape| over the shape points (`shapes::shape_maxima`),
     /// found when a history first needs it.
     pub(crate) shape_max: std::sync::OnceLock<Vec<f64>>,
+    /// The static shapes of the histories in modal form at each contact point asked
+    /// (`static_memo`).
+    pub(crate) static_shapes: super::static_memo::StaticShapes,
     properties: BatProperties,
 }
 
@@ -119,6 +122,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         inertia_cm,
         total_mass,
         shape_max: std::sync::OnceLock::new(),
+        static_shapes: Default::default(),
         properties,
     })
 }

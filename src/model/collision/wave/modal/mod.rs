@@ -35,7 +35,7 @@ pub(super) fn run_modal(
     let mut state = State::first_contact(c, bat, setup.n);
     let points = displacement_points(bat, spec_history(recorder));
     if let Some(rec) = recorder.as_mut().filter(|r| r.modal_form()) {
-        record::install_modal(rec, &setup, bat)?;
+        record::install_modal(rec, &setup, bat, (c.k, c.a))?;
     } else if let Some(rec) = recorder
         .as_mut()
         .filter(|r| r.wants_displacement && !points.is_empty())

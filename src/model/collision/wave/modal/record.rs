@@ -13,15 +13,37 @@ use crate::model::error::ModelError;
 use crate::model::outcome::HistoryPrecision;
 
 /// The modal form: the recorder keeps the stepped modes' coordinates and the force on the
-/// bat; the modes not stepped respond statically to that force, with this shape (m/N) at
-/// the bat's shape points: Σ_j φ_j w_j over the modes not stepped, first at every node, a
-/// mode's column at a time (the shapes are stored by mode: one pass in memory order, where
-/// a node at a time strides across every column), then linear between nodes.
+/// bat; the modes not stepped respond statically to that force, with the shape
+/// [`static_shape`] (m/N at the bat's shape points) of this contact point (`at`: node and
+/// weight), which the bat keeps once computed (`bat::static_memo`).
 pub(super) fn install_modal(
     rec: &mut Recorder,
     setup: &Setup,
     bat: &PreparedBat,
+    at: (usize, f64),
 ) -> Result<(), ModelError> {
+    let n = setup.n;
+    let key = (n, at.0, at.1.to_bits());
+    let static_shape = bat
+        .static_shapes
+        .get_or_compute(key, || static_shape(setup, bat));
+    let weights = shape_point_weights(bat);
+    // stored to f32 rounding of y, not of each coordinate (`modal_precision`)
+    let rounding = (rec.request().precision == HistoryPrecision::F32).then(|| {
+        let scale = modal_scale(bat);
+        ModalRounding::new(&shape_maxima(bat)[..n], &static_shape, |p, j| {
+            let (k, a) = weights[p];
+            shape_at(bat, k, a, j) * scale
+        })
+    });
+    rec.record_modes(n, modal_scale(bat), static_shape.to_vec(), rounding)
+}
+
+/// The static response of the modes not stepped to a unit force at the contact point, m/N
+/// at the bat's shape points: Σ_j φ_j w_j over those modes, first at every node, a mode's
+/// column at a time (the shapes are stored by mode: one pass in memory order, where a node
+/// at a time strides across every column), then linear between nodes.
+fn static_shape(setup: &Setup, bat: &PreparedBat) -> Vec<f64> {
     let n = setup.n;
     let nodes = bat.beam.len();
     let mut at_nodes = vec![0.0; nodes];
@@ -34,20 +56,10 @@ pub(super) fn install_modal(
             *u += phi * w;
         }
     }
-    let weights = shape_point_weights(bat);
-    let static_shape: Vec<f64> = weights
+    shape_point_weights(bat)
         .iter()
         .map(|&(k, a)| (1.0 - a) * at_nodes[k] + a * at_nodes[k + 1])
-        .collect();
-    // stored to f32 rounding of y, not of each coordinate (`modal_precision`)
-    let rounding = (rec.request().precision == HistoryPrecision::F32).then(|| {
-        let scale = modal_scale(bat);
-        ModalRounding::new(&shape_maxima(bat)[..n], &static_shape, |p, j| {
-            let (k, a) = weights[p];
-            shape_at(bat, k, a, j) * scale
-        })
-    });
-    rec.record_modes(n, modal_scale(bat), static_shape, rounding)
+        .collect()
 }
 
 /// Give the recorder the displacement of the bat at its requested positions (`points`:
