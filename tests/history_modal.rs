@@ -283,3 +283,63 @@ fn verlet_records_the_grid_form_only() {
     assert!(e.to_string().contains("modal integrator"), "{label}: {e}");
     assert!(simulate(&spec, &bat, Some(&request(HistoryDisplacement::Grid))).is_ok());
 }
+
+// A bat keeps the static shape of each contact point its histories asked for
+// (`bat::static_memo`). A history whose shape came from the memo must be the one the
+// computation gives on its own: collisions on one bat at contact points that share a node
+// pair but not its weight, at ball speeds, swings and masses (a heavy ball, a slower
+// contact: fewer modes stepped) in one
+// order and then in the reverse (every shape then from the memo), are each bit for bit the
+// history of the same collision on a copy of the bat (a copy starts with an empty memo).
+#[test]
+fn a_bats_kept_static_shapes_are_those_computed_anew() {
+    let (_, base, bat) = cases().remove(0);
+    let modal = request_in(HistoryDisplacement::Modal, HistoryPrecision::F32);
+    let mut specs = Vec::new();
+    for z in [0.55, 0.70, 0.7004, 0.7011, 0.80] {
+        for (speed, omega, mass) in [(40.0, 0.0, 0.145), (15.0, 0.0, 0.145), (40.0, -45.0, 2.0)] {
+            let mut s = base.clone();
+            s.impact.z = z;
+            s.ball.speed = speed;
+            s.swing.omega = omega;
+            s.ball.mass = mass;
+            specs.push(s);
+        }
+    }
+    let alone = |s: &batstudy::model::spec::CollisionSpec| {
+        simulate(s, &bat.clone(), Some(&modal))
+            .unwrap()
+            .history
+            .unwrap()
+    };
+    let mut modes = std::collections::BTreeSet::new();
+    for pass in [specs.clone(), specs.iter().rev().cloned().collect()] {
+        for s in &pass {
+            let kept = simulate(s, &bat, Some(&modal)).unwrap().history.unwrap();
+            let fresh = alone(s);
+            modes.insert(kept.modal.modes);
+            let at = format!(
+                "z {}, speed {}, ω {}",
+                s.impact.z, s.ball.speed, s.swing.omega
+            );
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&kept.modal.static_shape),
+                bits(&fresh.modal.static_shape),
+                "{at}"
+            );
+            assert_eq!(
+                bits(&kept.modal.coordinate),
+                bits(&fresh.modal.coordinate),
+                "{at}"
+            );
+            assert_eq!(
+                bits(&kept.modal.bat_load),
+                bits(&fresh.modal.bat_load),
+                "{at}"
+            );
+        }
+    }
+    eprintln!("modes stepped: {modes:?}");
+    assert!(modes.len() > 1, "the cases step different numbers of modes");
+}
