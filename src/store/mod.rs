@@ -43,6 +43,7 @@ pub mod placer;
 pub mod read;
 pub mod run_huffman;
 pub mod session;
+pub mod shuffle;
 pub mod writeback;
 
 pub use encode::{EncodedRecord, RecordEncoder};
