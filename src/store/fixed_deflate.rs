@@ -168,8 +168,8 @@ impl BitWriter {
     /// byte b is `table[b]`: as many at a time as fit in a word with the 7 bits a byte
     /// boundary can leave pending, each group followed by one 8-byte store of the pending
     /// bits into room made beforehand, advanced by the whole bytes. Appending 4 bytes every
-    /// 32 bits took twice as long, and three literals a store whatever the code a third
-    /// longer than groups of four to seven (issue 37).
+    /// 32 bits took twice as long (issue 37); three literals a store whatever the code left
+    /// the short codes of a plane of exponents (7 bits) a store for every three.
     pub(super) fn put_literals(&mut self, bytes: &[u8], table: &[(u32, u32); 256], longest: u32) {
         match longest {
             0..=8 => self.put_literals_by::<7>(bytes, table),
@@ -327,7 +327,7 @@ pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
     w.block_header(true, FIXED);
     // the bytes between runs go out together (`put_literals`); a run is looked for only
     // where four bytes are equal, one comparison of a word (issue 37: counting the run at
-    // every byte was a third of encoding a scalar series). The runs are those found
+    // every byte was an eighth of encoding a scalar series). The runs are those found
     // counting from every run's start: a run of four or more starts where its first four
     // bytes are equal, and none starts inside a shorter one.
     let (n, mut i, mut literals) = (bytes.len(), 0, 0);

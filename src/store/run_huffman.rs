@@ -188,7 +188,7 @@ const STORED_PERCENT: u128 = 250;
 /// every machine.
 pub(super) fn collides_within(counts: &[u32], n: usize, percent: u128) -> bool {
     // Σ c(c − 1) < (Σ c)²: in 64 bits when Σ c < 2³², a sum the compiler vectorises
-    // (issue 37: in 128 bits it was a fifth of encoding a scalar series)
+    // (issue 37: in 128 bits it was a twelfth of encoding a scalar series)
     let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
     let pairs: u128 = match total < 1 << 32 {
         true => counts

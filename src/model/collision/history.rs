@@ -206,8 +206,9 @@ impl<'r> Recorder<'r> {
         let w = w.unwrap_or(0.0);
         let l = |x: f64, y: f64| x + w * (y - x);
         let at = |f: fn(&Sample) -> f64| prev.map_or(f(s), |a| l(f(a), f(s)));
-        let each = |out: &mut Vec<f64>, f: fn(&Sample) -> &[f64], scale: f64| {
-            lerp_onto(out, prev.map(f), f(s), w, scale)
+        let each = |out: &mut Vec<f64>, f: fn(&Sample) -> &[f64], scale: f64| match prev {
+            Some(a) => out.extend(f(a).iter().zip(f(s)).map(|(x, y)| l(*x, *y) * scale)),
+            None => out.extend(f(s).iter().map(|x| x * scale)),
         };
         for field in &request.fields {
             match field {
@@ -246,28 +247,5 @@ impl<'r> Recorder<'r> {
             r.round(&mut self.history.modal);
         }
         self.history
-    }
-}
-
-/// `b` (or, with `a`, x + w (y − x) between a's x and b's y) times `scale`, appended to
-/// `out`: written into room made first, a loop the compiler vectorises, where extending
-/// the vector value by value checked its capacity at each (issue 37: a third of the
-/// recorder's time).
-fn lerp_onto(out: &mut Vec<f64>, a: Option<&[f64]>, b: &[f64], w: f64, scale: f64) {
-    let n = a.map_or(b.len(), |a| a.len().min(b.len()));
-    let start = out.len();
-    out.resize(start + n, 0.0);
-    let dst = &mut out[start..];
-    match a {
-        Some(a) => {
-            for ((d, x), y) in dst.iter_mut().zip(&a[..n]).zip(&b[..n]) {
-                *d = (x + w * (y - x)) * scale;
-            }
-        }
-        None => {
-            for (d, y) in dst.iter_mut().zip(&b[..n]) {
-                *d = y * scale;
-            }
-        }
     }
 }
