@@ -62,6 +62,12 @@ fn bench_quick_reports_every_section_and_no_targets() {
         assert!(p.summary_efficiency > 0.0 && p.history_scalar_efficiency > 0.0);
         assert!(p.history_modal_efficiency > 0.0);
     }
+    // one paired ratio per repeat: --quick runs each study once, so the one pair is the
+    // ratio of the (one-run) medians
+    assert_eq!(
+        sc.history_modal_vs_summary_per_core_per_repeat,
+        [sc.history_modal_vs_summary_per_core]
+    );
     assert!(sc.history_compute_points_per_second > 0.0);
     assert!(sc.history_modal_compute_points_per_second > 0.0);
     // issue 37: the displacement in modal form takes fewer bytes than on its 85-z grid
@@ -133,6 +139,7 @@ fn bench_quick_json_has_every_section_and_key() {
         "history_modal_file_bytes",
         "history_modal_compute_points_per_second",
         "history_modal_vs_summary_ceiling",
+        "history_modal_vs_summary_per_core_per_repeat",
     ] {
         assert!(json["scaling"].get(key).is_some(), "scaling lacks {key}");
     }

@@ -162,6 +162,18 @@ pub(super) fn print_scaling_end(out: &mut dyn Write, sc: &Scaling) {
             sc.history_scalar_vs_summary_per_core
         ),
     );
+    let mut runs = sc.history_modal_vs_summary_per_core_per_repeat.clone();
+    runs.sort_by(f64::total_cmp);
+    if let (Some(lo), Some(hi)) = (runs.first(), runs.last()) {
+        line(
+            out,
+            format!(
+                "in modal form, repeat by repeat (each modal run over the summary run of its \
+                 repeat): {lo:.2} to {hi:.2} over {} repeats",
+                runs.len()
+            ),
+        );
+    }
     line(
         out,
         format!(

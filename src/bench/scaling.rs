@@ -32,6 +32,9 @@ pub struct ScalingPoint {
     pub history_efficiency: f64,
     pub history_scalar_efficiency: f64,
     pub history_modal_efficiency: f64,
+    /// Each repeat's modal history points/s over the summary points/s of the same repeat
+    /// (the two runs half a second apart): the spread of the ratio the medians give.
+    pub history_modal_vs_summary_per_repeat: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -74,6 +77,10 @@ pub struct Scaling {
     pub history_modal_file_bytes: u64,
     pub history_modal_compute_points_per_second: f64,
     pub history_modal_vs_summary_ceiling: f64,
+    /// `history_modal_vs_summary_per_core` repeat by repeat on every core: each modal run's
+    /// points/s over the summary run's of the same repeat (what other work on the machine
+    /// does to one ratio; the headline is the ratio of the medians).
+    pub history_modal_vs_summary_per_core_per_repeat: Vec<f64>,
 }
 
 /// Peak memory of each study's run on the most threads.
@@ -158,6 +165,7 @@ fn measure_point(
             last[k] = Some(r);
         }
     }
+    let per_repeat = rates[3].iter().zip(&rates[0]).map(|(m, s)| m / s).collect();
     let [s, h, c, m] = rates.map(median);
     let [rs, rh, rc, rm] = last.map(|r| r.expect("at least one run"));
     let point = ScalingPoint {
@@ -172,6 +180,7 @@ fn measure_point(
         history_efficiency: 1.0,
         history_scalar_efficiency: 1.0,
         history_modal_efficiency: 1.0,
+        history_modal_vs_summary_per_repeat: per_repeat,
     };
     Ok((point, [rs, rh, rc, rm]))
 }
@@ -274,6 +283,9 @@ pub(super) fn bench_scaling(
         history_modal_file_bytes: modal.file_bytes,
         history_modal_compute_points_per_second: v.modal_compute,
         history_modal_vs_summary_ceiling: per_summary(v.modal_compute),
+        history_modal_vs_summary_per_core_per_repeat: last
+            .history_modal_vs_summary_per_repeat
+            .clone(),
         points,
     };
     let peaks = Peaks {
