@@ -250,6 +250,9 @@ const LITERALS: [(u16, u8); 288] = {
     t
 };
 
+/// The longest fixed code of a byte (144–255: 9 bits, RFC 1951 §3.2.6).
+const FIXED_LONGEST: u32 = 9;
+
 /// The fixed code of every byte as a literal, as [`BitWriter::put_literals`] takes it.
 const FIXED_BYTES: [(u32, u32); 256] = {
     let mut t = [(0u32, 0u32); 256];
@@ -339,14 +342,14 @@ pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
             continue;
         }
         let run = 4 + bytes[i + 4..].iter().take_while(|&&x| x == b).count();
-        w.put_literals(&bytes[literals..i], &FIXED_BYTES, 9);
+        w.put_literals(&bytes[literals..i], &FIXED_BYTES, FIXED_LONGEST);
         put_symbol(&mut w, usize::from(b));
         let left = run_copies(run, |l| put_copy(&mut w, l));
         (0..left).for_each(|_| put_symbol(&mut w, usize::from(b)));
         literals = i + run;
         i += run;
     }
-    w.put_literals(&bytes[literals..], &FIXED_BYTES, 9);
+    w.put_literals(&bytes[literals..], &FIXED_BYTES, FIXED_LONGEST);
     put_symbol(&mut w, 256); // end of block
     w.finish()
 }

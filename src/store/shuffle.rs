@@ -115,7 +115,7 @@ pub(super) fn shuffle_values_into<T: ChunkValue>(values: &[T], out: &mut [u8]) {
 
 /// [`shuffle_values_into`] a new buffer.
 #[cfg(test)]
-pub(super) fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
+fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
     let mut out = vec![0u8; values.len() * T::SIZE];
     shuffle_values_into(values, &mut out);
     out
