@@ -383,15 +383,23 @@ pub fn end_of_allocation(file: hid_t) -> Option<u64> {
 /// The journal records chunks by this offset instead of their bytes (`store::by_reference`),
 /// and a resume checks the bytes it finds there against their checksum, so an offset that
 /// were wrong would only cost the point's recomputation.
+///
+/// `eoa` is the end of allocation before the write, when the caller knows it (None: asked
+/// of the file), and is left at the end after it: a point's chunks written one after the
+/// other ask the file once each, not twice (issue 37: the queries were a seventh of placing
+/// a modal history).
 pub fn write_chunk_at_end(
     ds: &Dataset,
     file: hid_t,
     start: &[usize],
     bytes: &[u8],
+    eoa: &mut Option<u64>,
 ) -> hdf5::Result<Option<u64>> {
-    let before = end_of_allocation(file);
+    let before = eoa.or_else(|| end_of_allocation(file));
+    *eoa = None;
     write_chunk(ds, start, bytes)?;
     let after = end_of_allocation(file);
+    *eoa = after;
     Ok(match (before, after) {
         (Some(b), Some(a)) if a.checked_sub(b) == Some(bytes.len() as u64) => Some(b),
         _ => None,

@@ -357,6 +357,7 @@ fn code_lengths(freq: &[u32], limit: u8) -> Vec<u8> {
             n += 1;
         }
     }
+    let by_buckets = n >= COUNTED_FROM;
     for (s, &f) in freq.iter().enumerate() {
         if n >= 2 {
             break;
@@ -367,7 +368,10 @@ fn code_lengths(freq: &[u32], limit: u8) -> Vec<u8> {
         }
     }
     let used = &mut packed[..n];
-    used.sort_unstable();
+    match by_buckets {
+        true => sort_by_frequency(used),
+        false => used.sort_unstable(),
+    }
     let limit = usize::from(limit);
     let mut count = [0u32; 16];
     huffman_depths(used, |d| count[d.min(limit)] += 1);
@@ -397,6 +401,40 @@ fn code_lengths(freq: &[u32], limit: u8) -> Vec<u8> {
     lengths
 }
 
+/// Codes over at least this many symbols are sorted by counting ([`sort_by_frequency`]);
+/// fewer (the code-length code's 19) are compared, which costs less than the buckets.
+const COUNTED_FROM: usize = 64;
+
+/// Frequencies below this are sorted by counting, one bucket each; the rest share the last
+/// bucket and are compared.
+const BUCKETS: usize = 256;
+
+/// `packed` (frequency << 16 | symbol, the symbols ascending) sorted as integers: placed by
+/// frequency into buckets in the order given (so that equal frequencies stay by symbol),
+/// the frequencies of [`BUCKETS`] − 1 and over compared in the last (issue 37: a
+/// comparison sort was a third of the time a plane's code took; most of a plane's
+/// frequencies are small).
+fn sort_by_frequency(packed: &mut [u64]) {
+    let bucket = |p: u64| (p >> 16).min(BUCKETS as u64 - 1) as usize;
+    let mut start = [0u16; BUCKETS];
+    packed.iter().for_each(|&p| start[bucket(p)] += 1);
+    let mut at = 0;
+    for s in start.iter_mut() {
+        let count = *s;
+        *s = at;
+        at += count;
+    }
+    let mut sorted = [0u64; SYMBOLS];
+    for &p in packed.iter() {
+        let b = bucket(p);
+        sorted[usize::from(start[b])] = p;
+        start[b] += 1;
+    }
+    let (sorted, last) = (&mut sorted[..packed.len()], usize::from(start[BUCKETS - 2]));
+    sorted[last..].sort_unstable();
+    packed.copy_from_slice(sorted);
+}
+
 /// The depth of each leaf of a Huffman tree over `used` (packed frequency and symbol,
 /// ascending), handed to `each`.
 fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
@@ -404,29 +442,43 @@ fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
     // nodes' weights and parents only. On the stack, and the lighter of the two heads taken
     // without a branch (a leaf on a tie): an exhausted queue's head weighs more than any
     // node, so that which queue gives the next node is a select, where a branch mispredicted
-    // half the time (issue 37: 1.2 of the 2.3 µs a code took).
+    // half the time (issue 37: 1.2 of the 2.3 µs a code took). Both children of a node are
+    // chosen from the two heads of each queue, read at once: the second choice does not
+    // wait on reading what the first left (the merges were a chain of dependent reads, half
+    // of a plane's code).
     let n = used.len();
-    let mut leaves = [u64::MAX; SYMBOLS + 1];
+    let mut leaves = [u64::MAX; SYMBOLS + 2];
     leaves[..n]
         .iter_mut()
         .zip(used)
         .for_each(|(l, &u)| *l = u >> 16);
-    let mut weight = [u64::MAX; SYMBOLS];
+    let mut weight = [u64::MAX; SYMBOLS + 1];
     let mut parent = [0u16; 2 * SYMBOLS];
     let (mut leaf, mut node) = (0, 0);
     for made in 0..n - 1 {
-        let mut take = || {
-            let (lw, nw) = (leaves[leaf], weight[node]);
-            let from_leaf = lw <= nw;
-            let (i, w) = match from_leaf {
-                true => (leaf, lw),
-                false => (n + node, nw),
-            };
-            leaf += usize::from(from_leaf);
-            node += usize::from(!from_leaf);
-            (i, w)
+        let (l0, l1) = (leaves[leaf], leaves[leaf + 1]);
+        let (n0, n1) = (weight[node], weight[node + 1]);
+        // the first child: a leaf on a tie; the second, from what the first left
+        let first_leaf = l0 <= n0;
+        let (wa, a) = match first_leaf {
+            true => (l0, leaf),
+            false => (n0, n + node),
         };
-        let ((a, wa), (b, wb)) = (take(), take());
+        let (lw, nw) = match first_leaf {
+            true => (l1, n0),
+            false => (l0, n1),
+        };
+        let (leaf1, node1) = (
+            leaf + usize::from(first_leaf),
+            node + usize::from(!first_leaf),
+        );
+        let second_leaf = lw <= nw;
+        let (wb, b) = match second_leaf {
+            true => (lw, leaf1),
+            false => (nw, n + node1),
+        };
+        leaf = leaf1 + usize::from(second_leaf);
+        node = node1 + usize::from(!second_leaf);
         weight[made] = wa + wb;
         parent[a] = (n + made) as u16;
         parent[b] = (n + made) as u16;
@@ -537,6 +589,71 @@ mod tests {
                 vec![]
             };
             assert_eq!(zero_runs(&v, 0), want, "{lead} {run} {tail}");
+        }
+    }
+
+    // The bucket sort gives what a comparison sort gives: frequencies small and large,
+    // ties, one symbol, every symbol.
+    #[test]
+    fn frequencies_sort_as_integers() {
+        let mut state = 7;
+        let mut rng = || crate::model::xorshift::next(&mut state);
+        for case in 0..400 {
+            let n = 1 + case % SYMBOLS;
+            let top = [3u64, 300, 70_000][case % 3];
+            let mut packed = Vec::new();
+            for s in 0..SYMBOLS as u64 {
+                if packed.len() < n && (rng() % 3 > 0 || n == SYMBOLS) {
+                    packed.push((1 + rng() % top) << 16 | s);
+                }
+            }
+            let mut want = packed.clone();
+            want.sort_unstable();
+            sort_by_frequency(&mut packed);
+            assert_eq!(packed, want, "case {case}");
+        }
+    }
+
+    // Where the limit does not bind, the codes are optimal: their cost Σ f·l is that of Huffman's construction
+    // by repeatedly merging the two lightest weights (a binary heap, Huffman 1952), whose
+    // cost is the sum of the merged weights; for frequencies few, many, tied and skewed.
+    #[test]
+    fn codes_cost_what_huffmans_construction_costs() {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        let mut state = 11;
+        let mut rng = || crate::model::xorshift::next(&mut state);
+        for case in 0..300 {
+            let n = 2 + case % (SYMBOLS - 1);
+            // within a factor of three of each other, or absent: no code is longer than the limit
+            let top = [2u64, 40, 5_000][case % 3];
+            let freq: Vec<u32> = (0..n)
+                .map(|_| match rng() % 5 {
+                    0 => 0,
+                    _ => (top / 2 + rng() % top) as u32,
+                })
+                .collect();
+            if freq.iter().filter(|&&f| f > 0).count() < 2 {
+                continue;
+            }
+            let lengths = code_lengths(&freq, 15);
+            let cost: u64 = freq
+                .iter()
+                .zip(&lengths)
+                .map(|(&f, &l)| u64::from(f) * u64::from(l))
+                .sum();
+            let mut heap: BinaryHeap<Reverse<u64>> = freq
+                .iter()
+                .filter(|&&f| f > 0)
+                .map(|&f| Reverse(u64::from(f)))
+                .collect();
+            let mut want = 0;
+            while heap.len() > 1 {
+                let (Reverse(a), Reverse(b)) = (heap.pop().unwrap(), heap.pop().unwrap());
+                want += a + b;
+                heap.push(Reverse(a + b));
+            }
+            assert_eq!(cost, want, "case {case}: {n} symbols");
         }
     }
 

@@ -209,6 +209,9 @@ impl Into<'_> {
         let rank = self.info.shape.dims.len();
         let idx = self.info.shape.unravel(index);
         let mut pieces = pieces.into_iter();
+        // the file's end of allocation as the last chunk left it (nothing else allocates
+        // between a point's chunks)
+        let mut eoa = None;
         for (k, ds, shape) in self.created {
             let count = if *k == l::MODAL_COORDINATE { blocks } else { 1 };
             let tail = &shape[rank..];
@@ -227,7 +230,7 @@ impl Into<'_> {
                 let what = || format!("write a history of {}", ds.name());
                 match self.offsets.as_mut() {
                     Some((file, o)) => o.push(
-                        chunks::write_chunk_at_end(ds, *file, &start, bytes)
+                        chunks::write_chunk_at_end(ds, *file, &start, bytes, &mut eoa)
                             .ctx_with(self.out, what)?,
                     ),
                     None => chunks::write_chunk(ds, &start, bytes).ctx_with(self.out, what)?,

@@ -122,9 +122,11 @@ mod tests {
             .collect();
         for c in 0..4 {
             let mut named = Vec::new();
+            // the end of allocation carried from chunk to chunk, as a point's are written
+            let mut eoa = None;
             for (d, ds) in sets.iter().enumerate() {
                 let bytes = chunk_bytes(d, c);
-                let at = write_chunk_at_end(ds, f.id(), &[c, 0], &bytes).unwrap();
+                let at = write_chunk_at_end(ds, f.id(), &[c, 0], &bytes, &mut eoa).unwrap();
                 named.extend(at.map(|at| (at, bytes)));
             }
             let plain = f
