@@ -116,14 +116,15 @@ pub fn fill(
     // ---- /errors: made empty with the skeleton; grown only when points failed
     write_errors(&sk.errors, errors, out)?;
     // ---- /uncertainty: a `sample` dimension's statistics, read back from the data above
+    // through datasets opened afresh (`Skeleton::into_file`)
+    let f = sk.into_file();
     if let Some(sample) = &info.sample_dim {
-        super::uncertainty::write_uncertainty(&sk.f, info, sample, out)?;
+        super::uncertainty::write_uncertainty(&f, info, sample, out)?;
     }
 
-    let f = &sk.f;
-    final_attrs(f, created, (n_done, n_failed, n_points), out)?;
+    final_attrs(&f, created, (n_done, n_failed, n_points), out)?;
     f.flush().ctx(out, "flush the results file")?;
-    drop(sk);
+    drop(f);
     Ok(Summary {
         n_points,
         n_done,
