@@ -64,8 +64,11 @@ pub(super) fn le_bytes<T: ChunkValue>(values: &[T]) -> Vec<u8> {
 }
 
 /// [`shuffle_values_into`] of `store::modal::mode_major_block``(q, modes, n_samples, rows, ..)` without
-/// its zero rows, into `out`, made from `q` as it is: eight samples of a mode gathered, their bytes transposed, each row
-/// stored at once.
+/// its zero rows, into `out`, made from `q` as it is: eight samples of a mode gathered, their
+/// bytes transposed, each row stored at once. Eight samples at a time of every mode: the
+/// eight rows of `q` they come from are read once while they are in the cache (a mode at a
+/// time read the whole history once per mode: 9.6 µs against 6.0 for a bench history of
+/// 21 modes, issue 37).
 pub(super) fn shuffle_modes_into(
     q: &[f64],
     modes: usize,
@@ -75,17 +78,20 @@ pub(super) fn shuffle_modes_into(
 ) {
     let n = rows.len() * n_samples;
     let whole = n_samples - n_samples % 8;
-    for (r, j) in rows.enumerate() {
-        let at = r * n_samples;
-        for t in (0..whole).step_by(8) {
-            let words = std::array::from_fn(|k| q[(t + k) * modes + j].to_bits());
+    for t in (0..whole).step_by(8) {
+        let eight = &q[t * modes..(t + 8) * modes];
+        for (r, j) in rows.clone().enumerate() {
+            let words = std::array::from_fn(|k| eight[k * modes + j].to_bits());
+            let at = r * n_samples + t;
             for (p, row) in transpose_bytes(words).iter().enumerate() {
-                out[p * n + at + t..][..8].copy_from_slice(&row.to_le_bytes());
+                out[p * n + at..][..8].copy_from_slice(&row.to_le_bytes());
             }
         }
+    }
+    for (r, j) in rows.enumerate() {
         for t in whole..n_samples {
             for (p, b) in q[t * modes + j].to_le_bytes().into_iter().enumerate() {
-                out[p * n + at + t] = b;
+                out[p * n + r * n_samples + t] = b;
             }
         }
     }
