@@ -241,10 +241,11 @@ fn put_plane(w: &mut BitWriter, bytes: &[u8], zeros: usize) {
 
 /// Planes whose bytes collide at most this many percent of uniform bytes' rate are stored,
 /// copied instead of coded: a code would save little ([`collides_within`]). Measured on the
-/// bench's coordinate blocks: planes 5 and 6 (170 to 230 %, 120 to 130 %) stored cost 60
-/// bytes of a block's 12 300 and save 7 of the 49 µs it took to code them; plane 4 (1 000
-/// to 1 300 %) a code shrinks by a fifth.
-const STORED_PERCENT: u128 = 250;
+/// bench's coordinate blocks (100 of them): plane 6 collides at 122 to 136 % (10th to 90th
+/// percentile) and a code saves nothing; plane 5 at 186 to 348 %, where a code saved 3 % of
+/// its bytes (116 B a block) for 5.5 of the 52 µs a block took (at the earlier 250 %, half
+/// its blocks were coded); planes 3 and 4 (900 to 2 200 %) a code shrinks by a fifth.
+const STORED_PERCENT: u128 = 400;
 
 /// Whether bytes with these counts (`n` in all) collide at most `percent` % as often as
 /// uniform bytes would: Σ c(c − 1) / (n(n − 1)) is an unbiased estimate of the collision
