@@ -396,6 +396,7 @@ pub fn write_chunk_at_end(
     eoa: &mut Option<u64>,
 ) -> hdf5::Result<Option<u64>> {
     let before = eoa.or_else(|| end_of_allocation(file));
+    // not known again until the write has succeeded: a failed one may have allocated
     *eoa = None;
     write_chunk(ds, start, bytes)?;
     let after = end_of_allocation(file);
