@@ -68,6 +68,10 @@ fn bench_quick_reports_every_section_and_no_targets() {
         sc.history_modal_vs_summary_per_core_per_repeat,
         [sc.history_modal_vs_summary_per_core]
     );
+    // a share of the machine's CPU time, where /proc/stat gives it
+    for share in [sc.summary_stolen_share, sc.history_modal_stolen_share] {
+        assert!(share.is_none_or(|x| (0.0..=1.0).contains(&x)), "{share:?}");
+    }
     assert!(sc.history_compute_points_per_second > 0.0);
     assert!(sc.history_modal_compute_points_per_second > 0.0);
     // issue 37: the displacement in modal form takes fewer bytes than on its 85-z grid
@@ -140,6 +144,9 @@ fn bench_quick_json_has_every_section_and_key() {
         "history_modal_compute_points_per_second",
         "history_modal_vs_summary_ceiling",
         "history_modal_vs_summary_per_core_per_repeat",
+        // what the host of a virtual machine took meanwhile (null where unreadable)
+        "summary_stolen_share",
+        "history_modal_stolen_share",
     ] {
         assert!(json["scaling"].get(key).is_some(), "scaling lacks {key}");
     }

@@ -62,3 +62,49 @@ pub(super) fn err<E: std::fmt::Display>(what: &str) -> impl FnOnce(E) -> String 
 pub(super) fn process_cpu_seconds() -> f64 {
     cpu_clock_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
+
+/// CPU seconds the host has taken from this machine's CPUs so far, all of them together:
+/// the "steal" time of `/proc/stat`, when a virtual CPU was ready to run and its host ran
+/// something else (other guests, or its own work for this one, such as emulating its disk).
+/// None where `/proc/stat` cannot be read or has no such field.
+pub(super) fn machine_stolen_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/stat").ok()?;
+    let ticks = stolen_ticks(stat.lines().next()?)?;
+    // SAFETY: sysconf reads a constant of the system
+    let hz = unsafe { libc::sysconf(libc::_SC_CLK_TCK) };
+    (hz > 0).then(|| ticks as f64 / hz as f64)
+}
+
+/// The steal field of `/proc/stat`'s first line (`cpu  user nice system idle iowait irq
+/// softirq steal …`, in clock ticks, every CPU summed; proc(5)).
+pub(super) fn stolen_ticks(line: &str) -> Option<u64> {
+    let mut fields = line.split_whitespace();
+    (fields.next()? == "cpu").then_some(())?;
+    fields.nth(7)?.parse().ok()
+}
+
+/// The CPUs `/proc/stat` counts (its `cpuN` lines), whose time its first line sums.
+pub(super) fn machine_cpus() -> Option<usize> {
+    let stat = std::fs::read_to_string("/proc/stat").ok()?;
+    let n = stat
+        .lines()
+        .filter(|l| l.starts_with("cpu") && l.as_bytes().get(3).is_some_and(u8::is_ascii_digit))
+        .count();
+    (n > 0).then_some(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // proc(5): the aggregate line's eighth value is the steal time; older kernels without
+    // it (before 2.6.11) give None, as does any other line
+    #[test]
+    fn steal_is_the_eighth_value_of_the_cpu_line() {
+        let line = "cpu  10132153 290696 3084719 46828483 16683 0 25195 17453 0 0";
+        assert_eq!(stolen_ticks(line), Some(17453));
+        assert_eq!(stolen_ticks("cpu  1 2 3 4 5 6 7"), None);
+        assert_eq!(stolen_ticks("cpu0 1 2 3 4 5 6 7 8 9"), None);
+        assert_eq!(stolen_ticks("intr 1 2 3 4 5 6 7 8 9"), None);
+    }
+}

@@ -174,6 +174,18 @@ pub(super) fn print_scaling_end(out: &mut dyn Write, sc: &Scaling) {
             ),
         );
     }
+    if let (Some(m), Some(s)) = (sc.history_modal_stolen_share, sc.summary_stolen_share) {
+        line(
+            out,
+            format!(
+                "the machine's host took {:.1} % of its CPU time during the modal runs, {:.1} % \
+                 during the summary runs (steal time: in a virtual machine, the host's other \
+                 work, including writing this machine's disk)",
+                100.0 * m,
+                100.0 * s
+            ),
+        );
+    }
     line(
         out,
         format!(

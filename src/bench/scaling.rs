@@ -35,6 +35,12 @@ pub struct ScalingPoint {
     /// Each repeat's modal history points/s over the summary points/s of the same repeat
     /// (the two runs half a second apart): the spread of the ratio the medians give.
     pub history_modal_vs_summary_per_repeat: Vec<f64>,
+    /// The share of the machine's CPU time its host took during the summary and the modal
+    /// history runs (medians over the repeats; `StoreRun::stolen_share`), None where it
+    /// cannot be read: what a virtual machine's host, writing its disk, takes from a study
+    /// that writes more bytes.
+    pub summary_stolen_share: Option<f64>,
+    pub history_modal_stolen_share: Option<f64>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -81,6 +87,10 @@ pub struct Scaling {
     /// points/s over the summary run's of the same repeat (what other work on the machine
     /// does to one ratio; the headline is the ratio of the medians).
     pub history_modal_vs_summary_per_core_per_repeat: Vec<f64>,
+    /// The host's share of the machine's CPU time during the summary and the modal runs on
+    /// every core (see [`ScalingPoint`]).
+    pub summary_stolen_share: Option<f64>,
+    pub history_modal_stolen_share: Option<f64>,
 }
 
 /// Peak memory of each study's run on the most threads.
@@ -157,14 +167,20 @@ fn measure_point(
         (&modal, "history-modal"),
     ];
     let mut rates: [Vec<f64>; 4] = Default::default();
+    let mut stolen: [Vec<Option<f64>>; 4] = Default::default();
     let mut last: [Option<StoreRun>; 4] = Default::default();
     for _ in 0..sz.repeats.max(1) {
         for (k, (study, file)) in cases.iter().enumerate() {
             let r = store_run(file, study, dir, &pool)?;
             rates[k].push(r.points_per_second());
+            stolen[k].push(r.stolen_share);
             last[k] = Some(r);
         }
     }
+    let stolen_median = |k: usize| -> Option<f64> {
+        let shares: Option<Vec<f64>> = stolen[k].iter().copied().collect();
+        shares.map(median)
+    };
     let per_repeat = rates[3].iter().zip(&rates[0]).map(|(m, s)| m / s).collect();
     let [s, h, c, m] = rates.map(median);
     let [rs, rh, rc, rm] = last.map(|r| r.expect("at least one run"));
@@ -181,6 +197,8 @@ fn measure_point(
         history_scalar_efficiency: 1.0,
         history_modal_efficiency: 1.0,
         history_modal_vs_summary_per_repeat: per_repeat,
+        summary_stolen_share: stolen_median(0),
+        history_modal_stolen_share: stolen_median(3),
     };
     Ok((point, [rs, rh, rc, rm]))
 }
@@ -286,6 +304,8 @@ pub(super) fn bench_scaling(
         history_modal_vs_summary_per_core_per_repeat: last
             .history_modal_vs_summary_per_repeat
             .clone(),
+        summary_stolen_share: last.summary_stolen_share,
+        history_modal_stolen_share: last.history_modal_stolen_share,
         points,
     };
     let peaks = Peaks {

@@ -2,7 +2,9 @@
 //! file, the driver, the real store (journal + final file) in a given directory; and a
 //! temporary directory for those files.
 
-use super::measure::{err, peak_rss, process_cpu_seconds, reset_peak};
+use super::measure::{
+    err, machine_cpus, machine_stolen_seconds, peak_rss, process_cpu_seconds, reset_peak,
+};
 use crate::run::{self, ModelSimulator, RunOptions, Sink, StoreSink};
 use crate::store;
 use crate::study::Study;
@@ -26,6 +28,11 @@ pub struct StoreRun {
     /// where `/proc/self/clear_refs` is unavailable.
     pub peak_rss_bytes: Option<u64>,
     pub rss_before_bytes: Option<u64>,
+    /// The share of the machine's CPU time its host took during the run (`/proc/stat`'s
+    /// steal time over the wall time of every CPU); None where it cannot be read. Nonzero
+    /// only in a virtual machine: the CPU its host spends on other guests, or on this one's
+    /// behalf (its disk, where writing a byte costs the host CPU time).
+    pub stolen_share: Option<f64>,
 }
 
 impl StoreRun {
@@ -48,6 +55,7 @@ pub fn store_run_with<K: Sink>(
     let out: PathBuf = dir.join(format!("{file}.h5"));
     let rss_before = reset_peak();
     let c0 = process_cpu_seconds();
+    let stolen0 = machine_stolen_seconds();
     // from the bats' preparation on, as in `batstudy run` (`cli::run_with`)
     let t0 = Instant::now();
     let (bats, begun) = run::prepare_bats_alongside(&ModelSimulator, &study.plan, pool, || {
@@ -77,6 +85,10 @@ pub fn store_run_with<K: Sink>(
     .map_err(err("run"))?;
     let wall = t0.elapsed().as_secs_f64();
     let cpu = process_cpu_seconds() - c0;
+    let stolen_share = match (stolen0, machine_stolen_seconds(), machine_cpus()) {
+        (Some(a), Some(b), Some(n)) => Some((b - a) / (wall * n as f64)),
+        _ => None,
+    };
     let peak = rss_before.and_then(|_| peak_rss());
     if report.failed > 0 {
         return Err(format!("bench {file}: {} points failed", report.failed));
@@ -91,6 +103,7 @@ pub fn store_run_with<K: Sink>(
         cpu_seconds: cpu,
         peak_rss_bytes: peak,
         rss_before_bytes: rss_before,
+        stolen_share,
     };
     Ok((run, sink))
 }
