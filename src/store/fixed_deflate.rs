@@ -42,7 +42,7 @@ pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
 /// that pad a block of modal coordinates end each of its byte planes.
 pub fn push_zero_run(out: &mut Vec<u8>, len: usize) {
     let mut w = BitWriter::new(std::mem::take(out));
-    put_zero_block(&mut w, len);
+    put_run_block(&mut w, 0, len);
     w.stored_block(&[], false);
     *out = w.finish();
 }
@@ -52,21 +52,22 @@ pub(super) const STORED: u32 = 0;
 pub(super) const FIXED: u32 = 1;
 pub(super) const DYNAMIC: u32 = 2;
 
-/// A non-final block with the fixed codes that holds a run of `len` (≥ 1) zeros.
-pub(super) fn put_zero_block(w: &mut BitWriter, len: usize) {
+/// A non-final block with the fixed codes that holds a run of `len` (≥ 1) bytes `byte`.
+pub(super) fn put_run_block(w: &mut BitWriter, byte: u8, len: usize) {
     w.block_header(false, FIXED);
-    put_zeros(w, len);
+    put_run(w, byte, len);
     put_symbol(w, 256); // end of block
 }
 
-/// A run of `len` (≥ 1) zeros with the fixed codes: a zero, then copies at distance 1.
-pub(super) fn put_zeros(w: &mut BitWriter, len: usize) {
-    put_symbol(w, 0);
+/// A run of `len` (≥ 1) bytes `byte` with the fixed codes: the byte, then copies at
+/// distance 1, then what no copy could take.
+pub(super) fn put_run(w: &mut BitWriter, byte: u8, len: usize) {
+    put_symbol(w, byte.into());
     let left = run_copies(len, |l| put_copy(w, l));
-    (0..left).for_each(|_| put_symbol(w, 0));
+    (0..left).for_each(|_| put_symbol(w, byte.into()));
 }
 
-/// The copies that write a run of `len` (≥ 1) zeros after its first one (a literal):
+/// The copies that write a run of `len` (≥ 1) equal bytes after its first one (a literal):
 /// lengths of at most 258, none leaving 1 or 2 bytes, which no copy can take; returns what
 /// is left for literals (0 to 2 bytes).
 pub(super) fn run_copies(len: usize, mut each: impl FnMut(usize)) -> usize {
@@ -91,16 +92,32 @@ const LENGTH_EXTRA: [u8; 29] = [
     0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0,
 ];
 /// The length code of a copy of `length` (3..=258) bytes: (its index 0..=28 among the
-/// codes 257..=285, the number of extra bits, their value).
+/// codes 257..=285, the number of extra bits, their value). A table: a plane's runs look
+/// each copy up twice, to count it and to write it (issue 37).
 pub(super) fn length_symbol(length: usize) -> (u32, u32, u32) {
-    // the last base ≤ value: its code and the extra bits of the rest
-    let l = LENGTH_BASE.partition_point(|&b| usize::from(b) <= length) - 1;
-    (
-        l as u32,
-        u32::from(LENGTH_EXTRA[l]),
-        (length - usize::from(LENGTH_BASE[l])) as u32,
-    )
+    let (l, bits, extra) = LENGTH_SYMBOLS[length];
+    (u32::from(l), u32::from(bits), u32::from(extra))
 }
+
+/// [`length_symbol`] of every length (0 to 2: none): the last base at most the length, its
+/// extra bits and the rest.
+const LENGTH_SYMBOLS: [(u8, u8, u8); MAX_MATCH + 1] = {
+    let mut t = [(0u8, 0u8, 0u8); MAX_MATCH + 1];
+    let mut length = MIN_MATCH;
+    while length <= MAX_MATCH {
+        let mut l = 0;
+        while l + 1 < LENGTH_BASE.len() && LENGTH_BASE[l + 1] as usize <= length {
+            l += 1;
+        }
+        t[length] = (
+            l as u8,
+            LENGTH_EXTRA[l],
+            (length - LENGTH_BASE[l] as usize) as u8,
+        );
+        length += 1;
+    }
+    t
+};
 
 /// Deflate's bit order: fields least-significant bit first, into bytes from their low bit.
 pub(super) struct BitWriter {
@@ -343,9 +360,7 @@ pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
         }
         let run = 4 + bytes[i + 4..].iter().take_while(|&&x| x == b).count();
         w.put_literals(&bytes[literals..i], &FIXED_BYTES, FIXED_LONGEST);
-        put_symbol(&mut w, usize::from(b));
-        let left = run_copies(run, |l| put_copy(&mut w, l));
-        (0..left).for_each(|_| put_symbol(&mut w, usize::from(b)));
+        put_run(&mut w, b, run);
         literals = i + run;
         i += run;
     }
@@ -388,6 +403,23 @@ mod tests {
         assert_eq!(literal_code(279), (0b001_0111, 7));
         assert_eq!(literal_code(280), (0b1100_0000, 8));
         assert_eq!(literal_code(287), (0b1100_0111, 8));
+    }
+
+    // RFC 1951 §3.2.5: every copy length is its code's base plus extra bits that fit, and
+    // the code is the last whose base does not pass the length
+    #[test]
+    fn length_symbols_are_the_rfcs() {
+        for length in MIN_MATCH..=MAX_MATCH {
+            let (l, bits, extra) = length_symbol(length);
+            let base = usize::from(LENGTH_BASE[l as usize]);
+            assert_eq!(base + extra as usize, length);
+            assert!(extra < 1 << bits || (bits == 0 && extra == 0), "{length}");
+            assert!(LENGTH_BASE
+                .get(l as usize + 1)
+                .is_none_or(|&b| usize::from(b) > length));
+        }
+        assert_eq!(length_symbol(258), (28, 0, 0)); // code 285, no extra bits
+        assert_eq!(length_symbol(257), (27, 5, 30)); // code 284: 227 + 30
     }
 
     // Runs of every length around the copies' limits (3..=258 and beyond) inflate back and

@@ -1,24 +1,33 @@
-//! A zlib stream for shuffled chunks made of runs of zeros and of bytes that repeat little:
-//! one deflate block per byte plane, with Huffman codes of its own (RFC 1951 §3.2.7), each
-//! run of zeros a literal then copies at distance 1, every other byte a literal.
+//! A zlib stream for shuffled chunks made of runs of equal bytes and of bytes that repeat
+//! little: one deflate block per byte plane, with Huffman codes of its own (RFC 1951
+//! §3.2.7), each run a literal then copies at distance 1, every other byte a literal.
 //!
 //! Why: the modal coordinates kept to the precision they need (issue 37,
 //! `model::collision::modal_precision`) are f64 whose low bytes are zero, value by value:
 //! shuffled, a block of them is long runs of zeros between planes of near-noise and of
-//! slowly varying exponents. libdeflate's fastest level spent 140 µs on such a 51 KB block
+//! slowly varying exponents, where a mode's sign and exponent byte repeats until its
+//! coordinate changes sign. libdeflate's fastest level spent 140 µs on such a 51 KB block
 //! on the development machine (2.5 ns per byte, the zeros as slow as the rest), more than
-//! the collision; this takes one pass to count and one to write, the runs found eight bytes
+//! the collision; this takes one pass to count and one to write, the runs found 64 bytes
 //! at a time, and comes out the same size within a few percent (docs/performance.md).
 //!
 //! Any zlib reader reads the stream: HDF5's deflate filter, h5py, xarray.
 
 use super::fixed_deflate::{
-    length_symbol, put_symbol, put_zero_block, put_zeros, run_copies, BitWriter, DYNAMIC, FIXED,
+    length_symbol, put_run, put_run_block, put_symbol, run_copies, BitWriter, DYNAMIC, FIXED,
     ZLIB_HEADER,
 };
 
-/// Zero runs shorter than this stay literals (a zero is a short code in these planes).
-const MIN_RUN: usize = 32;
+/// Runs of equal bytes shorter than this stay literals. A run costs its byte, a length code
+/// and its extra bits, and the distance code (about 15 bits); eight literals of a byte
+/// frequent enough to repeat cost more. In the planes of signs and exponents of modal
+/// coordinates, a mode's byte repeats from one sign change to the next: with runs of any
+/// byte (not only zeros) such a plane takes 0.4 KB instead of 1.1 KB (issue 37).
+const MIN_RUN: usize = 8;
+/// A stored plane (`put_stored_runs`) breaks its stored blocks only for runs this long: a
+/// run between two stored blocks costs two block headers, about 7 bytes. The zeros that end
+/// a plane's given bytes (`zlib_padded_planes`) are at least this many, or are given.
+const STORED_MIN_RUN: usize = 32;
 /// Literal/length symbols (0..=285) and the end of a block.
 const SYMBOLS: usize = 286;
 const END_OF_BLOCK: usize = 256;
@@ -39,8 +48,8 @@ pub fn zlib_planes(shuffled: &[u8], plane_len: usize) -> Vec<u8> {
 /// that moved, `store::modal`), a third of its bytes on the bench's studies: neither
 /// shuffled, nor scanned, nor summed this way (issue 37).
 pub fn zlib_padded_planes(shuffled: &[u8], plane_len: usize, zeros: usize) -> Vec<u8> {
-    if zeros > 0 && zeros < MIN_RUN {
-        // too short to be a run of its own: the planes as they are, zeros included
+    if zeros > 0 && zeros < STORED_MIN_RUN {
+        // too short to be a run of every kind of plane: the planes as they are, zeros included
         let whole: Vec<u8> = shuffled
             .chunks(plane_len.max(1))
             .flat_map(|p| p.iter().copied().chain(std::iter::repeat_n(0, zeros)))
@@ -72,150 +81,205 @@ fn add_zeros(adler: &mut libdeflater::Adler32, n: usize) {
     *adler = libdeflater::Adler32::with_initial((s2 << 16 | s1) as u32);
 }
 
-/// The runs of at least [`MIN_RUN`] zeros in `bytes` followed by `zeros` more zero bytes,
-/// as (start, length): 64 bytes at a time, their zero bytes a bit mask whose changes from
-/// zero to nonzero and back are found by counting bits (issue 37: a branch on every 8-byte
-/// word mispredicted where zero runs and bytes alternate, a fifth of coding a block of
-/// modal coordinates).
-fn zero_runs(bytes: &[u8], zeros: usize) -> Vec<(usize, usize)> {
+/// A run of `len` bytes `byte` from `start`: a plane's last run may reach past the bytes
+/// it was given into its trailing zeros.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Run {
+    start: usize,
+    len: usize,
+    byte: u8,
+}
+
+/// The runs of at least [`MIN_RUN`] equal bytes in `bytes` followed by `zeros` more zero
+/// bytes (none, or at least [`STORED_MIN_RUN`]), 64 bytes at a time: the bytes equal to the
+/// one before them as a bit mask, whose changes are found by counting bits (issue 37: a
+/// branch on every 8-byte word mispredicted where runs and other bytes alternate), and a
+/// block without a run in it or reaching its end passed whole.
+fn equal_runs(bytes: &[u8], zeros: usize) -> Vec<Run> {
     let mut runs = Vec::new();
-    let mut start: Option<usize> = None;
-    let mut close = |start: &mut Option<usize>, end: usize| {
-        if let Some(s) = start.take() {
-            if end - s >= MIN_RUN {
-                runs.push((s, end - s));
-            }
+    let close = |runs: &mut Vec<Run>, start: usize, end: usize| {
+        if end - start >= MIN_RUN {
+            runs.push(Run {
+                start,
+                len: end - start,
+                byte: bytes[start],
+            });
         }
     };
-    let blocks = bytes.chunks_exact(64);
-    let tail_at = bytes.len() - blocks.remainder().len();
-    for (i, block) in blocks.enumerate() {
-        let at = 64 * i;
-        let m = zero_mask(block);
+    // the open run's first byte
+    let mut start: Option<usize> = None;
+    let whole = bytes.len() / 64 * 64;
+    for at in (0..whole).step_by(64) {
+        let m = equal_mask(bytes, at);
         // `pos`: how far into the block the run (or the bytes between runs) is followed
         let mut pos = 0;
-        if start.is_some() {
-            let n = (!m).trailing_zeros(); // the open run's zeros in this block
+        if let Some(s) = start {
+            let n = (!m).trailing_zeros(); // the open run's bytes in this block
             if n == 64 {
                 continue;
             }
-            close(&mut start, at + n as usize);
+            close(&mut runs, s, at + n as usize);
+            start = None;
             pos = n;
         }
-        // out of a run: only zeros that make a run within the block or reach its end can
-        // count; most blocks of scattered zeros have neither, and are passed whole
-        if m >> 63 == 0 && !holds_a_run(m >> pos) {
+        if !holds_a_run(m >> pos) {
+            // no run in the block but, perhaps, one it ends with, which goes on in the next
+            let top = m.leading_ones() as usize;
+            start = (top > 0).then(|| at + 63 - top);
             continue;
         }
         while pos < 64 {
-            let rest = m >> pos; // the bits shifted in above are nonzero bytes
-            if start.is_some() {
-                let n = (!rest).trailing_zeros(); // zeros to the next nonzero byte
+            let rest = m >> pos; // the bits shifted in above are bytes unlike their last
+            if let Some(s) = start {
+                let n = (!rest).trailing_zeros(); // bytes to the next unlike its last
                 if pos + n >= 64 {
                     break;
                 }
-                close(&mut start, at + (pos + n) as usize);
+                close(&mut runs, s, at + (pos + n) as usize);
+                start = None;
                 pos += n;
             } else {
-                let n = rest.trailing_zeros(); // 64 when no zero is left
+                let n = rest.trailing_zeros(); // to the next byte like its last (64: none)
                 if pos + n >= 64 {
                     break;
                 }
-                start = Some(at + (pos + n) as usize);
                 pos += n;
+                start = Some(at + pos as usize - 1);
             }
         }
     }
-    for (i, &b) in bytes[tail_at..].iter().enumerate() {
-        match b {
-            0 => {
-                start.get_or_insert(tail_at + i);
+    for i in whole.max(1)..bytes.len() {
+        match (start, bytes[i] == bytes[i - 1]) {
+            (None, true) => start = Some(i - 1),
+            (Some(s), false) => {
+                close(&mut runs, s, i);
+                start = None;
             }
-            _ => close(&mut start, tail_at + i),
+            _ => {}
         }
+    }
+    if let Some(s) = start {
+        close(&mut runs, s, bytes.len());
     }
     if zeros > 0 {
-        start.get_or_insert(bytes.len());
+        add_trailing_zeros(&mut runs, bytes, zeros);
     }
-    close(&mut start, bytes.len() + zeros);
     runs
 }
 
-/// Whether the mask has [`MIN_RUN`] set bits in a row: after the steps, bit i is set where
-/// bits i, i + 1, … i + 2k − 1 all were, for k doubling up to [`MIN_RUN`].
+/// The plane's `zeros` trailing zeros as the end of its last run, or as a run of their own
+/// from its given bytes' last zeros: the runs the whole plane, zeros included, would have.
+fn add_trailing_zeros(runs: &mut Vec<Run>, bytes: &[u8], zeros: usize) {
+    let end = bytes.len();
+    match runs.last_mut() {
+        Some(r) if r.byte == 0 && r.start + r.len == end => r.len += zeros,
+        _ => {
+            let last = bytes.iter().rev().take_while(|&&b| b == 0).count();
+            runs.push(Run {
+                start: end - last,
+                len: last + zeros,
+                byte: 0,
+            });
+        }
+    }
+}
+
+/// Whether the mask has [`MIN_RUN`] − 1 set bits in a row (a run's bytes after its first):
+/// after each step, bit i is set where the bits from i on counted so far all were.
 fn holds_a_run(mut m: u64) -> bool {
-    const { assert!(MIN_RUN.is_power_of_two() && MIN_RUN <= 64) };
-    let mut k = 1;
-    while k < MIN_RUN {
-        m &= m >> k;
-        k *= 2;
+    const { assert!(MIN_RUN >= 2 && MIN_RUN <= 64) };
+    let mut ones = 1;
+    while ones < MIN_RUN - 1 {
+        let step = ones.min(MIN_RUN - 1 - ones);
+        m &= m >> step;
+        ones += step;
     }
     m != 0
 }
 
-/// Bit i set where `block[i]` (64 bytes) is zero.
+/// Bit i set where `bytes[at + i]` equals the byte before it (64 bytes from `at`; the
+/// plane's first byte has none).
 #[cfg(target_arch = "x86_64")]
-fn zero_mask(block: &[u8]) -> u64 {
+fn equal_mask(bytes: &[u8], at: usize) -> u64 {
     use std::arch::x86_64::{
-        __m128i, _mm_cmpeq_epi8, _mm_loadu_si128, _mm_movemask_epi8, _mm_setzero_si128,
+        __m128i, _mm_cmpeq_epi8, _mm_loadu_si128, _mm_movemask_epi8, _mm_slli_si128,
     };
-    assert!(block.len() >= 64);
-    // SAFETY: four unaligned 16-byte loads inside the 64 bytes checked above; SSE2 is
-    // always there on x86-64
-    unsafe {
-        let zero = _mm_setzero_si128();
+    assert!(bytes.len() >= at + 64);
+    // SAFETY: unaligned 16-byte loads inside the 64 bytes from `at` checked above, and from
+    // one byte before each but the plane's first (whose bytes before are its own, shifted);
+    // SSE2 is always there on x86-64
+    let m = unsafe {
+        let p = bytes.as_ptr().add(at);
         (0..4).fold(0, |m, k| {
-            let v = _mm_loadu_si128(block.as_ptr().add(16 * k).cast::<__m128i>());
-            let bits = _mm_movemask_epi8(_mm_cmpeq_epi8(v, zero)) as u32 as u64;
+            let here = _mm_loadu_si128(p.add(16 * k).cast::<__m128i>());
+            let before = match at + k {
+                0 => _mm_slli_si128::<1>(here),
+                _ => _mm_loadu_si128(p.add(16 * k).sub(1).cast::<__m128i>()),
+            };
+            let bits = _mm_movemask_epi8(_mm_cmpeq_epi8(here, before)) as u32 as u64;
             m | bits << (16 * k)
         })
-    }
+    };
+    // the plane's first byte has none before it
+    m & !u64::from(at == 0)
 }
 
 #[cfg(not(target_arch = "x86_64"))]
-fn zero_mask(block: &[u8]) -> u64 {
-    block[..64]
-        .iter()
-        .enumerate()
-        .fold(0, |m, (i, &b)| m | u64::from(b == 0) << i)
+fn equal_mask(bytes: &[u8], at: usize) -> u64 {
+    (at.max(1)..at + 64).fold(0, |m, i| {
+        m | u64::from(bytes[i] == bytes[i - 1]) << (i - at)
+    })
 }
 
-/// A plane's bytes between its zero runs, and the runs (the last may reach past `bytes`
-/// into the plane's trailing zeros, which are not given).
+/// A plane's bytes between its runs, and the runs (the last may reach past `bytes` into the
+/// plane's trailing zeros, which are not given).
 struct Plane<'a> {
     bytes: &'a [u8],
-    runs: Vec<(usize, usize)>,
+    runs: Vec<Run>,
 }
 
-impl Plane<'_> {
-    /// Each piece of bytes between runs, then the run after it (length 0 after the last).
-    fn pieces(&self) -> impl Iterator<Item = (&[u8], usize)> + '_ {
-        let ends = self
-            .runs
-            .iter()
-            .copied()
-            .chain(std::iter::once((self.bytes.len(), 0)));
+impl<'a> Plane<'a> {
+    /// Each piece of bytes between runs, then the run after it (of length 0 after the last).
+    fn pieces(&self) -> impl Iterator<Item = (&'a [u8], Run)> + '_ {
+        let bytes = self.bytes;
+        let end = Run {
+            start: bytes.len(),
+            len: 0,
+            byte: 0,
+        };
         let mut at = 0;
-        ends.map(move |(s, len)| {
+        self.runs.iter().copied().chain([end]).map(move |run| {
             // after a run into the trailing zeros, `at` is past the bytes: an empty piece
-            let piece = &self.bytes[at.min(s)..s];
-            at = s + len;
-            (piece, len)
+            let piece = &bytes[at.min(run.start)..run.start];
+            at = run.start + run.len;
+            (piece, run)
         })
+    }
+
+    /// The plane with only its runs of at least `len` bytes, and the one into its trailing
+    /// zeros (which are not in its bytes).
+    fn with_runs_of(self, len: usize) -> Self {
+        let end = self.bytes.len();
+        let runs = self
+            .runs
+            .into_iter()
+            .filter(|r| r.len >= len || r.start + r.len > end)
+            .collect();
+        Plane { runs, ..self }
     }
 }
 
-/// One plane (`bytes`, then `zeros` zero bytes: none, or at least [`MIN_RUN`]): its runs
-/// of zeros as copies, the rest as literals of a Huffman code of its own (one dynamic
-/// block), or stored when that code would save little, or with the fixed codes when there
-/// is nothing but zero runs.
+/// One plane (`bytes`, then `zeros` zero bytes: none, or at least [`STORED_MIN_RUN`]): its
+/// runs of equal bytes as copies, the rest as literals of a Huffman code of its own (one
+/// dynamic block), or stored when that code would save little (breaking for long runs
+/// only), or with the fixed codes when there is little but runs.
 fn put_plane(w: &mut BitWriter, bytes: &[u8], zeros: usize) {
     let plane = Plane {
         bytes,
-        runs: zero_runs(bytes, zeros),
+        runs: equal_runs(bytes, zeros),
     };
-    // a plane of zero runs and a few bytes is coded before anything is counted (the tables
-    // alone are 5 KB to clear)
+    // a plane of runs and a few bytes is coded before anything is counted (the tables alone
+    // are 5 KB to clear)
     let data: usize = plane.pieces().map(|(piece, _)| piece.len()).sum();
     if data < FIXED_BELOW {
         return put_fixed(w, &plane);
@@ -224,9 +288,10 @@ fn put_plane(w: &mut BitWriter, bytes: &[u8], zeros: usize) {
     let mut tables = [[0u32; 256]; 4];
     for (piece, run) in plane.pieces() {
         count_bytes(piece, &mut tables);
-        if run > 0 {
-            freq[0] += 1;
-            freq[0] += run_copies(run, |l| freq[257 + length_symbol(l).0 as usize] += 1) as u32;
+        if run.len > 0 {
+            let b = usize::from(run.byte);
+            freq[b] += 1;
+            freq[b] += run_copies(run.len, |l| freq[257 + length_symbol(l).0 as usize] += 1) as u32;
         }
     }
     for (b, f) in freq[..256].iter_mut().enumerate() {
@@ -234,7 +299,7 @@ fn put_plane(w: &mut BitWriter, bytes: &[u8], zeros: usize) {
     }
     freq[END_OF_BLOCK] = 1;
     if collides_within(&freq[..256], data, STORED_PERCENT) {
-        return put_stored_runs(w, &plane);
+        return put_stored_runs(w, &plane.with_runs_of(STORED_MIN_RUN));
     }
     put_dynamic(w, &plane, &code_lengths(&freq, 15));
 }
@@ -286,7 +351,7 @@ pub(super) fn count_bytes(bytes: &[u8], tables: &mut [[u32; 256]; 4]) {
     }
 }
 
-/// Planes with fewer bytes than this between their zero runs go in a block with the fixed
+/// Planes with fewer bytes than this between their runs go in a block with the fixed
 /// codes: a code of their own would cost more to build than it could save.
 const FIXED_BELOW: usize = 256;
 
@@ -295,8 +360,8 @@ fn put_fixed(w: &mut BitWriter, plane: &Plane) {
     w.block_header(false, FIXED);
     for (piece, run) in plane.pieces() {
         piece.iter().for_each(|&b| put_symbol(w, b.into()));
-        if run > 0 {
-            put_zeros(w, run);
+        if run.len > 0 {
+            put_run(w, run.byte, run.len);
         }
     }
     put_symbol(w, END_OF_BLOCK);
@@ -309,8 +374,8 @@ fn put_stored_runs(w: &mut BitWriter, plane: &Plane) {
         for block in piece.chunks(u16::MAX as usize) {
             w.stored_block(block, false);
         }
-        if run > 0 {
-            put_zero_block(w, run);
+        if run.len > 0 {
+            put_run_block(w, run.byte, run.len);
         }
     }
 }
@@ -324,17 +389,18 @@ fn put_dynamic(w: &mut BitWriter, plane: &Plane, lit: &[u8]) {
     let longest = lit[..256].iter().copied().max().unwrap_or(0).into();
     for (piece, run) in plane.pieces() {
         w.put_literals(piece, &table, longest);
-        if run > 0 {
-            // a zero, then copies at distance 1, then what no copy could take
-            w.put(table[0].0, table[0].1);
-            let left = run_copies(run, |l| {
+        if run.len > 0 {
+            // the byte, then copies at distance 1, then what no copy could take
+            let (code, len) = table[usize::from(run.byte)];
+            w.put(code, len);
+            let left = run_copies(run.len, |l| {
                 let (sym, extra_bits, extra) = length_symbol(l);
                 let s = 257 + sym as usize;
                 w.put(codes[s], lit[s].into());
                 w.put(extra, extra_bits);
                 w.put(0, 1); // distance code 0: the one code, 0
             });
-            (0..left).for_each(|_| w.put(table[0].0, table[0].1));
+            (0..left).for_each(|_| w.put(code, len));
         }
     }
     w.put(codes[END_OF_BLOCK], lit[END_OF_BLOCK].into());
@@ -618,14 +684,23 @@ mod tests {
             (vec![3], 1),
             (noise(4096), 512),
         ];
-        for run in [31, 32, 33, 258, 259, 260, 261, 262, 517, 2200] {
-            let mut v = noise(100);
-            v.extend(std::iter::repeat_n(0, run));
-            v.extend(noise(77));
-            v.extend(std::iter::repeat_n(0, run));
-            cases.push((v.clone(), v.len()));
-            cases.push((v.clone(), 64));
+        for run in [7, 8, 9, 31, 32, 33, 258, 259, 260, 261, 262, 517, 2200] {
+            for byte in [0, 0xA5] {
+                let mut v = noise(100);
+                v.extend(std::iter::repeat_n(byte, run));
+                v.extend(noise(77));
+                v.extend(std::iter::repeat_n(byte, run));
+                cases.push((v.clone(), v.len()));
+                cases.push((v.clone(), 64));
+            }
         }
+        // noise with runs of other bytes inside, short and long: a stored plane keeps the
+        // long ones only
+        let mut mixed = noise(3000);
+        for (at, byte, len) in [(100, 9, 8), (700, 0xFF, 40), (1500, 3, 300), (2990, 1, 10)] {
+            mixed[at..at + len].fill(byte);
+        }
+        cases.push((mixed.clone(), mixed.len()));
         // noise with zero runs inside: stored pieces between blocks of copies
         let mut stored = noise(5000);
         stored.extend(std::iter::repeat_n(0, 300));
@@ -642,60 +717,74 @@ mod tests {
         }
     }
 
-    // Zero runs: found at any offset, at least MIN_RUN long, exactly delimited.
+    // Runs: found at any offset, of any byte, at least MIN_RUN long, exactly delimited.
     #[test]
-    fn zero_runs_are_exact() {
-        for (lead, run, tail) in [(0, 40, 3), (5, 32, 0), (13, 100, 9), (3, 31, 3), (8, 64, 1)] {
-            let mut v = vec![9u8; lead];
-            v.extend(std::iter::repeat_n(0, run));
-            v.extend(std::iter::repeat_n(1, tail));
-            let want = if run >= MIN_RUN {
-                vec![(lead, run)]
-            } else {
-                vec![]
+    fn runs_are_exact() {
+        for (byte, lead, run, tail) in [
+            (0, 0, 40, 3),
+            (0, 5, 32, 0),
+            (7, 13, 100, 9),
+            (0, 3, MIN_RUN - 1, 3),
+            (200, 8, 64, 1),
+            (1, 70, MIN_RUN, 2),
+        ] {
+            let mut v: Vec<u8> = (0..lead).map(|i| (i % 2 + 3) as u8).collect();
+            v.extend(std::iter::repeat_n(byte, run));
+            v.extend(std::iter::repeat_n(9, tail.min(1)));
+            v.extend((1..tail).map(|i| (i % 2 + 10) as u8));
+            let want = match run >= MIN_RUN {
+                true => vec![Run {
+                    start: lead,
+                    len: run,
+                    byte,
+                }],
+                false => vec![],
             };
-            assert_eq!(zero_runs(&v, 0), want, "{lead} {run} {tail}");
+            assert_eq!(equal_runs(&v, 0), want, "{byte} {lead} {run} {tail}");
         }
     }
 
-    // Zero runs as a byte-by-byte scan finds them, on planes of every kind: sparse and
-    // dense zeros, runs across the 64-byte blocks, lengths that end mid-block, trailing zeros.
+    // Runs as a byte-by-byte scan of the whole plane (its trailing zeros included) finds
+    // them, on planes of every kind: sparse and dense runs of zeros and of other bytes,
+    // runs across the 64-byte blocks and from the plane's first byte, trailing zeros.
     #[test]
-    fn zero_runs_are_those_of_a_byte_scan() {
-        fn by_bytes(bytes: &[u8], zeros: usize) -> Vec<(usize, usize)> {
+    fn runs_are_those_of_a_byte_scan() {
+        fn by_bytes(bytes: &[u8], zeros: usize) -> Vec<Run> {
             let mut v = bytes.to_vec();
             v.extend(std::iter::repeat_n(0, zeros));
             let mut runs = Vec::new();
             let mut i = 0;
             while i < v.len() {
-                let n = v[i..].iter().take_while(|&&b| b == 0).count();
+                let n = v[i..].iter().take_while(|&&b| b == v[i]).count();
                 if n >= MIN_RUN {
-                    runs.push((i, n));
+                    runs.push(Run {
+                        start: i,
+                        len: n,
+                        byte: v[i],
+                    });
                 }
-                i += n.max(1);
+                i += n;
             }
             runs
         }
         let mut state = 37;
         let mut rng = || crate::model::xorshift::next(&mut state);
-        for case in 0..400 {
+        for case in 0..800 {
             let len = (rng() % 700) as usize;
-            // runs of zeros of random lengths between random bytes, zero a byte in `density`
-            let density = [2, 5, 50, 255][case % 4];
+            // runs of random bytes and lengths between random bytes from an alphabet of
+            // `alphabet`: small ones make short runs of their own
+            let alphabet = [2, 5, 50, 256][case % 4];
             let mut v = Vec::with_capacity(len);
             while v.len() < len {
+                let b = (rng() % alphabet) as u8;
                 match rng() % 8 {
-                    0 => v.extend(std::iter::repeat_n(0, (rng() % 90) as usize)),
-                    _ => v.push(if rng() % density == 0 {
-                        0
-                    } else {
-                        (rng() % 255 + 1) as u8
-                    }),
+                    0 => v.extend(std::iter::repeat_n(b, (rng() % 90) as usize)),
+                    _ => v.push(b),
                 }
             }
             v.truncate(len);
             let zeros = [0, 0, 40, 200][(case / 4) % 4];
-            assert_eq!(zero_runs(&v, zeros), by_bytes(&v, zeros), "case {case}");
+            assert_eq!(equal_runs(&v, zeros), by_bytes(&v, zeros), "case {case}");
         }
     }
 
