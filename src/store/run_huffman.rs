@@ -94,7 +94,7 @@ struct Run {
 /// bytes (none, or at least [`STORED_MIN_RUN`]), 64 bytes at a time: the bytes equal to the
 /// one before them as a bit mask, whose changes are found by counting bits (issue 37: a
 /// branch on every 8-byte word mispredicted where runs and other bytes alternate), and a
-/// block without a run in it or reaching its end passed whole.
+/// block without a run in it passed whole, the run it may end with carried on.
 fn equal_runs(bytes: &[u8], zeros: usize) -> Vec<Run> {
     let mut runs = Vec::new();
     let close = |runs: &mut Vec<Run>, start: usize, end: usize| {
