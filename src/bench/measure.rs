@@ -63,16 +63,32 @@ pub(super) fn process_cpu_seconds() -> f64 {
     cpu_clock_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
 
-/// CPU seconds the host has taken from this machine's CPUs so far, all of them together:
-/// the "steal" time of `/proc/stat`, when a virtual CPU was ready to run and its host ran
-/// something else (other guests, or its own work for this one, such as emulating its disk).
-/// None where `/proc/stat` cannot be read or has no such field.
-pub(super) fn machine_stolen_seconds() -> Option<f64> {
+/// What `/proc/stat` says of the time the host has taken from this machine's CPUs so far.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Stolen {
+    /// CPU seconds of every CPU together: the "steal" time, when a virtual CPU was ready to
+    /// run and its host ran something else (other guests, or its own work for this one, such
+    /// as emulating its disk).
+    pub seconds: f64,
+    /// The CPUs whose time that sums (the `cpuN` lines).
+    pub cpus: usize,
+}
+
+/// The host's time so far, from one read of `/proc/stat`; None where it cannot be read or
+/// has no steal field.
+pub(super) fn machine_stolen() -> Option<Stolen> {
     let stat = std::fs::read_to_string("/proc/stat").ok()?;
     let ticks = stolen_ticks(stat.lines().next()?)?;
     // SAFETY: sysconf reads a constant of the system
     let hz = unsafe { libc::sysconf(libc::_SC_CLK_TCK) };
-    (hz > 0).then(|| ticks as f64 / hz as f64)
+    let cpus = stat
+        .lines()
+        .filter(|l| l.starts_with("cpu") && l.as_bytes().get(3).is_some_and(u8::is_ascii_digit))
+        .count();
+    (hz > 0 && cpus > 0).then(|| Stolen {
+        seconds: ticks as f64 / hz as f64,
+        cpus,
+    })
 }
 
 /// The steal field of `/proc/stat`'s first line (`cpu  user nice system idle iowait irq
@@ -81,16 +97,6 @@ pub(super) fn stolen_ticks(line: &str) -> Option<u64> {
     let mut fields = line.split_whitespace();
     (fields.next()? == "cpu").then_some(())?;
     fields.nth(7)?.parse().ok()
-}
-
-/// The CPUs `/proc/stat` counts (its `cpuN` lines), whose time its first line sums.
-pub(super) fn machine_cpus() -> Option<usize> {
-    let stat = std::fs::read_to_string("/proc/stat").ok()?;
-    let n = stat
-        .lines()
-        .filter(|l| l.starts_with("cpu") && l.as_bytes().get(3).is_some_and(u8::is_ascii_digit))
-        .count();
-    (n > 0).then_some(n)
 }
 
 #[cfg(test)]

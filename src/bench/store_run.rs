@@ -2,9 +2,7 @@
 //! file, the driver, the real store (journal + final file) in a given directory; and a
 //! temporary directory for those files.
 
-use super::measure::{
-    err, machine_cpus, machine_stolen_seconds, peak_rss, process_cpu_seconds, reset_peak,
-};
+use super::measure::{err, machine_stolen, peak_rss, process_cpu_seconds, reset_peak};
 use crate::run::{self, ModelSimulator, RunOptions, Sink, StoreSink};
 use crate::store;
 use crate::study::Study;
@@ -55,7 +53,7 @@ pub fn store_run_with<K: Sink>(
     let out: PathBuf = dir.join(format!("{file}.h5"));
     let rss_before = reset_peak();
     let c0 = process_cpu_seconds();
-    let stolen0 = machine_stolen_seconds();
+    let stolen0 = machine_stolen();
     // from the bats' preparation on, as in `batstudy run` (`cli::run_with`)
     let t0 = Instant::now();
     let (bats, begun) = run::prepare_bats_alongside(&ModelSimulator, &study.plan, pool, || {
@@ -85,8 +83,8 @@ pub fn store_run_with<K: Sink>(
     .map_err(err("run"))?;
     let wall = t0.elapsed().as_secs_f64();
     let cpu = process_cpu_seconds() - c0;
-    let stolen_share = match (stolen0, machine_stolen_seconds(), machine_cpus()) {
-        (Some(a), Some(b), Some(n)) => Some((b - a) / (wall * n as f64)),
+    let stolen_share = match (stolen0, machine_stolen()) {
+        (Some(a), Some(b)) => Some((b.seconds - a.seconds) / (wall * b.cpus as f64)),
         _ => None,
     };
     let peak = rss_before.and_then(|_| peak_rss());
