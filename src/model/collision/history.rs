@@ -33,7 +33,12 @@ pub(crate) type Projector = Box<dyn Fn(&[f64], f64, &mut Vec<f64>)>;
 pub(crate) struct Recorder<'r> {
     request: &'r HistoryRequest,
     next: usize,
-    previous: Option<(f64, Sample)>,
+    /// The two states an emitted sample lies between: the one recorded last (`latest`: its
+    /// slot and time) and the one being recorded, in the other slot. Filled in place, their
+    /// buffers kept from state to state (a history records hundreds of states: building
+    /// and moving a sample for each was a fifth of a modal history point's time, issue 37).
+    states: [Sample; 2],
+    latest: Option<(usize, f64)>,
     history: History,
     pub wants_displacement: bool,
     pub wants_rigid: bool,
@@ -44,9 +49,7 @@ pub(crate) struct Recorder<'r> {
     modal_scale: f64,
     /// The modal form's stored precision (f32: `modal_precision`; f64: none).
     rounding: Option<ModalRounding>,
-    /// The buffer of the last state dropped (for [`Self::modal_buffer`]), and the
-    /// interpolated coordinates handed to the projector.
-    spare: Vec<f64>,
+    /// The interpolated coordinates handed to the projector.
     scratch: Vec<f64>,
 }
 
@@ -87,7 +90,8 @@ impl<'r> Recorder<'r> {
         Ok(Self {
             request,
             next: 0,
-            previous: None,
+            states: Default::default(),
+            latest: None,
             history,
             wants_displacement: has(HistoryField::Displacement),
             wants_rigid: has(HistoryField::RigidMotion),
@@ -95,7 +99,6 @@ impl<'r> Recorder<'r> {
             projector: None,
             modal_scale: 1.0,
             rounding: None,
-            spare: Vec::new(),
             scratch: Vec::new(),
         })
     }
@@ -164,45 +167,53 @@ impl<'r> Recorder<'r> {
 
     /// Record the state at time `t` (non-decreasing); emits every sample time up to `t`.
     pub fn push(&mut self, t: f64, sample: Sample) {
+        *self.state() = sample;
+        self.commit(t);
+    }
+
+    /// The state to record next, to be filled in place (its buffers hold the values of a
+    /// state recorded before: clear them) and then [`Self::commit`]ted.
+    pub fn state(&mut self) -> &mut Sample {
+        &mut self.states[self.free_slot()]
+    }
+
+    fn free_slot(&self) -> usize {
+        self.latest.map_or(0, |(slot, _)| 1 - slot)
+    }
+
+    /// The state filled in [`Self::state`] is the one at time `t` (non-decreasing): emits
+    /// every sample time up to `t`.
+    pub fn commit(&mut self, t: f64) {
+        let slot = self.free_slot();
         while !self.done() {
             let ts = self.next as f64 * self.request.interval;
             if ts > t * (1.0 + 1e-12) {
                 break;
             }
-            let w = match &self.previous {
-                Some((t0, _)) if t > *t0 => Some(((ts - t0) / (t - t0)).clamp(0.0, 1.0)),
+            let w = match self.latest {
+                Some((_, t0)) if t > t0 => Some(((ts - t0) / (t - t0)).clamp(0.0, 1.0)),
                 _ => None,
             };
-            self.emit(&sample, w);
+            self.emit(slot, w);
             self.next += 1;
         }
-        if let Some((_, old)) = self.previous.replace((t, sample)) {
-            self.spare = old.modal;
-        }
+        self.latest = Some((slot, t));
     }
 
-    /// An empty buffer for the next sample's modal coordinates: the one of the state the
-    /// recorder no longer needs (a history records hundreds of states; allocating each
-    /// one's coordinates was a tenth of a history point's time, issue 37).
-    pub fn modal_buffer(&mut self) -> Vec<f64> {
-        let mut v = std::mem::take(&mut self.spare);
-        v.clear();
-        v
-    }
-
-    /// Emit the sample at weight `w` between the previous state and `s` (None: `s` itself),
-    /// each value interpolated as x + w (y − x).
-    fn emit(&mut self, s: &Sample, w: Option<f64>) {
+    /// Emit the sample at weight `w` between the latest state and the one in `slot` (None:
+    /// that one itself), each value interpolated as x + w (y − x).
+    fn emit(&mut self, slot: usize, w: Option<f64>) {
         let Recorder {
             request,
-            previous,
+            states,
             history: h,
             projector,
             modal_scale,
             scratch,
             ..
         } = self;
-        let prev = previous.as_ref().map(|(_, a)| a).filter(|_| w.is_some());
+        let s = &states[slot];
+        let prev = Some(&states[1 - slot]).filter(|_| w.is_some());
         let w = w.unwrap_or(0.0);
         let l = |x: f64, y: f64| x + w * (y - x);
         let at = |f: fn(&Sample) -> f64| prev.map_or(f(s), |a| l(f(a), f(s)));

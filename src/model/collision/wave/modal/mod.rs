@@ -44,17 +44,13 @@ pub(super) fn run_modal(
     }
     let modal = recorder.as_ref().is_some_and(|r| r.wants_modal);
     if let Some(rec) = recorder.as_mut() {
-        let first = record::sample(rec, bat, &state, 0.0, 0.0, 0.0, modal);
-        rec.push(0.0, first);
+        record::record(rec, bat, &state, (0.0, 0.0, 0.0), modal);
     }
     loop {
         step(c, &setup, &mut state, contact);
         if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, setup.h)) {
-            let p_bat = state.bat_force(c);
-            let hoop_rel = state.hoop_stretch(c);
-            let force = state.contact_force();
-            let smp = record::sample(rec, bat, &state, force, p_bat, hoop_rel, modal);
-            rec.push(state.t, smp);
+            let now = (state.contact_force(), state.bat_force(c), state.hoop_stretch(c));
+            record::record(rec, bat, &state, now, modal);
         }
         if contact.stop_after(state.t, state.steps, setup.h, c.budget, recorder)? {
             break;

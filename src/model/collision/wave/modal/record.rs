@@ -7,7 +7,7 @@ use super::setup::{shapes_at, Setup};
 use super::state::State;
 use crate::model::bat::shapes::{modal_scale, shape_at, shape_maxima, shape_point_weights};
 use crate::model::bat::PreparedBat;
-use crate::model::collision::history::{Recorder, Sample};
+use crate::model::collision::history::Recorder;
 use crate::model::collision::modal_precision::ModalRounding;
 use crate::model::error::ModelError;
 use crate::model::outcome::HistoryPrecision;
@@ -107,39 +107,39 @@ pub(super) fn install_projector(
     ));
 }
 
-/// The sample of the state now: contact force, compression, ball velocity, the hoop's
-/// displacement, the rigid motion and the modal coordinates (projected by the recorder).
-pub(super) fn sample(
+/// Record the state now, at `state.t`: contact force, compression, ball velocity, the
+/// hoop's displacement, the rigid motion and the modal coordinates (projected by the
+/// recorder, or kept), written into the recorder's own state (`Recorder::state`).
+pub(super) fn record(
     rec: &mut Recorder,
     bat: &PreparedBat,
     state: &State,
-    force: f64,
-    p_bat: f64,
-    hoop_rel: f64,
+    (force, p_bat, hoop_rel): (f64, f64, f64),
     wants_modal: bool,
-) -> Sample {
+) {
     let q = &state.q;
-    let rigid = |weight: &[f64], over: f64| match rec.wants_rigid {
+    let rigid = rec.wants_rigid;
+    let rigid = |weight: &[f64], over: f64| match rigid {
         true => dot(weight, q) / over,
         false => 0.0,
     };
-    Sample {
-        force,
-        compression: state.s.max(0.0),
-        ball_velocity: state.v,
-        hoop_displacement: hoop_rel,
-        rigid_translation: rigid(&bat.momentum_weight, bat.total_mass),
-        rigid_rotation: rigid(&bat.angular_weight, bat.inertia_cm),
-        modal: if wants_modal {
-            let mut v = rec.modal_buffer();
-            v.extend_from_slice(q);
-            v
-        } else {
-            Vec::new()
-        },
-        modal_force: p_bat,
-        displacement: Vec::new(),
+    let (translation, rotation) = (
+        rigid(&bat.momentum_weight, bat.total_mass),
+        rigid(&bat.angular_weight, bat.inertia_cm),
+    );
+    let s = rec.state();
+    s.force = force;
+    s.compression = state.s.max(0.0);
+    s.ball_velocity = state.v;
+    s.hoop_displacement = hoop_rel;
+    s.rigid_translation = translation;
+    s.rigid_rotation = rotation;
+    s.modal.clear();
+    if wants_modal {
+        s.modal.extend_from_slice(q);
     }
+    s.modal_force = p_bat;
+    rec.commit(state.t);
 }
 
 /// Σ x_j q_j over the shorter of the two, in four interleaved partial sums: a history
