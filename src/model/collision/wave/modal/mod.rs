@@ -49,7 +49,11 @@ pub(super) fn run_modal(
     loop {
         step(c, &setup, &mut state, contact);
         if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, setup.h)) {
-            let now = (state.contact_force(), state.bat_force(c), state.hoop_stretch(c));
+            let now = (
+                state.contact_force(),
+                state.bat_force(c),
+                state.hoop_stretch(c),
+            );
             record::record(rec, bat, &state, now, modal);
         }
         if contact.stop_after(state.t, state.steps, setup.h, c.budget, recorder)? {
