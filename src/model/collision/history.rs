@@ -35,8 +35,9 @@ pub(crate) struct Recorder<'r> {
     next: usize,
     /// The two states an emitted sample lies between: the one recorded last (`latest`: its
     /// slot and time) and the one being recorded, in the other slot. Filled in place, their
-    /// buffers kept from state to state (a history records hundreds of states: building
-    /// and moving a sample for each was a fifth of a modal history point's time, issue 37).
+    /// buffers kept from state to state: a history records hundreds of states, and building
+    /// and moving a sample for each made recording a modal history 39 µs a point where
+    /// filling them in place takes 28 (issue 37).
     states: [Sample; 2],
     latest: Option<(usize, f64)>,
     history: History,
