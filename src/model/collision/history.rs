@@ -261,3 +261,77 @@ impl<'r> Recorder<'r> {
         self.history
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::outcome::{HistoryCompression, HistoryPrecision};
+
+    fn request(interval: f64, n_samples: usize) -> HistoryRequest {
+        HistoryRequest {
+            fields: vec![HistoryField::Force, HistoryField::Displacement],
+            interval,
+            n_samples,
+            z: Vec::new(),
+            precision: HistoryPrecision::F64,
+            compression: HistoryCompression::default(),
+            displacement: HistoryDisplacement::Modal,
+        }
+    }
+
+    /// States of a signal linear in time, f(t) = 3 + 2·10⁴ t and q_j(t) = j − 5·10³ t,
+    /// recorded at uneven times with both ways of recording (in place, and whole samples);
+    /// linear interpolation between any two of them gives the signal at every sample time
+    /// (to rounding), whatever the steps: several samples in one step, a sample on a step,
+    /// steps with no sample.
+    #[test]
+    fn linear_signals_are_sampled_exactly() {
+        let f = |t: f64| 3.0 + 2e4 * t;
+        let q = |t: f64, j: usize| j as f64 - 5e3 * t;
+        // steps of 0.3 to 2.7 sample intervals (interval 10 µs), in tenths of an interval:
+        // every tenth state or so falls on a sample time
+        let mut tenths = 0;
+        let mut times = vec![0.0];
+        for k in 0..200 {
+            tenths += 3 + 6 * (k % 5);
+            times.push(tenths as f64 * 1e-6);
+        }
+        let req = request(1e-5, 150);
+        for in_place in [true, false] {
+            let mut rec = Recorder::new(&req).unwrap();
+            rec.record_modes(3, 1.0, Vec::new(), None).unwrap();
+            for &t in &times {
+                let modal: Vec<f64> = (0..3).map(|j| q(t, j)).collect();
+                match in_place {
+                    true => {
+                        let s = rec.state();
+                        s.force = f(t);
+                        s.modal.clear();
+                        s.modal.extend_from_slice(&modal);
+                        rec.commit(t);
+                    }
+                    false => rec.push(
+                        t,
+                        Sample {
+                            force: f(t),
+                            modal,
+                            ..Sample::default()
+                        },
+                    ),
+                }
+            }
+            assert!(rec.done());
+            let h = rec.finish();
+            assert_eq!(h.force.len(), 150);
+            for (k, &got) in h.force.iter().enumerate() {
+                let ts = k as f64 * 1e-5;
+                assert!((got - f(ts)).abs() <= 1e-12 * f(ts), "{in_place} force {k}");
+                for j in 0..3 {
+                    let want = q(ts, j);
+                    let got = h.modal.coordinate[3 * k + j];
+                    assert!((got - want).abs() <= 1e-12, "{in_place} q{j} at {k}");
+                }
+            }
+        }
+    }
+}
