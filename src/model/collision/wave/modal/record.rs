@@ -118,8 +118,8 @@ pub(super) fn record(
     wants_modal: bool,
 ) {
     let q = &state.q;
-    let rigid = rec.wants_rigid;
-    let rigid = |weight: &[f64], over: f64| match rigid {
+    let wants_rigid = rec.wants_rigid;
+    let rigid = |weight: &[f64], over: f64| match wants_rigid {
         true => dot(weight, q) / over,
         false => 0.0,
     };
