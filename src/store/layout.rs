@@ -18,16 +18,55 @@ pub const GROUP_BAT: &str = "bat";
 /// The dim whose curves define the sweet spot.
 pub const IMPACT_Z: &str = "impact_z";
 
-/// A stored variable's public name, units and long name.
+/// A stored variable's public name, units and long name: the layout's own are `'static`;
+/// those made at run time (an index coordinate, a reduced quantity) borrow their strings
+/// (attributes are written as they are given, so nothing needs to outlive the write).
 #[derive(Debug, Clone, Copy)]
-pub struct VarDef {
-    pub name: &'static str,
+pub struct VarDef<'a> {
+    pub name: &'a str,
     /// UDUNITS spelling; empty for text (then no `units` attribute is written).
-    pub units: &'static str,
+    pub units: &'a str,
     /// Short: a plot's axis label.
-    pub long_name: &'static str,
+    pub long_name: &'a str,
     /// The full sentence (attribute `description`).
-    pub description: &'static str,
+    pub description: &'a str,
+}
+
+/// A [`VarDef`] whose strings are made at run time, owned.
+#[derive(Debug, Clone)]
+pub struct OwnedVarDef {
+    pub name: String,
+    pub units: String,
+    pub long_name: String,
+    pub description: String,
+}
+
+impl From<VarDef<'_>> for OwnedVarDef {
+    fn from(d: VarDef<'_>) -> Self {
+        OwnedVarDef::new(d.name, d.units, d.long_name, d.description)
+    }
+}
+
+impl OwnedVarDef {
+    pub fn new(name: &str, units: &str, long_name: &str, description: &str) -> Self {
+        OwnedVarDef {
+            name: name.to_string(),
+            units: units.to_string(),
+            long_name: long_name.to_string(),
+            description: description.to_string(),
+        }
+    }
+
+    /// The definition, lending this one's strings.
+    #[must_use]
+    pub fn def(&self) -> VarDef<'_> {
+        VarDef {
+            name: &self.name,
+            units: &self.units,
+            long_name: &self.long_name,
+            description: &self.description,
+        }
+    }
 }
 
 const fn v(
@@ -35,7 +74,7 @@ const fn v(
     units: &'static str,
     long_name: &'static str,
     description: &'static str,
-) -> VarDef {
+) -> VarDef<'static> {
     VarDef {
         name,
         units,

@@ -193,10 +193,6 @@ pub struct OptimizeTable {
     pub best: Option<usize>,
 }
 
-fn leak(s: String) -> &'static str {
-    Box::leak(s.into_boxed_str())
-}
-
 /// Write `/optimize` into the results file at `path`.
 pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> {
     let f = hdf5::File::open_rw(path).ctx(path, "open the results file")?;
@@ -205,17 +201,11 @@ pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> 
         .ctx(path, "create group optimize")?;
     let att = Attacher::default();
     let n = t.rows.len();
-    let idx = |name: &str, len: usize| {
-        let i: Vec<i64> = (0..len as i64).collect();
-        let def = VarDef {
-            name: "",
-            units: "1",
-            long_name: leak(format!("{name} index")),
-            description: leak(format!("index along {name}")),
-        };
-        h5u::scale_coord(&g, name, &i, &def).ctx(path, "write an index coordinate")
-    };
-    let cand = idx("candidate", n)?;
+    let (long_name, description) = ("candidate index", "index along candidate");
+    let def = v("", "1", long_name, description);
+    let i: Vec<i64> = (0..n as i64).collect();
+    let cand =
+        h5u::scale_coord(&g, "candidate", &i, &def).ctx(path, "write an index coordinate")?;
     let var = labels(
         &g,
         "variable",
@@ -228,100 +218,122 @@ pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> 
         t.constraints.iter().map(|c| c.label.as_str()),
         path,
     )?;
-    let col =
-        |rows: &dyn Fn(&CandidateRow) -> f64| -> Vec<f64> { t.rows.iter().map(rows).collect() };
-    let one = |def: VarDef, data: Vec<f64>| write_f64(&g, &def, &[n], &data, &[&cand], &att, path);
-    one(
-        v(
-            "objective",
-            &t.objective_units,
-            "objective",
-            &format!(
-                "{} ({} over the grid) of each candidate",
-                t.objective, t.over
-            ),
-        ),
-        col(&|r| r.objective),
-    )?;
-    one(v("penalized", "1", "penalized objective", "what the search minimised: the objective over its magnitude at the start (negated to maximise) plus the penalties"), col(&|r| r.penalized))?;
-    for (k, vi) in t.variables.iter().enumerate() {
-        one(
-            v(
-                &format!("design_{k}"),
-                &vi.units,
-                &vi.name,
-                &format!("design variable {} of each candidate", vi.name),
-            ),
-            col(&|r| r.x[k]),
-        )?;
-    }
-    for (k, ci) in t.constraints.iter().enumerate() {
-        one(
-            v(
-                &format!("constraint_{k}"),
-                &ci.units,
-                &ci.quantity,
-                &format!("{} of each candidate (limit: {})", ci.quantity, ci.label),
-            ),
-            col(&|r| r.constraints[k]),
-        )?;
-        let m: Vec<f64> = t.margins.iter().map(|m| m[k]).collect();
-        one(
-            v(
-                &format!("margin_{k}"),
-                &ci.units,
-                &format!("margin: {}", ci.quantity),
-                &format!("how far inside the limit {} (negative: outside)", ci.label),
-            ),
-            m,
-        )?;
-    }
-    let scaled: Vec<f64> = t.rows.iter().flat_map(|r| r.u.iter().copied()).collect();
-    let def = v("design_scaled", "1", "design (scaled)", "each variable as the search saw it: (x - min)/(max - min), outside [0, 1] where the search asked beyond a bound");
-    write_f64(
-        &g,
-        &def,
-        &[n, t.variables.len()],
-        &scaled,
-        &[&cand, &var],
-        &att,
+    let rows = Rows {
+        g: &g,
+        cand: &cand,
+        att: &att,
         path,
-    )?;
-    let rel: Vec<f64> = (0..n)
-        .flat_map(|r| {
-            t.constraints
-                .iter()
-                .enumerate()
-                .map(move |(k, c)| t.margins[r][k] / c.scale)
-        })
-        .collect();
-    let def = v(
-        "margin_scaled",
-        "1",
-        "margin (relative)",
-        "each limit's margin over the bound's magnitude (negative: outside)",
-    );
-    write_f64(
-        &g,
-        &def,
-        &[n, t.constraints.len()],
-        &rel,
-        &[&cand, &con],
-        &att,
-        path,
-    )?;
+    };
+    rows.per_candidate(t)?;
+    rows.scaled(t, &var, &con)?;
     write_status(&g, t, &cand, &att, path)?;
     attrs(&g, t, path)?;
     att.write().ctx(path, "attach the dimension scales")?;
     f.flush().ctx(path, "flush the results file")
 }
 
-fn v(name: &str, units: &str, long: &str, desc: &str) -> VarDef {
+/// Where `/optimize`'s variables along `candidate` go.
+struct Rows<'a> {
+    g: &'a Group,
+    cand: &'a Dataset,
+    att: &'a Attacher,
+    path: &'a Path,
+}
+
+impl Rows<'_> {
+    /// A variable of one value per candidate.
+    fn one(&self, def: VarDef, data: Vec<f64>) -> Result<(), StoreError> {
+        let n = [self.cand.size()];
+        write_f64(self.g, &def, &n, &data, &[self.cand], self.att, self.path).map(drop)
+    }
+
+    /// The objective, the penalized objective, and each design variable, constraint
+    /// quantity and margin: one value per candidate each.
+    fn per_candidate(&self, t: &OptimizeTable) -> Result<(), StoreError> {
+        let col =
+            |of: &dyn Fn(&CandidateRow) -> f64| -> Vec<f64> { t.rows.iter().map(of).collect() };
+        let about = format!(
+            "{} ({} over the grid) of each candidate",
+            t.objective, t.over
+        );
+        let objective = v("objective", &t.objective_units, "objective", &about);
+        self.one(objective, col(&|r| r.objective))?;
+        self.one(v("penalized", "1", "penalized objective", "what the search minimised: the objective over its magnitude at the start (negated to maximise) plus the penalties"), col(&|r| r.penalized))?;
+        for (k, vi) in t.variables.iter().enumerate() {
+            let (name, about) = (
+                format!("design_{k}"),
+                format!("design variable {} of each candidate", vi.name),
+            );
+            self.one(v(&name, &vi.units, &vi.name, &about), col(&|r| r.x[k]))?;
+        }
+        for (k, ci) in t.constraints.iter().enumerate() {
+            let (name, about) = (
+                format!("constraint_{k}"),
+                format!("{} of each candidate (limit: {})", ci.quantity, ci.label),
+            );
+            let values = col(&|r| r.constraints[k]);
+            self.one(v(&name, &ci.units, &ci.quantity, &about), values)?;
+            let (name, long, about) = (
+                format!("margin_{k}"),
+                format!("margin: {}", ci.quantity),
+                format!("how far inside the limit {} (negative: outside)", ci.label),
+            );
+            let margins = t.margins.iter().map(|m| m[k]).collect();
+            self.one(v(&name, &ci.units, &long, &about), margins)?;
+        }
+        Ok(())
+    }
+
+    /// The design and the margins as the search saw them: candidate × variable, each over
+    /// its range, and candidate × constraint, each over its bound's magnitude.
+    fn scaled(&self, t: &OptimizeTable, var: &Dataset, con: &Dataset) -> Result<(), StoreError> {
+        let n = t.rows.len();
+        let scaled: Vec<f64> = t.rows.iter().flat_map(|r| r.u.iter().copied()).collect();
+        let def = v("design_scaled", "1", "design (scaled)", "each variable as the search saw it: (x - min)/(max - min), outside [0, 1] where the search asked beyond a bound");
+        let shape = [n, t.variables.len()];
+        write_f64(
+            self.g,
+            &def,
+            &shape,
+            &scaled,
+            &[self.cand, var],
+            self.att,
+            self.path,
+        )?;
+        let rel: Vec<f64> = (0..n)
+            .flat_map(|r| {
+                t.constraints
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, c)| t.margins[r][k] / c.scale)
+            })
+            .collect();
+        let def = v(
+            "margin_scaled",
+            "1",
+            "margin (relative)",
+            "each limit's margin over the bound's magnitude (negative: outside)",
+        );
+        let shape = [n, t.constraints.len()];
+        write_f64(
+            self.g,
+            &def,
+            &shape,
+            &rel,
+            &[self.cand, con],
+            self.att,
+            self.path,
+        )?;
+        Ok(())
+    }
+}
+
+fn v<'a>(name: &'a str, units: &'a str, long: &'a str, desc: &'a str) -> VarDef<'a> {
     VarDef {
-        name: leak(name.to_string()),
-        units: leak(units.to_string()),
-        long_name: leak(long.to_string()),
-        description: leak(desc.to_string()),
+        name,
+        units,
+        long_name: long,
+        description: desc,
     }
 }
 
@@ -332,7 +344,8 @@ fn labels<'a>(
     path: &Path,
 ) -> Result<Dataset, StoreError> {
     let s: Vec<VarLenUnicode> = items.map(h5u::vlstr).collect();
-    let def = v(name, "", name, &format!("the {name}s, by label"));
+    let description = format!("the {name}s, by label");
+    let def = v(name, "", name, &description);
     h5u::scale_coord(g, name, &s, &def).ctx(path, &format!("write coordinate {name}"))
 }
 

@@ -10,7 +10,7 @@ use crate::model::measures::sweet::find_maximum;
 use crate::results::{Dim, StudyInfo};
 use crate::store::dimscale::{self as h5u, attr_num, describe, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
-use crate::store::layout::{self as l, VarDef};
+use crate::store::layout::{self as l, OwnedVarDef, VarDef};
 use hdf5::{Dataset, File, Group};
 use std::path::Path;
 
@@ -77,14 +77,10 @@ fn without(v: &[usize], k: usize) -> Vec<usize> {
 
 /// One reduced quantity: its name, units, long name and description, and its statistics.
 struct Quantity {
-    def: VarDef,
+    def: OwnedVarDef,
     stats: Vec<([f64; 7], f64, f64)>,
     /// Its dims, as indices into the summary's dims.
     dims: Vec<usize>,
-}
-
-fn leak(s: String) -> &'static str {
-    Box::leak(s.into_boxed_str())
 }
 
 fn read(f: &File, name: &str, out: &Path) -> Result<Vec<f64>, StoreError> {
@@ -114,7 +110,7 @@ pub(super) fn write_uncertainty(
             .expect("a summary var");
         let data = read(f, &format!("{}/{var}", l::GROUP_SUMMARY), out)?;
         qs.push(Quantity {
-            def: *def,
+            def: OwnedVarDef::from(*def),
             stats: reduce(&data, &shape, s, statistics),
             dims: without(&all, s),
         });
@@ -151,11 +147,12 @@ fn sweet_quantities(
             .expect("a sweet var");
         let data = read(f, &format!("{}/{var}", l::GROUP_SWEET_SPOT), out)?;
         qs.push(Quantity {
-            def: VarDef {
-                name: leak(name.to_string()),
-                long_name: leak(format!("sweet spot {}", def.long_name)),
-                ..**def
-            },
+            def: OwnedVarDef::new(
+                name,
+                def.units,
+                &format!("sweet spot {}", def.long_name),
+                def.description,
+            ),
             stats: reduce(&data, &rshape, rs, statistics),
             dims: without(&rest, rs),
         });
@@ -195,12 +192,12 @@ fn bbcor_max(
         }
     });
     let q = Quantity {
-        def: VarDef {
-            name: "bbcor_max",
-            units: "1",
-            long_name: "BBCOR (maximum along the barrel)",
-            description: "the largest bbcor along impact_z (parabola-refined): the bat's BBCOR",
-        },
+        def: OwnedVarDef::new(
+            "bbcor_max",
+            "1",
+            "BBCOR (maximum along the barrel)",
+            "the largest bbcor along impact_z (parabola-refined): the bat's BBCOR",
+        ),
         stats: reduce(&maxima, &rshape, rs, statistics),
         dims: without(&rest, rs),
     };
@@ -241,32 +238,32 @@ fn write_group(
         with_p.push(&pscale);
         let mut pshape = shape.clone();
         pshape.push(PERCENTILES.len());
-        let desc = |what: &str| leak(format!("{what} of {} over the sample", q.def.name));
+        let desc = |what: &str| format!("{what} of {} over the sample", q.def.name);
         let parts: [Part; 3] = [
             (
-                VarDef {
+                OwnedVarDef {
                     description: desc("percentiles"),
-                    ..q.def
+                    ..q.def.clone()
                 },
                 &with_p,
                 &pshape,
                 pct,
             ),
             (
-                named(&q.def, "mean", desc("mean")),
+                named(&q.def, "mean", &desc("mean")),
                 &qscales,
                 &shape,
                 q.stats.iter().map(|t| t.1).collect(),
             ),
             (
-                named(&q.def, "std", desc("sample standard deviation")),
+                named(&q.def, "std", &desc("sample standard deviation")),
                 &qscales,
                 &shape,
                 q.stats.iter().map(|t| t.2).collect(),
             ),
         ];
         for (def, sc, sh, data) in parts {
-            write_var(&g, &def, sh, &data, (sc, &aux, &att), out)?;
+            write_var(&g, &def.def(), sh, &data, (sc, &aux, &att), out)?;
         }
     }
     if let (Some(p), Some(q)) = (above, qs.iter().find(|q| q.def.name == "bbcor_max")) {
@@ -285,15 +282,15 @@ fn write_group(
 }
 
 /// One variable to write: what it is, its scales, its shape and its data.
-type Part<'a> = (VarDef, &'a [&'a Dataset], &'a [usize], Vec<f64>);
+type Part<'a> = (OwnedVarDef, &'a [&'a Dataset], &'a [usize], Vec<f64>);
 
-fn named(def: &VarDef, suffix: &str, description: &'static str) -> VarDef {
-    VarDef {
-        name: leak(format!("{}_{suffix}", def.name)),
-        long_name: leak(format!("{} ({suffix})", def.long_name)),
+fn named(def: &OwnedVarDef, suffix: &str, description: &str) -> OwnedVarDef {
+    OwnedVarDef::new(
+        &format!("{}_{suffix}", def.name),
+        &def.units,
+        &format!("{} ({suffix})", def.long_name),
         description,
-        ..*def
-    }
+    )
 }
 
 fn write_var(

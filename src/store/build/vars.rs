@@ -32,11 +32,13 @@ pub(super) fn study_dims(
             }
             None => {
                 let idx: Vec<i64> = (0..d.size as i64).collect();
+                let long_name = format!("{} index", d.name);
+                let description = format!("index along {}", d.name);
                 let def = VarDef {
                     name: "",
                     units: "1",
-                    long_name: leak(&format!("{} index", d.name)),
-                    description: leak(&format!("index along {}", d.name)),
+                    long_name: &long_name,
+                    description: &description,
                 };
                 h5u::scale_coord(g, &d.name, &idx, &def).ctx(path, "write an index coordinate")?
             }
@@ -54,11 +56,6 @@ pub(super) fn study_dims(
         scales.push(scale);
     }
     Ok((scales, aux))
-}
-
-/// Attribute strings must outlive VarDef; coordinate metadata is small and written once.
-fn leak(s: &str) -> &'static str {
-    Box::leak(s.to_string().into_boxed_str())
 }
 
 fn coord_values(
