@@ -4,11 +4,10 @@
 
 use super::{COAST_TIME, MAX_TIME};
 use crate::model::ball::ContactLaw;
-use crate::model::collision::history::Recorder;
 use crate::model::error::ModelError;
 
 /// Contact bookkeeping shared by the integrators.
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub(super) struct Contact {
     pub(super) in_contact: bool,
     pub(super) separations: usize,
@@ -88,19 +87,22 @@ impl Contact {
         }
     }
 
-    /// The end-of-step test every integrator makes: `Ok(true)` when the run is over (the
-    /// ball has left and been watched for a re-contact long enough, and the histories are
-    /// complete; or the time bound is reached out of contact); an error when the ball is still
-    /// in contact at the time bound or the step budget is spent.
+    /// The end-of-step test every integrator makes: `Ok(true)` when the collision is over
+    /// (the ball has left, been watched for a re-contact for `COAST_TIME`, and cannot come
+    /// back: `may_return`, asked only then, says whether it still can; or the time bound is
+    /// reached out of contact); an error when the ball is still in contact at the time bound
+    /// or the step budget is spent. Whether histories are recorded plays no part: a point's
+    /// summary is the same with or without them (the histories' samples after the end come
+    /// from the integrators' coasting, which cannot change it).
     pub(super) fn stop_after(
         &self,
         t: f64,
         steps: usize,
         h: f64,
         budget: u64,
-        recorder: &Option<Recorder>,
+        may_return: impl FnOnce() -> bool,
     ) -> Result<bool, ModelError> {
-        if self.finished(t, recorder) {
+        if self.watched(t) && !may_return() {
             return Ok(true);
         }
         if t > MAX_TIME {
@@ -109,22 +111,25 @@ impl Contact {
             }
             return Ok(true);
         }
-        if steps as u64 >= budget {
-            return Err(ModelError::StepBudget {
-                steps: steps as f64,
-                dt: h,
-                budget,
-                cause: "numerics.max_steps",
-                provable: false,
-            });
-        }
-        Ok(false)
+        within_budget(steps, h, budget).map(|()| false)
     }
 
-    fn finished(&self, t: f64, recorder: &Option<Recorder>) -> bool {
-        !self.in_contact
-            && self.separations > 0
-            && t >= self.last_separation + COAST_TIME
-            && recorder.as_ref().is_none_or(|r| r.done())
+    /// Whether the ball has left and been watched for a re-contact for `COAST_TIME`.
+    fn watched(&self, t: f64) -> bool {
+        !self.in_contact && self.separations > 0 && t >= self.last_separation + COAST_TIME
+    }
+}
+
+/// The step budget's test: an error once `steps` of length `h` have spent it.
+pub(super) fn within_budget(steps: usize, h: f64, budget: u64) -> Result<(), ModelError> {
+    match steps as u64 >= budget {
+        true => Err(ModelError::StepBudget {
+            steps: steps as f64,
+            dt: h,
+            budget,
+            cause: "numerics.max_steps",
+            provable: false,
+        }),
+        false => Ok(()),
     }
 }

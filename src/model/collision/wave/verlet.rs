@@ -5,8 +5,8 @@
 //! forces at the new positions ([`State::forces`]), the accelerations, the second half
 //! kick; then the contact's bookkeeping, the sample and the stop test.
 
-use super::contact::Contact;
-use super::{displacement_points, spec_history, Collision, FinalState};
+use super::contact::{within_budget, Contact};
+use super::{displacement_points, spec_history, Collision, FinalState, MAX_TIME};
 use crate::model::bat::motion::grip_vibration_amplitude;
 use crate::model::bat::motion::modal_coordinates;
 use crate::model::bat::PreparedBat;
@@ -142,25 +142,46 @@ pub(super) fn run_verlet(
         rec.push(0.0, smp);
     }
     loop {
-        state.kick_and_drift(c);
-        let s_prev = state.s;
-        let (force, on_bat) = state.forces(c, contact);
-        state.accelerate(c, bat, &inv_mass, on_bat);
-        state.kick(c);
-        let t_prev = state.t;
-        state.steps += 1;
-        state.t = state.steps as f64 * h;
-        contact.update(&c.law, t_prev, s_prev, state.t, state.s, force);
-        if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, h)) {
-            let now = (force, state.s.max(0.0), state.v, state.xh - state.y_c);
-            let smp = sample(rec, bat, &points, &state.y, now);
-            rec.push(state.t, smp);
-        }
-        if contact.stop_after(state.t, state.steps, h, c.budget, recorder)? {
+        verlet_step(c, bat, &inv_mass, &mut state, contact, recorder, &points);
+        if contact.stop_after(state.t, state.steps, h, c.budget, || false)? {
             break;
         }
     }
-    Ok(final_state(c, bat, &mut state))
+    let fin = final_state(c, bat, &mut state);
+    // the history past the collision's end: the same steps, the contact's bookkeeping on a
+    // copy (a point's summary is the same with or without histories, `Contact::stop_after`)
+    let mut watch = contact.clone();
+    while recorder.as_ref().is_some_and(|r| !r.done()) && state.t <= MAX_TIME {
+        within_budget(state.steps, h, c.budget)?;
+        verlet_step(c, bat, &inv_mass, &mut state, &mut watch, recorder, &points);
+    }
+    Ok(fin)
+}
+
+/// One step, its contact's bookkeeping, and the sample the recorder wants of it.
+fn verlet_step(
+    c: &Collision,
+    bat: &PreparedBat,
+    inv_mass: &[f64],
+    state: &mut State,
+    contact: &mut Contact,
+    recorder: &mut Option<Recorder>,
+    points: &[(usize, f64, bool)],
+) {
+    state.kick_and_drift(c);
+    let s_prev = state.s;
+    let (force, on_bat) = state.forces(c, contact);
+    state.accelerate(c, bat, inv_mass, on_bat);
+    state.kick(c);
+    let t_prev = state.t;
+    state.steps += 1;
+    state.t = state.steps as f64 * c.dt;
+    contact.update(&c.law, t_prev, s_prev, state.t, state.s, force);
+    if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, c.dt)) {
+        let now = (force, state.s.max(0.0), state.v, state.xh - state.y_c);
+        let smp = sample(rec, bat, points, &state.y, now);
+        rec.push(state.t, smp);
+    }
 }
 
 /// The sample of displacements `y` with (force, compression, ball velocity, hoop

@@ -7,8 +7,8 @@
 //! Integration: the linear-acceleration method, as for the ball in the modal integrator,
 //! with the end-of-step force found implicitly (`ContactLaw::solve_implicit`).
 
-use super::contact::Contact;
-use super::{Diagnostics, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
+use super::contact::{within_budget, Contact};
+use super::{Diagnostics, MAX_TIME, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::{Recorder, Sample};
 use crate::model::error::ModelError;
@@ -33,6 +33,7 @@ pub fn simulate_wall(
     let mut contact = Contact::started();
     let (mut s, mut v, mut a) = (0.0, v0, 0.0);
     let mut steps = 0usize;
+    let mut ended = None;
     loop {
         let (t_prev, s_prev) = (steps as f64 * h, s);
         // s₁ = s + h v + h² (a/3 + a₁/6) with a₁ = −F(s₁)/m.
@@ -49,10 +50,20 @@ pub fn simulate_wall(
             let smp = sample(rec, force, s, v);
             rec.push(t, smp);
         }
-        if contact.stop_after(t, steps, h, budget, &recorder)? {
-            break;
+        // the ball, once it has left the wall, comes back only if it still moves toward it
+        let over = ended.is_some() || contact.stop_after(t, steps, h, budget, || v >= 0.0)?;
+        if over && ended.is_none() {
+            // the summary as the collision ended; a history may ask for more time
+            ended = Some((v, steps, contact.clone()));
+        }
+        if over {
+            if recorder.as_ref().is_none_or(|r| r.done()) || t > MAX_TIME {
+                break;
+            }
+            within_budget(steps, h, budget)?;
         }
     }
+    let (v, steps, contact) = ended.expect("the loop ends after the collision");
     let mut outcome = wall_outcome(m, v0, v, &contact);
     outcome.history = recorder.map(|r| r.finish());
     let diagnostics = Diagnostics {

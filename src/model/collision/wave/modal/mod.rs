@@ -7,6 +7,7 @@
 //! ([`state::advance_modes`]), the ball's update and the contact's bookkeeping
 //! ([`ball_and_contact`]), then the sample ([`record`]) and the stop test.
 
+mod coast;
 mod propagator;
 mod record;
 mod setup;
@@ -49,18 +50,18 @@ pub(super) fn run_modal(
     loop {
         step(c, &setup, &mut state, contact);
         if let Some(rec) = recorder.as_mut().filter(|r| r.wants(state.t, setup.h)) {
-            let now = (
-                state.contact_force(),
-                state.bat_force(c),
-                state.hoop_stretch(c),
-            );
-            record::record(rec, bat, &state, now, modal);
+            record::record_now(rec, c, bat, &state, modal);
         }
-        if contact.stop_after(state.t, state.steps, setup.h, c.budget, recorder)? {
+        let may_return = || coast::may_return(c, &setup, &state);
+        if contact.stop_after(state.t, state.steps, setup.h, c.budget, may_return)? {
             break;
         }
     }
-    Ok(final_state(c, bat, &setup, &state))
+    let fin = final_state(c, bat, &setup, &state);
+    if let Some(rec) = recorder.as_mut() {
+        coast::coast(c, &setup, bat, (&mut state, contact), rec, modal)?;
+    }
+    Ok(fin)
 }
 
 /// One step of length h.

@@ -3,6 +3,7 @@
 //! static shape of the modes it does not step (the modal form), and one sample per step.
 
 use super::super::project::project;
+use super::super::Collision;
 use super::setup::{shapes_at, Setup};
 use super::state::State;
 use crate::model::bat::shapes::{modal_scale, shape_at, shape_maxima, shape_point_weights};
@@ -105,6 +106,22 @@ pub(super) fn install_projector(
             }
         },
     ));
+}
+
+/// Record the state now, at `state.t` ([`record`] with the forces of `state`).
+pub(super) fn record_now(
+    rec: &mut Recorder,
+    c: &Collision,
+    bat: &PreparedBat,
+    state: &State,
+    modal: bool,
+) {
+    let now = (
+        state.contact_force(),
+        state.bat_force(c),
+        state.hoop_stretch(c),
+    );
+    record(rec, bat, state, now, modal);
 }
 
 /// Record the state now, at `state.t`: contact force, compression, ball velocity, the
