@@ -27,7 +27,7 @@ use crate::model::error::ModelError;
 /// damper move the surface or the rigid motion in other ways: there the `COAST_TIME` watch
 /// alone decides, as before (docs/model.md).
 pub(super) fn may_return(c: &Collision, s: &Setup, state: &State) -> bool {
-    if c.hoop.is_some() || c.oblique.is_some() || s.grip.is_some() {
+    if !free_after_contact(c, s) {
         return false;
     }
     let (mut rigid_velocity, mut vibration, mut reach) = (0.0, 0.0, 0.0);
@@ -43,6 +43,12 @@ pub(super) fn may_return(c: &Collision, s: &Setup, state: &State) -> bool {
     closing >= 0.0 || state.s + vibration + reach >= 0.0
 }
 
+/// Whether the motion after the ball has left is the free flight [`may_return`] bounds and
+/// [`free_step`] steps: head-on, without a hoop or a grip damper.
+fn free_after_contact(c: &Collision, s: &Setup) -> bool {
+    c.hoop.is_none() && c.oblique.is_none() && s.grip.is_none()
+}
+
 /// Complete the history in `rec` after the collision has ended at `state`: steps without
 /// contact until it has its samples or the time bound is reached. Where [`may_return`]
 /// proves that no contact can come back, a step is the collision's step without its contact
@@ -56,8 +62,7 @@ pub(super) fn coast(
     rec: &mut Recorder,
     modal: bool,
 ) -> Result<(), ModelError> {
-    let free = c.hoop.is_none() && c.oblique.is_none() && s.grip.is_none();
-    let mut watch = (!free).then(|| contact.clone());
+    let mut watch = (!free_after_contact(c, s)).then(|| contact.clone());
     while !rec.done() && state.t <= MAX_TIME {
         within_budget(state.steps, s.h, c.budget)?;
         match watch.as_mut() {
