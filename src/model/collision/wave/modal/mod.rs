@@ -45,7 +45,7 @@ pub(super) fn run_modal(
     }
     let modal = recorder.as_ref().is_some_and(|r| r.wants_modal);
     if let Some(rec) = recorder.as_mut() {
-        record::record(rec, bat, &state, (0.0, 0.0, 0.0), modal);
+        record::record_now(rec, c, bat, &state, modal);
     }
     loop {
         step(c, &setup, &mut state, contact);

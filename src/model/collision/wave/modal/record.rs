@@ -108,32 +108,21 @@ pub(super) fn install_projector(
     ));
 }
 
-/// Record the state now, at `state.t` ([`record`] with the forces of `state`).
+/// Record the state now, at `state.t`: contact force, compression, ball velocity, the
+/// hoop's displacement, the rigid motion and the modal coordinates (projected by the
+/// recorder, or kept), written into the recorder's own state (`Recorder::state`).
 pub(super) fn record_now(
     rec: &mut Recorder,
     c: &Collision,
     bat: &PreparedBat,
     state: &State,
-    modal: bool,
+    wants_modal: bool,
 ) {
-    let now = (
+    let (force, p_bat, hoop_rel) = (
         state.contact_force(),
         state.bat_force(c),
         state.hoop_stretch(c),
     );
-    record(rec, bat, state, now, modal);
-}
-
-/// Record the state now, at `state.t`: contact force, compression, ball velocity, the
-/// hoop's displacement, the rigid motion and the modal coordinates (projected by the
-/// recorder, or kept), written into the recorder's own state (`Recorder::state`).
-pub(super) fn record(
-    rec: &mut Recorder,
-    bat: &PreparedBat,
-    state: &State,
-    (force, p_bat, hoop_rel): (f64, f64, f64),
-    wants_modal: bool,
-) {
     let q = &state.q;
     let wants_rigid = rec.wants_rigid;
     let rigid = |weight: &[f64], over: f64| match wants_rigid {
