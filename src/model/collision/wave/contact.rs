@@ -133,3 +133,19 @@ pub(super) fn within_budget(steps: usize, h: f64, budget: u64) -> Result<(), Mod
         false => Ok(()),
     }
 }
+
+/// Whether to take one more step after the collision has ended, for a history that asks for
+/// more time: not once the history is complete (`history_done`) or the time bound is
+/// passed; an error once the step budget is spent. The one test of the three integrators'
+/// loops past the end (the modal `coast`, Verlet's and the wall's).
+pub(super) fn steps_on_for_history(
+    history_done: bool,
+    (steps, t): (usize, f64),
+    h: f64,
+    budget: u64,
+) -> Result<bool, ModelError> {
+    if history_done || t > MAX_TIME {
+        return Ok(false);
+    }
+    within_budget(steps, h, budget).map(|()| true)
+}

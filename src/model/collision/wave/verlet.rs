@@ -5,8 +5,8 @@
 //! forces at the new positions ([`State::forces`]), the accelerations, the second half
 //! kick; then the contact's bookkeeping, the sample and the stop test.
 
-use super::contact::{within_budget, Contact};
-use super::{displacement_points, spec_history, Collision, FinalState, MAX_TIME};
+use super::contact::{steps_on_for_history, Contact};
+use super::{displacement_points, spec_history, Collision, FinalState};
 use crate::model::bat::motion::grip_vibration_amplitude;
 use crate::model::bat::motion::modal_coordinates;
 use crate::model::bat::PreparedBat;
@@ -151,8 +151,8 @@ pub(super) fn run_verlet(
     // the history past the collision's end: the same steps, the contact's bookkeeping on a
     // copy (a point's summary is the same with or without histories, `Contact::stop_after`)
     let mut watch = contact.clone();
-    while recorder.as_ref().is_some_and(|r| !r.done()) && state.t <= MAX_TIME {
-        within_budget(state.steps, h, c.budget)?;
+    let history_done = |r: &Option<Recorder>| r.as_ref().is_none_or(|r| r.done());
+    while steps_on_for_history(history_done(recorder), (state.steps, state.t), h, c.budget)? {
         verlet_step(c, bat, &inv_mass, &mut state, &mut watch, recorder, &points);
     }
     Ok(fin)

@@ -7,8 +7,8 @@
 //! Integration: the linear-acceleration method, as for the ball in the modal integrator,
 //! with the end-of-step force found implicitly (`ContactLaw::solve_implicit`).
 
-use super::contact::{within_budget, Contact};
-use super::{Diagnostics, MAX_TIME, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
+use super::contact::{steps_on_for_history, Contact};
+use super::{Diagnostics, MODAL_MAX_STEP_FRACTION, MODAL_STEP_FRACTION};
 use crate::model::ball::ContactLaw;
 use crate::model::collision::history::{Recorder, Sample};
 use crate::model::error::ModelError;
@@ -57,10 +57,10 @@ pub fn simulate_wall(
             ended = Some((v, steps, contact.clone()));
         }
         if over {
-            if recorder.as_ref().is_none_or(|r| r.done()) || t > MAX_TIME {
+            let history_done = recorder.as_ref().is_none_or(|r| r.done());
+            if !steps_on_for_history(history_done, (steps, t), h, budget)? {
                 break;
             }
-            within_budget(steps, h, budget)?;
         }
     }
     let (v, steps, contact) = ended.expect("the loop ends after the collision");

@@ -8,8 +8,8 @@
 //! freely, stepped as the collision would step them without a contact force, so the samples
 //! are those the collision's own steps would give, bit for bit.
 
-use super::super::contact::{within_budget, Contact};
-use super::super::{Collision, MAX_TIME};
+use super::super::contact::{steps_on_for_history, Contact};
+use super::super::Collision;
 use super::record::record_now;
 use super::setup::Setup;
 use super::state::{self, State};
@@ -67,8 +67,7 @@ pub(super) fn coast(
     modal: bool,
 ) -> Result<(), ModelError> {
     let mut watch = (!free_after_contact(c, s)).then(|| contact.clone());
-    while !rec.done() && state.t <= MAX_TIME {
-        within_budget(state.steps, s.h, c.budget)?;
+    while steps_on_for_history(rec.done(), (state.steps, state.t), s.h, c.budget)? {
         match watch.as_mut() {
             None => free_step(c, s, state),
             Some(contact) => super::step(c, s, state, contact),
