@@ -401,6 +401,20 @@ pub fn scale_coord<T: H5Type>(
     Ok(ds)
 }
 
+/// The coordinate of a dim without values of its own: its index 0..`len`, as a dimension
+/// scale named `name`.
+pub fn index_coord(g: &Group, name: &str, len: usize) -> hdf5::Result<Dataset> {
+    let idx: Vec<i64> = (0..len as i64).collect();
+    let (long_name, description) = (format!("{name} index"), format!("index along {name}"));
+    let def = VarDef {
+        name: "",
+        units: "1",
+        long_name: &long_name,
+        description: &description,
+    };
+    scale_coord(g, name, &idx, &def)
+}
+
 /// Selection of a block: start/count per dim.
 pub fn block(start: &[usize], count: &[usize]) -> hdf5::Hyperslab {
     use hdf5::SliceOrIndex;

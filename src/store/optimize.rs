@@ -201,11 +201,7 @@ pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> 
         .ctx(path, "create group optimize")?;
     let att = Attacher::default();
     let n = t.rows.len();
-    let (long_name, description) = ("candidate index", "index along candidate");
-    let def = v("", "1", long_name, description);
-    let i: Vec<i64> = (0..n as i64).collect();
-    let cand =
-        h5u::scale_coord(&g, "candidate", &i, &def).ctx(path, "write an index coordinate")?;
+    let cand = h5u::index_coord(&g, "candidate", n).ctx(path, "write an index coordinate")?;
     let var = labels(
         &g,
         "variable",

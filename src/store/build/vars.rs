@@ -30,18 +30,7 @@ pub(super) fn study_dims(
                 attr_str(&ds, "parameter_path", &c.path).ctx(path, "describe a coordinate")?;
                 ds
             }
-            None => {
-                let idx: Vec<i64> = (0..d.size as i64).collect();
-                let long_name = format!("{} index", d.name);
-                let description = format!("index along {}", d.name);
-                let def = VarDef {
-                    name: "",
-                    units: "1",
-                    long_name: &long_name,
-                    description: &description,
-                };
-                h5u::scale_coord(g, &d.name, &idx, &def).ctx(path, "write an index coordinate")?
-            }
+            None => h5u::index_coord(g, &d.name, d.size).ctx(path, "write an index coordinate")?,
         };
         for c in d.coords.iter().filter(|c| c.name != d.name) {
             let ds = coord_values(g, &c.name, &c.values, path)?;
