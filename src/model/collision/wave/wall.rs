@@ -51,12 +51,9 @@ pub fn simulate_wall(
             rec.push(t, smp);
         }
         // the ball, once it has left the wall, comes back only if it still moves toward it
-        let over = ended.is_some() || contact.stop_after(t, steps, h, budget, || v >= 0.0)?;
-        if over && ended.is_none() {
+        if ended.is_some() || contact.stop_after(t, steps, h, budget, || v >= 0.0)? {
             // the summary as the collision ended; a history may ask for more time
-            ended = Some((v, steps, contact.clone()));
-        }
-        if over {
+            ended.get_or_insert_with(|| (v, steps, contact.clone()));
             let history_done = recorder.as_ref().is_none_or(|r| r.done());
             if !steps_on_for_history(history_done, (steps, t), h, budget)? {
                 break;
