@@ -14,10 +14,12 @@
 //! A write with `O_DIRECT` returns when the disk has the bytes, so the whole blocks go from
 //! a thread of the driver's own, one at a time, while HDF5 gathers the next ones in a
 //! second buffer: the disk works while the writer thread goes on, as with the page cache.
-//! That thread also makes the file durable (`fdatasync`) every 4 MiB it writes: a block
-//! written with `O_DIRECT` waits in the disk's volatile cache, and the run's final fsync
-//! otherwise waited for all of them at once after the last point (50 ms of the bench's
-//! 0.5 s modal history study on the development machine; 3 to 5 ms with the syncs).
+//! A second thread makes the file durable (`fdatasync`) every 4 MiB the first writes: a
+//! block written with `O_DIRECT` waits in the disk's volatile cache, and the run's final
+//! fsync otherwise waited for all of them at once after the last point (50 ms of the
+//! bench's 0.5 s modal history study on the development machine; 3 to 5 ms with the
+//! syncs). On a thread of its own, a sync (9 to 20 ms there) does not hold up whoever waits
+//! for a block to be written: the writer thread before it journals, HDF5 reading metadata.
 //!
 //! What is gathered, and the block on its way, are not in the OS yet: the store journals a
 //! record that names bytes in the file once [`in_os`] passes them, and at each flush sends
