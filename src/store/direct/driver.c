@@ -141,25 +141,36 @@ static int write_block(direct_t *f, const unsigned char *p, size_t size, haddr_t
     return pwrite_all(f->fd, p, size, at) == 0 ? 0 : (errno ? errno : EIO);
 }
 
+/* With `mu` held: wait until `*asked` (a task for this thread) or the file closes; whether
+ * there is a task. A task given before the close is still done. */
+static int next_task(direct_t *f, const int *asked) {
+    while (!*asked && !f->quit)
+        pthread_cond_wait(&f->cv, &f->mu);
+    return *asked;
+}
+
+/* With `mu` held: the task is done, with errno `e` (0: it worked). The first failure is
+ * the run's, reported by the next wait or the close. */
+static void task_done(direct_t *f, int *asked, int e) {
+    if (e != 0 && f->failed == 0)
+        f->failed = e;
+    *asked = 0;
+    pthread_cond_broadcast(&f->cv);
+}
+
 static void *block_writer(void *arg) {
     direct_t *f = arg;
 #ifdef __linux__
     pthread_setname_np(pthread_self(), "batstudy-disk"); /* as profilers show it */
 #endif
     pthread_mutex_lock(&f->mu);
-    for (;;) {
-        while (!f->busy && !f->quit)
-            pthread_cond_wait(&f->cv, &f->mu);
-        if (!f->busy)
-            break;
+    while (next_task(f, &f->busy)) {
         const unsigned char *p = f->job;
         size_t size = f->job_len;
         haddr_t at = f->job_at;
         pthread_mutex_unlock(&f->mu);
         int e = write_block(f, p, size, at);
         pthread_mutex_lock(&f->mu);
-        if (e != 0 && f->failed == 0)
-            f->failed = e;
         /* while a sync is under way these bytes count towards the next one */
         if (e == 0)
             f->unsynced += size;
@@ -167,8 +178,7 @@ static void *block_writer(void *arg) {
             f->unsynced = 0;
             f->sync_due = 1;
         }
-        f->busy = 0;
-        pthread_cond_broadcast(&f->cv);
+        task_done(f, &f->busy, e);
     }
     pthread_mutex_unlock(&f->mu);
     return NULL;
@@ -180,20 +190,13 @@ static void *syncer(void *arg) {
     pthread_setname_np(pthread_self(), "batstudy-sync");
 #endif
     pthread_mutex_lock(&f->mu);
-    for (;;) {
-        while (!f->sync_due && !f->quit)
-            pthread_cond_wait(&f->cv, &f->mu);
-        if (!f->sync_due)
-            break;
+    while (next_task(f, &f->sync_due)) {
         pthread_mutex_unlock(&f->mu);
         /* a failure is the run's: the error is reported once, to this descriptor, and the
          * final fsync (on another) would not see it */
         int e = fdatasync(f->fd) < 0 ? (errno ? errno : EIO) : 0;
         pthread_mutex_lock(&f->mu);
-        if (e != 0 && f->failed == 0)
-            f->failed = e;
-        f->sync_due = 0;
-        pthread_cond_broadcast(&f->cv);
+        task_done(f, &f->sync_due, e);
     }
     pthread_mutex_unlock(&f->mu);
     return NULL;
