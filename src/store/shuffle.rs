@@ -100,8 +100,9 @@ pub(super) fn shuffle_modes_into(
 /// HDF5's shuffle of `values` (byte j of value i at j·n + i) into `out`, eight values at a time: the
 /// eight values' bytes as an 8 × 8 byte matrix, transposed in registers, each row then
 /// stored at once (issue 37: byte by byte, the stores were a third of encoding a block of
-/// modal coordinates; gathering each row by shifts was still a quarter of it).
-pub(super) fn shuffle_values_into<T: ChunkValue>(values: &[T], out: &mut [u8]) {
+/// modal coordinates; gathering each row by shifts was still a quarter of it). Public for
+/// `benches/chunk_groups.rs`, which shuffles chunks of a layout the store does not write.
+pub fn shuffle_values_into<T: ChunkValue>(values: &[T], out: &mut [u8]) {
     let n = values.len();
     let whole = n - n % 8;
     for (b, eight) in values[..whole].chunks_exact(8).enumerate() {

@@ -1,0 +1,329 @@
+//! What history chunks spanning k neighbouring points would save (issue 37, docs/performance.md,
+//! twelfth round): a design not built, measured before it is.
+//!
+//! Today every history point has its own chunk of each stored variable: a modal history
+//! study writes eight chunks a point, each a zlib stream with its own per-plane Huffman
+//! codes, block headers and checksum, and each placed with its own `H5Dwrite_chunk`. This
+//! runs the `batstudy bench` modal history study (1 800 points: 40 swing speeds × 45 impact
+//! positions) once, keeps its histories, and then
+//! - encodes every point as the store does (`RecordEncoder::encode`: the point's chunks and
+//!   its journal record);
+//! - encodes the same histories as chunks of k points neighbouring along `impact_z` (never
+//!   across a swing speed), each variable's values in the chunk's order, shuffled, and coded
+//!   by the coder the store uses for planes of runs and near-noise (`run_huffman`); every
+//!   such chunk is inflated again and compared with the values it holds, byte for byte;
+//! - writes both sets of chunks into a scratch HDF5 file with `H5Dwrite_chunk`.
+//!
+//! Each figure is the least of several passes on one thread, per point. The group coder is a
+//! prototype in this file, not the store's.
+//!
+//!     cargo bench --bench chunk_groups
+
+use batstudy::bench::{curve_study_text, load_study, TempDir, MODAL_HISTORY_BLOCK};
+use batstudy::model::outcome::HistoryPrecision;
+use batstudy::results::PointRecord;
+use batstudy::run::{self, AsIs, ModelSimulator, RunOptions, Sink};
+use batstudy::store::layout::{self, HistoryDims, HISTORY_VARS, MODE_BLOCK};
+use batstudy::store::modal::{coordinate_blocks, padded_points, ModalExtents};
+use batstudy::store::shuffle::{shuffle_values_into, ChunkValue};
+use batstudy::store::{header, journal, run_huffman, RecordEncoder};
+use libdeflater::Decompressor;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+/// Passes of each timed loop (the least is kept).
+const PASSES: usize = 5;
+/// Points along `impact_z` per chunk, besides one.
+const GROUPS: [usize; 3] = [4, 8, 15];
+
+/// A sink that keeps every point, with its histories.
+struct Keep(Vec<PointRecord>);
+
+impl Sink for Keep {
+    type Encoder = AsIs;
+    fn encoder(&self) -> AsIs {
+        AsIs
+    }
+    fn is_done(&self, _: usize) -> bool {
+        false
+    }
+    fn write(&mut self, rec: PointRecord) -> Result<(), String> {
+        self.0.push(rec);
+        Ok(())
+    }
+    fn finish(&mut self) -> Result<(), String> {
+        Ok(())
+    }
+}
+
+/// A stored history variable: its index into `HISTORY_VARS` and its stored precision.
+type Var = (usize, HistoryPrecision);
+
+/// One point's values of a history variable as its chunk holds them: the samples (or the
+/// static shape, padded to the study's shape points), or its first block of modes.
+fn point_values(rec: &PointRecord, k: usize, ext: &ModalExtents, nt: usize) -> Vec<f64> {
+    let h = rec
+        .result
+        .as_ref()
+        .ok()
+        .and_then(|o| o.history.as_ref())
+        .expect("a history");
+    let a = layout::history_array(h, k);
+    match HISTORY_VARS[k].2 {
+        HistoryDims::ModeTime => {
+            let mut blocks = coordinate_blocks(a, nt, ext.block);
+            assert_eq!(
+                blocks.len(),
+                1,
+                "the bench's bats step at most {MODE_BLOCK} modes"
+            );
+            blocks.pop().expect("a block")
+        }
+        HistoryDims::ShapePoint => padded_points(a, ext.points),
+        _ => a.clone(),
+    }
+}
+
+/// Every point's values of every stored variable (`point_values`), gathered once outside
+/// the timings: both codings start from them.
+struct Gathered {
+    /// [point][variable] values.
+    values: Vec<Vec<Vec<f64>>>,
+    vars: Vec<Var>,
+}
+
+fn gather(recs: &[PointRecord], vars: &[Var], ext: &ModalExtents, nt: usize) -> Gathered {
+    let values = recs
+        .iter()
+        .map(|r| {
+            vars.iter()
+                .map(|&(k, _)| point_values(r, k, ext, nt))
+                .collect()
+        })
+        .collect();
+    Gathered {
+        values,
+        vars: vars.to_vec(),
+    }
+}
+
+/// The values of variable `v` of the points `group`, one point after the other.
+fn joined(g: &Gathered, v: usize, group: std::ops::Range<usize>) -> Vec<f64> {
+    let mut out = Vec::new();
+    for p in &g.values[group] {
+        out.extend_from_slice(&p[v]);
+    }
+    out
+}
+
+/// `values` shuffled (the store's shuffle) and coded as the store codes planes of runs and
+/// near-noise.
+fn code<T: ChunkValue>(values: &[T]) -> Vec<u8> {
+    let mut shuffled = vec![0u8; values.len() * T::SIZE];
+    shuffle_values_into(values, &mut shuffled);
+    run_huffman::zlib_planes(&shuffled, values.len())
+}
+
+/// The chunks of the points `group`: each variable's values of its points, at its stored
+/// precision, shuffled and coded.
+fn group_chunks(g: &Gathered, group: std::ops::Range<usize>) -> Vec<Vec<u8>> {
+    g.vars
+        .iter()
+        .enumerate()
+        .map(|(v, &(_, precision))| {
+            let values = joined(g, v, group.clone());
+            match precision {
+                HistoryPrecision::F64 => code(&values),
+                HistoryPrecision::F32 => {
+                    code(&values.iter().map(|&x| x as f32).collect::<Vec<_>>())
+                }
+            }
+        })
+        .collect()
+}
+
+/// HDF5's shuffle written out byte by byte (independent of the store's).
+fn reference_shuffle(bytes: &[u8], size: usize) -> Vec<u8> {
+    let n = bytes.len() / size;
+    let mut out = vec![0u8; bytes.len()];
+    for (i, e) in bytes.chunks_exact(size).enumerate() {
+        for (j, &b) in e.iter().enumerate() {
+            out[j * n + i] = b;
+        }
+    }
+    out
+}
+
+/// Inflate a group's chunks and compare them with the values they hold.
+fn check_group(chunks: &[Vec<u8>], g: &Gathered, group: std::ops::Range<usize>) {
+    for ((v, &(_, precision)), chunk) in g.vars.iter().enumerate().zip(chunks) {
+        let values = joined(g, v, group.clone());
+        let (bytes, size): (Vec<u8>, usize) = match precision {
+            HistoryPrecision::F64 => (values.iter().flat_map(|x| x.to_le_bytes()).collect(), 8),
+            HistoryPrecision::F32 => (
+                values
+                    .iter()
+                    .flat_map(|&x| (x as f32).to_le_bytes())
+                    .collect(),
+                4,
+            ),
+        };
+        let mut got = vec![0u8; bytes.len()];
+        let n = Decompressor::new()
+            .zlib_decompress(chunk, &mut got)
+            .expect("a zlib stream");
+        assert_eq!(n, bytes.len());
+        assert!(
+            got == reference_shuffle(&bytes, size),
+            "a chunk inflates to its values"
+        );
+    }
+}
+
+/// The least of `PASSES` timings of `f`, per point of `points`, in µs, and what it returned.
+fn least<R>(points: usize, mut f: impl FnMut() -> R) -> (f64, R) {
+    let mut best = f64::INFINITY;
+    let mut last = None;
+    for _ in 0..PASSES {
+        let t0 = Instant::now();
+        let r = f();
+        best = best.min(t0.elapsed().as_secs_f64() * 1e6 / points as f64);
+        last = Some(r);
+    }
+    (best, last.expect("a pass"))
+}
+
+/// The groups of `k` neighbouring points along `impact_z` (the last dim, `nz` long).
+fn groups(n: usize, nz: usize, k: usize) -> Vec<std::ops::Range<usize>> {
+    let mut out = Vec::new();
+    for row in (0..n).step_by(nz) {
+        let mut z = 0;
+        while z < nz {
+            let end = (z + k).min(nz);
+            out.push(row + z..row + end);
+            z = end;
+        }
+    }
+    out
+}
+
+/// The least of `PASSES` times, per point of `points`, in µs, that writing `chunks` (one
+/// call each, into one chunk of a fresh 1-D dataset each) with `H5Dwrite_chunk` took.
+fn write_us(dir: &TempDir, chunks: &[&[u8]], points: usize) -> f64 {
+    let len = chunks.iter().map(|c| c.len()).max().unwrap_or(1);
+    let mut best = f64::INFINITY;
+    for pass in 0..PASSES {
+        let f = hdf5::File::create(dir.path().join(format!("w{pass}.h5"))).expect("a scratch file");
+        let ds = f
+            .new_dataset::<u8>()
+            .shape([chunks.len() * len])
+            .chunk([len])
+            .shuffle()
+            .deflate(1)
+            .create("values")
+            .expect("a dataset");
+        let t0 = Instant::now();
+        for (i, c) in chunks.iter().enumerate() {
+            batstudy::store::chunks::write_chunk(&ds, &[i * len], c).expect("a chunk written");
+        }
+        best = best.min(t0.elapsed().as_secs_f64() * 1e6 / points as f64);
+    }
+    best
+}
+
+fn main() {
+    let bench = std::env::args().any(|a| a == "--bench");
+    let omegas = if bench { 40 } else { 1 };
+    let study = load_study(
+        &curve_study_text("chunk-groups", omegas, MODAL_HISTORY_BLOCK),
+        "chunk-groups",
+    )
+    .expect("the study");
+    let pool = run::build_pool(1).expect("a pool");
+    let bats = run::prepare_bats(&ModelSimulator, &study.plan, &pool);
+    let request = study.history_request(bats.max_length()).expect("histories");
+    let info = study.info(bats.variants.clone(), Some(request.clone()));
+    let stop = AtomicBool::new(false);
+    let opts = RunOptions {
+        jobs: 1,
+        ..RunOptions::default()
+    };
+    let (_, kept) = run::run_plan(
+        &study.plan,
+        &ModelSimulator,
+        &bats,
+        Some(&request),
+        Keep(Vec::new()),
+        &pool,
+        &opts,
+        &stop,
+    )
+    .expect("the run");
+    let mut recs = kept.0;
+    recs.sort_by_key(|r| r.index);
+    let (n, nz, nt) = (recs.len(), 45, request.n_samples);
+    let ext = ModalExtents::of(&info);
+    let vars: Vec<Var> = header::history_vars(&request)
+        .into_iter()
+        .map(|k| (k, layout::history_precision(&request, k)))
+        .collect();
+
+    // every point as the store encodes it
+    let encoder = RecordEncoder::new(&std::env::temp_dir().join("chunk-groups.h5"), &info);
+    let (per_point_us, encoded) = least(n, || {
+        recs.iter()
+            .map(|r| encoder.encode(r.clone()).expect("encoded"))
+            .collect::<Vec<_>>()
+    });
+    let (clone_us, _) = least(n, || recs.to_vec());
+    let per_point_bytes: usize = encoded.iter().map(|e| e.framed.len()).sum();
+    println!(
+        "{n} points, {} stored variables, {} samples, blocks of {MODE_BLOCK} modes",
+        vars.len(),
+        nt
+    );
+    println!(
+        "one chunk a point : {:6.1} µs a point to encode (the record's copy, {clone_us:.1} µs, taken off), {:7.0} B a point with its journal framing",
+        per_point_us - clone_us,
+        per_point_bytes as f64 / n as f64
+    );
+    let gathered = gather(&recs, &vars, &ext, nt);
+    let mut one_point_us = 0.0;
+    for k in std::iter::once(1).chain(GROUPS) {
+        let gs = groups(n, nz, k);
+        let (us, coded) = least(n, || {
+            gs.iter()
+                .map(|g| group_chunks(&gathered, g.clone()))
+                .collect::<Vec<_>>()
+        });
+        for (g, c) in gs.iter().zip(&coded) {
+            check_group(c, &gathered, g.clone());
+        }
+        if k == 1 {
+            one_point_us = us;
+        }
+        let bytes: usize = coded.iter().flatten().map(Vec::len).sum();
+        let chunks_per_point = coded.iter().map(Vec::len).sum::<usize>() as f64 / n as f64;
+        println!(
+            "prototype, chunks of {k:2} points: {us:6.1} µs a point to shuffle and code ({:+5.1} against one point a chunk), {:7.0} B a point, {chunks_per_point:.2} chunks a point; every chunk inflated and checked",
+            us - one_point_us,
+            bytes as f64 / n as f64
+        );
+    }
+
+    // H5Dwrite_chunk: every chunk the store wrote above, one call each, against the same
+    // bytes in calls of 8 chunks' worth (one chunk for 8 points)
+    let dir = TempDir::new_in(&std::env::temp_dir()).expect("a scratch directory");
+    let pieces: Vec<&[u8]> = encoded
+        .iter()
+        .flat_map(|e| journal::history_chunks(&e.framed[journal::REC_PREFIX..]).expect("chunks"))
+        .collect();
+    let joined: Vec<Vec<u8>> = pieces.chunks(8).map(|c| c.concat()).collect();
+    let joined: Vec<&[u8]> = joined.iter().map(Vec::as_slice).collect();
+    let w1 = write_us(&dir, &pieces, n);
+    let w8 = write_us(&dir, &joined, n);
+    println!(
+        "H5Dwrite_chunk, {:.1} chunks a point: {w1:.1} µs a point; the same bytes in calls of 8 chunks' worth: {w8:.1} µs a point",
+        pieces.len() as f64 / n as f64
+    );
+}
