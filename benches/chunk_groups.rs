@@ -14,8 +14,10 @@
 //!   such chunk is inflated again and compared with the values it holds, byte for byte;
 //! - writes both sets of chunks into a scratch HDF5 file with `H5Dwrite_chunk`.
 //!
-//! Each figure is the least of several passes on one thread, per point. The group coder is a
-//! prototype in this file, not the store's.
+//! Everything on one thread, per point. The encodings run in turn, pass after pass, and each
+//! figure is a median over the passes, the differences taken pass by pass; the chunk writes
+//! are the least of their passes. The group coder is a prototype in this file, not the
+//! store's.
 //!
 //!     cargo bench --bench chunk_groups
 
@@ -31,8 +33,8 @@ use libdeflater::Decompressor;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-/// Passes of each timed loop (the least is kept).
-const PASSES: usize = 5;
+/// Passes of each timed loop.
+const PASSES: usize = 15;
 /// Points along `impact_z` per chunk, besides one.
 const GROUPS: [usize; 3] = [4, 8, 15];
 
@@ -180,19 +182,6 @@ fn check_group(chunks: &[Vec<u8>], g: &Gathered, group: std::ops::Range<usize>) 
     }
 }
 
-/// The least of `PASSES` timings of `f`, per point of `points`, in µs, and what it returned.
-fn least<R>(points: usize, mut f: impl FnMut() -> R) -> (f64, R) {
-    let mut best = f64::INFINITY;
-    let mut last = None;
-    for _ in 0..PASSES {
-        let t0 = Instant::now();
-        let r = f();
-        best = best.min(t0.elapsed().as_secs_f64() * 1e6 / points as f64);
-        last = Some(r);
-    }
-    (best, last.expect("a pass"))
-}
-
 /// The groups of `k` neighbouring points along `impact_z` (the last dim, `nz` long).
 fn groups(n: usize, nz: usize, k: usize) -> Vec<std::ops::Range<usize>> {
     let mut out = Vec::new();
@@ -270,44 +259,81 @@ fn main() {
 
     // every point as the store encodes it
     let encoder = RecordEncoder::new(&std::env::temp_dir().join("chunk-groups.h5"), &info);
-    let (per_point_us, encoded) = least(n, || {
-        recs.iter()
-            .map(|r| encoder.encode(r.clone()).expect("encoded"))
-            .collect::<Vec<_>>()
-    });
-    let (clone_us, _) = least(n, || recs.to_vec());
-    let per_point_bytes: usize = encoded.iter().map(|e| e.framed.len()).sum();
+    let encoded: Vec<_> = recs
+        .iter()
+        .map(|r| encoder.encode(r.clone()).expect("encoded"))
+        .collect();
+    let gathered = gather(&recs, &vars, &ext, nt);
+    let ks: Vec<usize> = std::iter::once(1).chain(GROUPS).collect();
+    let grouped: Vec<Vec<std::ops::Range<usize>>> = ks.iter().map(|&k| groups(n, nz, k)).collect();
+    for gs in &grouped {
+        for g in gs {
+            check_group(&group_chunks(&gathered, g.clone()), &gathered, g.clone());
+        }
+    }
+    // every variant in turn, pass after pass: what the machine does meanwhile falls on all
+    // alike; µs a point, [pass][variant]: the store's encoder (its record's copy taken off),
+    // then the prototype at each k
+    let us = |t: Instant| t.elapsed().as_secs_f64() * 1e6 / n as f64;
+    let mut passes: Vec<Vec<f64>> = Vec::new();
+    for _ in 0..PASSES {
+        // the records copied before the clock starts: the encoder takes them by value
+        let copies = std::hint::black_box(recs.to_vec());
+        let t = Instant::now();
+        let e: Vec<_> = copies
+            .into_iter()
+            .map(|r| encoder.encode(r).expect("encoded"))
+            .collect();
+        let mut row = vec![us(t)];
+        std::hint::black_box(e);
+        for gs in &grouped {
+            let t = Instant::now();
+            let c: Vec<_> = gs
+                .iter()
+                .map(|g| group_chunks(&gathered, g.clone()))
+                .collect();
+            row.push(us(t));
+            std::hint::black_box(c);
+        }
+        passes.push(row);
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let column = |c: usize| median(passes.iter().map(|r| r[c]).collect());
+    let against_one = |c: usize| median(passes.iter().map(|r| r[c] - r[1]).collect());
+    let store_bytes: usize = encoded.iter().map(|e| e.framed.len()).sum();
     println!(
-        "{n} points, {} stored variables, {} samples, blocks of {MODE_BLOCK} modes",
+        "{n} points, {} stored variables, {} samples, blocks of {MODE_BLOCK} modes; medians of {PASSES} passes",
         vars.len(),
         nt
     );
     println!(
-        "one chunk a point : {:6.1} µs a point to encode (the record's copy, {clone_us:.1} µs, taken off), {:7.0} B a point with its journal framing",
-        per_point_us - clone_us,
-        per_point_bytes as f64 / n as f64
+        "the store, one chunk a point : {:6.1} µs a point to encode, {:7.0} B a point with its journal framing",
+        column(0),
+        store_bytes as f64 / n as f64
     );
-    let gathered = gather(&recs, &vars, &ext, nt);
-    let mut one_point_us = 0.0;
-    for k in std::iter::once(1).chain(GROUPS) {
-        let gs = groups(n, nz, k);
-        let (us, coded) = least(n, || {
-            gs.iter()
-                .map(|g| group_chunks(&gathered, g.clone()))
-                .collect::<Vec<_>>()
-        });
-        for (g, c) in gs.iter().zip(&coded) {
-            check_group(c, &gathered, g.clone());
-        }
-        if k == 1 {
-            one_point_us = us;
-        }
-        let bytes: usize = coded.iter().flatten().map(Vec::len).sum();
-        let chunks_per_point = coded.iter().map(Vec::len).sum::<usize>() as f64 / n as f64;
+    for (v, (&k, gs)) in ks.iter().zip(&grouped).enumerate() {
+        let bytes: usize = gs
+            .iter()
+            .map(|g| {
+                group_chunks(&gathered, g.clone())
+                    .iter()
+                    .map(Vec::len)
+                    .sum::<usize>()
+            })
+            .sum();
+        let chunks = gs
+            .iter()
+            .map(|g| group_chunks(&gathered, g.clone()).len())
+            .sum::<usize>();
         println!(
-            "prototype, chunks of {k:2} points: {us:6.1} µs a point to shuffle and code ({:+5.1} against one point a chunk), {:7.0} B a point, {chunks_per_point:.2} chunks a point; every chunk inflated and checked",
-            us - one_point_us,
-            bytes as f64 / n as f64
+            "prototype, chunks of {k:2} points: {:6.1} µs a point to shuffle and code ({:+5.1} against one point a chunk, pass by pass), {:7.0} B a point, {:.2} chunks a point",
+            column(v + 1),
+            against_one(v + 1),
+            bytes as f64 / n as f64,
+            chunks as f64 / n as f64
         );
     }
 
