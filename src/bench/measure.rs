@@ -30,7 +30,7 @@ pub(super) fn cpu_clock_seconds(clock: libc::clockid_t) -> f64 {
 /// core part of the wall time; its CPU time does not. A clock call, not a /proc read: the
 /// store's calls are timed one by one, and reading /proc for each cost ~15 µs, more than a
 /// journal write (issue 7: it inflated the measured store share).
-pub(super) fn thread_cpu_seconds() -> f64 {
+pub fn thread_cpu_seconds() -> f64 {
     cpu_clock_seconds(libc::CLOCK_THREAD_CPUTIME_ID)
 }
 

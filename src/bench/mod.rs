@@ -49,6 +49,7 @@ pub use cases::{
 };
 pub use headroom::WriterHeadroom;
 pub use machine::Machine;
+pub use measure::thread_cpu_seconds;
 pub use memory::{MemoryBench, RunMemory};
 pub use report::BenchReport;
 pub use scaling::{Scaling, ScalingPoint};
