@@ -155,6 +155,17 @@ impl<'r> Recorder<'r> {
         self.next >= self.request.n_samples
     }
 
+    /// The time of the next sample to emit (past the last one when [`Self::done`]).
+    pub fn next_time(&self) -> f64 {
+        self.sample_time(self.next)
+    }
+
+    /// Sample `k`'s time, k·interval: computed here alone, so that a state recorded at it
+    /// ([`Self::commit`]) is that sample exactly.
+    fn sample_time(&self, k: usize) -> f64 {
+        k as f64 * self.request.interval
+    }
+
     /// Whether the state at step time `t` (steps of length `h`) is needed: a sample time falls
     /// in this step or in the next one (the state is then the start of the interpolation).
     /// States not needed are never computed (issue 7: sampling every step cost more than the
@@ -163,7 +174,7 @@ impl<'r> Recorder<'r> {
     /// time that falls on a step; a window of 1.5 h recorded a quarter more states than
     /// needed (issue 37).
     pub fn wants(&self, t: f64, h: f64) -> bool {
-        !self.done() && self.next as f64 * self.request.interval <= t + h * (1.0 + 1e-6)
+        !self.done() && self.sample_time(self.next) <= t + h * (1.0 + 1e-6)
     }
 
     /// Record the state at time `t` (non-decreasing); emits every sample time up to `t`.
@@ -187,12 +198,13 @@ impl<'r> Recorder<'r> {
     pub fn commit(&mut self, t: f64) {
         let slot = self.free_slot();
         while !self.done() {
-            let ts = self.next as f64 * self.request.interval;
+            let ts = self.sample_time(self.next);
             if ts > t * (1.0 + 1e-12) {
                 break;
             }
+            // a state at the sample's time is the sample (x + 1·(y − x) need not be y)
             let w = match self.latest {
-                Some((_, t0)) if t > t0 => Some(((ts - t0) / (t - t0)).clamp(0.0, 1.0)),
+                Some((_, t0)) if t > t0 && ts != t => Some(((ts - t0) / (t - t0)).clamp(0.0, 1.0)),
                 _ => None,
             };
             self.emit(slot, w);
