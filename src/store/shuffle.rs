@@ -39,8 +39,10 @@ macro_rules! chunk_value {
 }
 chunk_value!(f64, f32, i8, i32, u64);
 
-/// HDF5's shuffle filter: byte `j` of element `i` goes to `j * n + i`.
-pub(super) fn shuffle(bytes: &[u8], size: usize) -> Vec<u8> {
+/// HDF5's shuffle filter: byte `j` of element `i` goes to `j * n + i`. Byte by byte, apart
+/// from [`shuffle_values_into`]'s transposes: what `benches/chunk_groups.rs` checks its
+/// chunks against.
+pub fn shuffle(bytes: &[u8], size: usize) -> Vec<u8> {
     if size <= 1 {
         return bytes.to_vec();
     }
