@@ -1,24 +1,25 @@
-//! What history chunks spanning k neighbouring points would save (issue 37, docs/performance.md,
-//! twelfth round): a design not built, measured before it is.
+//! What history chunks spanning k neighbouring points save (issue 37, docs/performance.md,
+//! twelfth and thirteenth rounds).
 //!
-//! Today every history point has its own chunk of each stored variable: a modal history
-//! study writes eight chunks a point, each a zlib stream with its own per-plane Huffman
-//! codes, block headers and checksum, and each placed with its own `H5Dwrite_chunk`. This
+//! The store can give each history point its own chunk of each stored variable (eight chunks
+//! a point for a modal history study, each a zlib stream with its own per-plane Huffman
+//! codes, block headers and checksum, each placed with its own `H5Dwrite_chunk`), or one
+//! chunk to k points neighbouring along the study's last dim (`results::PointGroups`). This
 //! runs the `batstudy bench` modal history study (1 800 points: 40 swing speeds × 45 impact
 //! positions) once, keeps its histories, and then
-//! - encodes every point as the store does (`RecordEncoder::encode`: the point's chunks and
-//!   its journal record);
-//! - encodes the same histories as chunks of k points neighbouring along `impact_z` (never
-//!   across a swing speed), each variable's values in the chunk's order, shuffled, and coded
-//!   by the coder the store uses for planes of runs and near-noise (`run_huffman`); every
-//!   such chunk is inflated again and compared with the values it holds, byte for byte;
-//! - writes the store's chunks with `H5Dwrite_chunk`, one call each, into a scratch file made
-//!   as the store makes its results file, and the same bytes in calls of 8 chunks' worth.
+//! - encodes every point alone, as the store does with groups of one
+//!   (`RecordEncoder::encode`), and every group of k = 4, 8 and 15 points as the store does
+//!   with groups of k (`RecordEncoder::encode_group`; never across a swing speed);
+//! - checks every group record's chunks, byte for byte, against a prototype written here
+//!   apart from the store (each variable's values in the chunk's order, shuffled, coded by
+//!   the coder for planes of runs and near-noise, `run_huffman`), and inflates each
+//!   prototype chunk and compares it with the store's byte-by-byte shuffle of its values;
+//! - writes the single points' chunks with `H5Dwrite_chunk`, one call each, into a scratch
+//!   file made as the store makes its results file, and the groups of 8's chunks the same.
 //!
 //! Everything on one thread, per point, in CPU time of that thread. The encodings run in
 //! turn, pass after pass, and each figure is a median over the passes, the differences
-//! taken pass by pass; the chunk writes are the least of their passes. The group coder is a prototype in this file, not the
-//! store's.
+//! taken pass by pass; the chunk writes are the least of their passes.
 //!
 //!     cargo bench --bench chunk_groups
 
@@ -26,7 +27,7 @@ use batstudy::bench::{
     curve_study_text, load_study, thread_cpu_seconds, TempDir, MODAL_HISTORY_BLOCK,
 };
 use batstudy::model::outcome::HistoryPrecision;
-use batstudy::results::PointRecord;
+use batstudy::results::{PointGroups, PointRecord};
 use batstudy::run::{self, AsIs, ModelSimulator, RunOptions, Sink};
 use batstudy::store::layout::{self, HistoryDims, HISTORY_VARS, MODE_BLOCK};
 use batstudy::store::modal::{coordinate_blocks, padded_points, ModalExtents};
@@ -41,6 +42,8 @@ use std::sync::atomic::AtomicBool;
 const PASSES: usize = 15;
 /// Points along `impact_z` per chunk, besides one.
 const GROUPS: [usize; 3] = [4, 8, 15];
+/// The group whose chunks are written.
+const WRITTEN_GROUP: usize = 8;
 
 /// A sink that keeps every point, with its histories.
 struct Keep(Vec<PointRecord>);
@@ -113,12 +116,20 @@ fn gather(recs: &[PointRecord], vars: &[Var], ext: &ModalExtents, nt: usize) -> 
     }
 }
 
-/// The values of variable `v` of the points `group`, one point after the other.
-fn joined(g: &Gathered, v: usize, group: std::ops::Range<usize>) -> Vec<f64> {
+/// The values of variable `v` of the points `group`, one point after the other, then the
+/// dataset's fill value (0 for the modal coordinates, NaN else) for the chunk's `slots`
+/// places past the group (a row's last group).
+fn joined(g: &Gathered, v: usize, group: std::ops::Range<usize>, slots: usize) -> Vec<f64> {
     let mut out = Vec::new();
-    for p in &g.values[group] {
+    let per = g.values[group.start][v].len();
+    for p in &g.values[group.clone()] {
         out.extend_from_slice(&p[v]);
     }
+    let fill = match HISTORY_VARS[g.vars[v].0].2 {
+        HistoryDims::ModeTime => 0.0,
+        _ => f64::NAN,
+    };
+    out.resize(slots.max(group.len()) * per, fill);
     out
 }
 
@@ -130,14 +141,14 @@ fn code<T: ChunkValue>(values: &[T]) -> Vec<u8> {
     run_huffman::zlib_planes(&shuffled, values.len())
 }
 
-/// The chunks of the points `group`: each variable's values of its points, at its stored
-/// precision, shuffled and coded.
-fn group_chunks(g: &Gathered, group: std::ops::Range<usize>) -> Vec<Vec<u8>> {
+/// The chunks of the points `group` in chunks of `slots` places: each variable's values of
+/// its points, at its stored precision, shuffled and coded.
+fn group_chunks(g: &Gathered, group: std::ops::Range<usize>, slots: usize) -> Vec<Vec<u8>> {
     g.vars
         .iter()
         .enumerate()
         .map(|(v, &(_, precision))| {
-            let values = joined(g, v, group.clone());
+            let values = joined(g, v, group.clone(), slots);
             match precision {
                 HistoryPrecision::F64 => code(&values),
                 HistoryPrecision::F32 => {
@@ -149,9 +160,9 @@ fn group_chunks(g: &Gathered, group: std::ops::Range<usize>) -> Vec<Vec<u8>> {
 }
 
 /// Inflate a group's chunks and compare them with the values they hold.
-fn check_group(chunks: &[Vec<u8>], g: &Gathered, group: std::ops::Range<usize>) {
+fn check_group(chunks: &[Vec<u8>], g: &Gathered, group: std::ops::Range<usize>, slots: usize) {
     for ((v, &(_, precision)), chunk) in g.vars.iter().enumerate().zip(chunks) {
-        let values = joined(g, v, group.clone());
+        let values = joined(g, v, group.clone(), slots);
         let (bytes, size): (Vec<u8>, usize) = match precision {
             HistoryPrecision::F64 => (values.iter().flat_map(|x| x.to_le_bytes()).collect(), 8),
             HistoryPrecision::F32 => (
@@ -263,44 +274,64 @@ fn main() {
         .map(|k| (k, layout::history_precision(&request, k)))
         .collect();
 
-    // every point as the store encodes it
-    let encoder = RecordEncoder::new(&std::env::temp_dir().join("chunk-groups.h5"), &info);
+    // every point alone, and every group of k, as the store encodes them
+    let path = std::env::temp_dir().join("chunk-groups.h5");
+    let single = RecordEncoder::with_groups(&path, &info, PointGroups::single());
     let encoded: Vec<_> = recs
         .iter()
-        .map(|r| encoder.encode(r.clone()).expect("encoded"))
+        .map(|r| single.encode(r.clone()).expect("encoded"))
         .collect();
     let gathered = gather(&recs, &vars, &ext, nt);
-    let ks: Vec<usize> = std::iter::once(1).chain(GROUPS).collect();
-    let grouped: Vec<Vec<std::ops::Range<usize>>> = ks.iter().map(|&k| groups(n, nz, k)).collect();
-    for gs in &grouped {
+    let encoders: Vec<RecordEncoder> = GROUPS
+        .iter()
+        .map(|&k| RecordEncoder::with_groups(&path, &info, PointGroups::new(k, nz)))
+        .collect();
+    let grouped: Vec<Vec<std::ops::Range<usize>>> =
+        GROUPS.iter().map(|&k| groups(n, nz, k)).collect();
+    let mut group_records = Vec::new();
+    for ((&k, gs), encoder) in GROUPS.iter().zip(&grouped).zip(&encoders) {
+        let mut records = Vec::new();
         for g in gs {
-            check_group(&group_chunks(&gathered, g.clone()), &gathered, g.clone());
+            let prototype = group_chunks(&gathered, g.clone(), k);
+            check_group(&prototype, &gathered, g.clone(), k);
+            let rec = encoder
+                .encode_group(recs[g.clone()].to_vec())
+                .expect("encoded");
+            let stored =
+                journal::history_chunks(&rec.framed[journal::REC_PREFIX..]).expect("chunks");
+            assert!(
+                stored.iter().map(|c| c.to_vec()).eq(prototype),
+                "the store's chunks of points {g:?} in groups of {k} are the prototype's"
+            );
+            records.push(rec);
         }
+        group_records.push(records);
     }
     // every variant in turn, pass after pass: what the machine does meanwhile falls on all
-    // alike; µs a point, [pass][variant]: the store's encoder (its record's copy taken off),
-    // then the prototype at each k
+    // alike; µs a point, [pass][variant]: one point a chunk, then groups of each k; the
+    // records copied before the clock starts (the encoder takes them by value)
     // CPU time of this thread: what another process takes of the core does not count
     let us = |t: f64| (thread_cpu_seconds() - t) * 1e6 / n as f64;
     let mut passes: Vec<Vec<f64>> = Vec::new();
     for _ in 0..PASSES {
-        // the records copied before the clock starts: the encoder takes them by value
         let copies = std::hint::black_box(recs.to_vec());
         let t = thread_cpu_seconds();
         let e: Vec<_> = copies
             .into_iter()
-            .map(|r| encoder.encode(r).expect("encoded"))
+            .map(|r| single.encode(r).expect("encoded"))
             .collect();
         let mut row = vec![us(t)];
         std::hint::black_box(e);
-        for gs in &grouped {
+        for (gs, encoder) in grouped.iter().zip(&encoders) {
+            let copies: Vec<Vec<PointRecord>> =
+                std::hint::black_box(gs.iter().map(|g| recs[g.clone()].to_vec()).collect());
             let t = thread_cpu_seconds();
-            let c: Vec<_> = gs
-                .iter()
-                .map(|g| group_chunks(&gathered, g.clone()))
+            let e: Vec<_> = copies
+                .into_iter()
+                .map(|g| encoder.encode_group(g).expect("encoded"))
                 .collect();
             row.push(us(t));
-            std::hint::black_box(c);
+            std::hint::black_box(e);
         }
         passes.push(row);
     }
@@ -309,54 +340,54 @@ fn main() {
         v[v.len() / 2]
     };
     let column = |c: usize| median(passes.iter().map(|r| r[c]).collect());
-    let against_one = |c: usize| median(passes.iter().map(|r| r[c] - r[1]).collect());
-    let store_bytes: usize = encoded.iter().map(|e| e.framed.len()).sum();
+    let against_one = |c: usize| median(passes.iter().map(|r| r[c] - r[0]).collect());
+    let bytes = |e: &[batstudy::store::EncodedRecord]| {
+        e.iter().map(|e| e.framed.len()).sum::<usize>() as f64 / n as f64
+    };
     println!(
         "{n} points, {} stored variables, {} samples, blocks of {MODE_BLOCK} modes; medians of {PASSES} passes",
         vars.len(),
         nt
     );
     println!(
-        "the store, one chunk a point : {:6.1} µs of CPU a point to encode, {:7.0} B a point with its journal framing",
+        "the store, one point a chunk : {:6.1} µs of CPU a point to encode, {:7.0} B a point with its journal framing",
         column(0),
-        store_bytes as f64 / n as f64
+        bytes(&encoded)
     );
-    for (v, (&k, gs)) in ks.iter().zip(&grouped).enumerate() {
-        let bytes: usize = gs
-            .iter()
-            .map(|g| {
-                group_chunks(&gathered, g.clone())
-                    .iter()
-                    .map(Vec::len)
-                    .sum::<usize>()
-            })
-            .sum();
-        let chunks = gs
-            .iter()
-            .map(|g| group_chunks(&gathered, g.clone()).len())
-            .sum::<usize>();
+    for (v, (&k, records)) in GROUPS.iter().zip(&group_records).enumerate() {
         println!(
-            "prototype, chunks of {k:2} points: {:6.1} µs of CPU a point to shuffle and code ({:+5.1} against one point a chunk, pass by pass), {:7.0} B a point, {:.2} chunks a point",
+            "the store, chunks of {k:2} points: {:6.1} µs of CPU a point to encode ({:+5.1} against one point a chunk, pass by pass), {:7.0} B a point",
             column(v + 1),
             against_one(v + 1),
-            bytes as f64 / n as f64,
-            chunks as f64 / n as f64
+            bytes(records)
         );
     }
 
-    // H5Dwrite_chunk: every chunk the store wrote above, one call each, against the same
-    // bytes in calls of 8 chunks' worth (one chunk for 8 points)
+    // H5Dwrite_chunk: every chunk of the single points, one call each, against every chunk
+    // of the groups of WRITTEN_GROUP
     let dir = TempDir::new_in(&std::env::temp_dir()).expect("a scratch directory");
-    let pieces: Vec<&[u8]> = encoded
+    let pieces = |e: &[batstudy::store::EncodedRecord]| -> Vec<Vec<u8>> {
+        e.iter()
+            .flat_map(|e| {
+                journal::history_chunks(&e.framed[journal::REC_PREFIX..])
+                    .expect("chunks")
+                    .into_iter()
+                    .map(<[u8]>::to_vec)
+            })
+            .collect()
+    };
+    let written = GROUPS
         .iter()
-        .flat_map(|e| journal::history_chunks(&e.framed[journal::REC_PREFIX..]).expect("chunks"))
-        .collect();
-    let joined: Vec<Vec<u8>> = pieces.chunks(8).map(|c| c.concat()).collect();
-    let joined: Vec<&[u8]> = joined.iter().map(Vec::as_slice).collect();
-    let w1 = write_us(&dir, "one", &pieces, n);
-    let w8 = write_us(&dir, "eight", &joined, n);
+        .position(|&k| k == WRITTEN_GROUP)
+        .expect("a group of 8");
+    let (one, eight) = (pieces(&encoded), pieces(&group_records[written]));
+    let one_slices: Vec<&[u8]> = one.iter().map(Vec::as_slice).collect();
+    let eight_slices: Vec<&[u8]> = eight.iter().map(Vec::as_slice).collect();
+    let w1 = write_us(&dir, "one", &one_slices, n);
+    let w8 = write_us(&dir, "eight", &eight_slices, n);
     println!(
-        "H5Dwrite_chunk, {:.1} chunks a point: {w1:.1} µs of CPU a point; the same bytes in calls of 8 chunks' worth: {w8:.1} µs of CPU a point",
-        pieces.len() as f64 / n as f64
+        "H5Dwrite_chunk, {:.2} chunks a point: {w1:.1} µs of CPU a point; groups of {WRITTEN_GROUP}, {:.2} chunks a point: {w8:.1} µs of CPU a point",
+        one.len() as f64 / n as f64,
+        eight.len() as f64 / n as f64
     );
 }

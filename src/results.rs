@@ -269,6 +269,50 @@ pub struct StudyInfo {
     pub sample_dim: Option<String>,
 }
 
+/// How a study's points are stored together: runs of `size` consecutive points along its
+/// last dim, whose `row` points each row holds (a row's last group may be shorter). The
+/// histories of a group share one chunk per variable (`store::encode`), so a group is
+/// computed, journalled and placed as one: it is stored whole or not at all.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PointGroups {
+    size: usize,
+    row: usize,
+}
+
+impl PointGroups {
+    /// Every point on its own.
+    pub fn single() -> Self {
+        PointGroups { size: 1, row: 1 }
+    }
+
+    /// Groups of `size` points along a last dim of `row` points (both at least 1; a group
+    /// is no longer than a row).
+    pub fn new(size: usize, row: usize) -> Self {
+        let row = row.max(1);
+        PointGroups {
+            size: size.clamp(1, row),
+            row,
+        }
+    }
+
+    /// Points a group spans: its chunk's extent along the last dim.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    /// The first point of the group that holds point `i`.
+    pub fn start(&self, i: usize) -> usize {
+        let row = i - i % self.row;
+        row + (i - row) / self.size * self.size
+    }
+
+    /// One past the last point of the group that holds point `i`.
+    pub fn end(&self, i: usize) -> usize {
+        let row = i - i % self.row;
+        (self.start(i) + self.size).min(row + self.row)
+    }
+}
+
 /// One finished point.
 #[derive(Debug, Clone)]
 pub struct PointRecord {
@@ -284,6 +328,21 @@ pub struct PointRecord {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Groups tile each row from its start, the last one shorter; they never cross rows.
+    #[test]
+    fn point_groups_tile_each_row() {
+        let g = PointGroups::new(4, 10);
+        let starts: Vec<usize> = (0..20).map(|i| g.start(i)).collect();
+        assert_eq!(
+            starts,
+            [0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 10, 10, 10, 10, 14, 14, 14, 14, 18, 18]
+        );
+        assert_eq!((g.end(9), g.end(10), g.end(19)), (10, 14, 20));
+        assert_eq!(PointGroups::new(8, 3).size(), 3, "no longer than a row");
+        let one = PointGroups::single();
+        assert!((0..7).all(|i| one.start(i) == i && one.end(i) == i + 1));
+    }
 
     // `/uncertainty`'s names are reserved (issue 36), and the listing a refusal prints holds
     // every reserved name once.

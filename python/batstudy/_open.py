@@ -36,10 +36,30 @@ def _chunk_offsets(ds: h5py.Dataset) -> np.ndarray:
 
 def _stored_positions(ds: h5py.Dataset, rank: int) -> np.ndarray:
     """Grid positions of the histories stored in `ds`, (histories, rank), in flat (row-major)
-    order, the order of the summary: one chunk is one history, and the chunks of points
-    without a history are never allocated (docs/layout.md)."""
-    pos = _chunk_offsets(ds)[:, :rank] // np.asarray(ds.chunks[:rank], dtype=np.int64)
+    order, the order of the summary. The chunks of points without a history are never
+    allocated (docs/layout.md). A chunk that spans several points along the study's last
+    dim (a group) is allocated when one of them has a history; a point of it without one
+    holds the fill value, NaN, throughout, and is left out."""
+    starts = _chunk_offsets(ds)[:, :rank]
+    span = ds.chunks[rank - 1] if rank else 1
+    pos = _grouped_positions(ds, rank, starts, span) if span > 1 else starts
     return pos[np.lexsort(pos.T[::-1])] if len(pos) else pos
+
+
+def _grouped_positions(ds: h5py.Dataset, rank: int, starts: np.ndarray, span: int) -> np.ndarray:
+    """The points of chunks spanning `span` points along the last study dim (`starts`: each
+    chunk's first) whose values are not all the fill value: one read per chunk."""
+    last = ds.shape[rank - 1]
+    out: list[np.ndarray] = []
+    for start in starts:
+        first, stop = int(start[-1]), min(int(start[-1]) + span, last)
+        slab = np.asarray(ds[tuple(int(i) for i in start[:-1]) + (slice(first, stop),)])
+        stored = ~np.isnan(slab.reshape(stop - first, -1)).all(axis=1)
+        for j in np.flatnonzero(stored):
+            p = start.copy()
+            p[-1] = first + j
+            out.append(p)
+    return np.array(out, dtype=np.int64).reshape(len(out), rank)
 
 
 class _HistoryRows(BackendArray):

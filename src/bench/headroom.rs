@@ -120,13 +120,17 @@ fn compute_encode_append(
     let n = study.plan.n_points();
     let mut batch: Vec<PointRecord> = Vec::with_capacity(64);
     let mut encoded: Vec<store::EncodedRecord> = Vec::with_capacity(64);
+    let mut gather = store::gather::GroupGatherer::new(encoder.groups());
     for start in (0..n).step_by(64) {
         let t0 = Instant::now();
         simulate_batch(study, bats, history, start..(start + 64).min(n), &mut batch)?;
         sides.compute += t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
+        // a group at a time, as the runner's workers encode (`store::gather`)
         for rec in batch.drain(..) {
-            encoded.push(encoder.encode(rec).map_err(err("encode"))?);
+            if let Some(group) = gather.add(rec) {
+                encoded.push(encoder.encode_group(group).map_err(err("encode"))?);
+            }
         }
         sides.encode += t0.elapsed().as_secs_f64();
         let t0 = Instant::now();

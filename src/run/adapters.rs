@@ -7,7 +7,7 @@ use crate::model::measures::metrics::bat_metrics_mapped;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
-use crate::results::{PointRecord, ShapeSource};
+use crate::results::{PointGroups, PointRecord, ShapeSource};
 use crate::store::{EncodedRecord, RecordEncoder, Session};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -89,12 +89,23 @@ impl Encode for StoreEncoder {
             None => Err("the results file was already finished".to_string()),
         }
     }
+    fn encode_group(&self, recs: Vec<PointRecord>) -> Vec<Self::Record> {
+        vec![match &self.0 {
+            Some(e) => e.encode_group(recs).map_err(|e| e.to_string()),
+            None => Err("the results file was already finished".to_string()),
+        }]
+    }
 }
 
 impl Sink for StoreSink {
     type Encoder = StoreEncoder;
     fn encoder(&self) -> StoreEncoder {
         StoreEncoder(self.0.as_ref().map(Session::encoder))
+    }
+    fn groups(&self) -> PointGroups {
+        self.0
+            .as_ref()
+            .map_or(PointGroups::single(), |s| s.encoder().groups())
     }
     fn is_done(&self, index: usize) -> bool {
         self.0.as_ref().is_some_and(|s| s.is_done(index))

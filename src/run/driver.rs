@@ -11,7 +11,7 @@ use super::traits::{Encode, Simulator, Sink};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::ModelKind;
 use crate::pointset::PointSet;
-use crate::results::{BatVariant, PointRecord};
+use crate::results::{BatVariant, PointGroups, PointRecord};
 use crate::study::Plan;
 use rayon::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -230,13 +230,12 @@ pub fn check_finite_for(o: &Outcome, model: ModelKind) -> Result<(), String> {
 /// Points ok, points failed, the first failures.
 type Tally = (usize, usize, Vec<(usize, String)>);
 
-/// A finished point on its way to the writer: what the report needs, and the record as the
-/// sink's encoder made it on the worker.
+/// A finished group of points on its way to the writer: what the report needs of each
+/// point (its flat index, and its error if it failed), and the records as the sink's
+/// encoder made them on the worker.
 struct Finished<R> {
-    index: usize,
-    /// The point's error, if it failed.
-    error: Option<String>,
-    record: R,
+    points: Vec<(usize, Option<String>)>,
+    records: Vec<R>,
 }
 
 /// Run the plan's points (those of `opts.shard`, not yet done in the sink), writing each
@@ -267,6 +266,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
     // Asked before the workers start, like the skip set: encoding is the costly part of
     // storing a point, and runs on the worker that computed it (issue 22).
     let encoder = sink.encoder();
+    let groups = sink.groups();
     let sink = Mutex::new(sink);
     let (tx, rx) = crossbeam_channel::bounded(opts.channel_capacity.max(1));
     let progress = Progress {
@@ -279,6 +279,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
         bats,
         history,
         skip: &skip,
+        groups,
         encoder: &encoder,
         progress,
         stop,
@@ -331,10 +332,10 @@ struct Progress<'a> {
 }
 
 impl Progress<'_> {
-    fn one_done(&self) {
-        self.bar.inc(1);
+    fn done(&self, points: usize) {
+        self.bar.inc(points as u64);
         if let Some(c) = self.counter {
-            c.done.fetch_add(1, Ordering::Relaxed);
+            c.done.fetch_add(points, Ordering::Relaxed);
         }
     }
 }
@@ -358,17 +359,23 @@ fn write_records<K: Sink>(
             }
             Err(crossbeam_channel::RecvTimeoutError::Disconnected) => break,
         };
-        match rec.error {
-            None => ok += 1,
-            Some(e) => {
-                failed += 1;
-                if failures.len() < 20 {
-                    failures.push((rec.index, e));
+        for (index, error) in rec.points.iter().cloned() {
+            match error {
+                None => ok += 1,
+                Some(e) => {
+                    failed += 1;
+                    if failures.len() < 20 {
+                        failures.push((index, e));
+                    }
                 }
             }
         }
-        lock().write(rec.record)?;
-        progress.one_done();
+        let mut sink = lock();
+        for record in rec.records {
+            sink.write(record)?;
+        }
+        drop(sink);
+        progress.done(rec.points.len());
     }
     // Every record is in: finish here, as soon as the last worker lets go of the channel,
     // not after the main thread has woken and joined this one (issue 7: each wake-up between
@@ -389,6 +396,8 @@ struct Dispatch<'a, S: Simulator, E> {
     bats: &'a PreparedBats<S::Bat>,
     history: Option<&'a HistoryRequest>,
     skip: &'a PointSet,
+    /// How the sink groups points.
+    groups: PointGroups,
     encoder: &'a E,
     progress: Progress<'a>,
     stop: &'a AtomicBool,
@@ -398,10 +407,11 @@ struct Dispatch<'a, S: Simulator, E> {
 }
 
 impl<S: Simulator, E: Encode> Dispatch<'_, S, E> {
-    /// Points are handed out in index order, one at a time, to whichever worker is free:
-    /// records then reach the writer nearly in order, and it places their histories in the
-    /// final file as the run goes on (`store::placer`, issue 22). (Rayon's splitting of the
-    /// range gave each worker its own far-apart part.)
+    /// Points are handed out in index order, a group at a time (`Sink::groups`: one point,
+    /// unless the sink stores groups whole), to whichever worker is free: records then reach
+    /// the writer nearly in order, and it places their histories in the final file as the
+    /// run goes on (`store::placer`, issue 22). (Rayon's splitting of the range gave each
+    /// worker its own far-apart part.)
     fn run(
         &self,
         pool: &rayon::ThreadPool,
@@ -410,37 +420,54 @@ impl<S: Simulator, E: Encode> Dispatch<'_, S, E> {
     ) {
         let next = AtomicUsize::new(range.start);
         let workers = pool.current_num_threads().max(1);
+        let end = range.end;
+        let group_end = |i: usize| self.groups.end(i).min(end);
         pool.install(|| {
             (0..workers)
                 .into_par_iter()
                 .with_max_len(1)
                 .for_each_with(tx, |tx, _| loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    if i >= range.end || !self.one(tx, i) {
+                    let taken = next.fetch_update(Ordering::Relaxed, Ordering::Relaxed, |i| {
+                        (i < end).then(|| group_end(i))
+                    });
+                    let Ok(i) = taken else { break };
+                    if !self.group(tx, i..group_end(i)) {
                         break;
                     }
                 });
         });
     }
 
-    /// One point: false once the run stops (Ctrl-C, --fail-fast, the writer gone).
-    fn one(&self, tx: &crossbeam_channel::Sender<Finished<E::Record>>, i: usize) -> bool {
+    /// One group of points, computed one after the other and encoded together (the points
+    /// the sink has are skipped): false once the run stops (Ctrl-C, --fail-fast, the
+    /// writer gone).
+    fn group(
+        &self,
+        tx: &crossbeam_channel::Sender<Finished<E::Record>>,
+        points: std::ops::Range<usize>,
+    ) -> bool {
         if self.stop.load(Ordering::Relaxed) || self.abort.load(Ordering::Relaxed) {
             return false;
         }
-        if self.skip.contains(i) {
-            self.skipped.fetch_add(1, Ordering::Relaxed);
-            self.progress.one_done();
-            return true;
+        let n = points.len();
+        let todo: Vec<usize> = points.filter(|&i| !self.skip.contains(i)).collect();
+        if todo.len() < n {
+            self.skipped.fetch_add(n - todo.len(), Ordering::Relaxed);
+            self.progress.done(n - todo.len());
         }
-        let rec = self.compute(i);
-        if rec.result.is_err() && self.fail_fast {
+        let recs: Vec<PointRecord> = todo.iter().map(|&i| self.compute(i)).collect();
+        if recs.iter().any(|r| r.result.is_err()) && self.fail_fast {
             self.abort.store(true, Ordering::Relaxed);
         }
+        if recs.is_empty() {
+            return true;
+        }
         let finished = Finished {
-            index: rec.index,
-            error: rec.result.as_ref().err().cloned(),
-            record: self.encoder.encode(rec),
+            points: recs
+                .iter()
+                .map(|r| (r.index, r.result.as_ref().err().cloned()))
+                .collect(),
+            records: self.encoder.encode_group(recs),
         };
         if tx.send(finished).is_err() {
             // The writer has stopped (a sink error): stop dispatching.

@@ -228,9 +228,17 @@ impl CostModel {
     }
 }
 
-/// The block of flat indices of `shard` in `plan` (see the module docs).
+/// The block of flat indices of `shard` in `plan` (see the module docs), its ends moved
+/// back to the start of their group where points share history chunks
+/// (`store::layout::history_groups_of`): a chunk is never split between two shards' files.
 pub fn shard_range(plan: &Plan, history: Option<&HistoryRequest>, shard: Shard) -> Range<usize> {
-    CostModel::new(plan, history).range(shard)
+    let groups = crate::store::layout::history_groups_of(history, plan.shape());
+    let r = CostModel::new(plan, history).range(shard);
+    let start = |i: usize| match i < plan.n_points() {
+        true => groups.start(i),
+        false => i,
+    };
+    start(r.start)..start(r.end)
 }
 
 #[cfg(test)]
@@ -243,6 +251,29 @@ mod tests {
         load_str(text, Path::new("t.yaml"), &LoadOptions::default())
             .unwrap()
             .plan
+    }
+
+    // issue 37: where the histories of a group of points share a chunk (the modal form),
+    // every shard begins and ends on a group's start, so no chunk is split between shards,
+    // and the shards still partition the study
+    #[test]
+    fn shards_end_on_group_boundaries() {
+        let text = "name: t\nbase: {impact: {z: 0.7}}\ngrid:\n  swing.omega: [0, -10, -20, -30]\n  impact.z: {range: [0.5, 0.8, 0.01]}\nhistory: {fields: [force, displacement], interval: 1.0e-5, duration: 2.0e-3, z_step: 0.01, displacement: modal}\n";
+        let study = load_str(text, Path::new("t.yaml"), &LoadOptions::default()).unwrap();
+        let request = study.history_request(0.84).expect("histories");
+        let groups = crate::store::layout::history_groups_of(Some(&request), study.plan.shape());
+        assert_eq!(groups.size(), crate::store::layout::MODAL_HISTORY_GROUP);
+        let n = study.plan.n_points();
+        for count in [2, 3, 5, 7] {
+            let ranges: Vec<Range<usize>> = (1..=count)
+                .map(|index| shard_range(&study.plan, Some(&request), Shard { index, count }))
+                .collect();
+            assert_eq!((ranges[0].start, ranges[count - 1].end), (0, n));
+            for (a, b) in ranges.iter().zip(&ranges[1..]) {
+                assert_eq!(a.end, b.start, "{count} shards");
+                assert_eq!(groups.start(b.start), b.start, "{count} shards: {b:?}");
+            }
+        }
     }
 
     // issue 8: disjoint, deterministic, balanced by estimated cost

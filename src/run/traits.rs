@@ -3,7 +3,7 @@
 
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
-use crate::results::{PointRecord, ShapeSource};
+use crate::results::{PointGroups, PointRecord, ShapeSource};
 use std::sync::Arc;
 
 /// Simulates collisions. Shared by all worker threads.
@@ -38,6 +38,11 @@ pub trait Encode: Sync {
     /// What the sink's writer takes.
     type Record: Send;
     fn encode(&self, rec: PointRecord) -> Self::Record;
+    /// The points of one group ([`Sink::groups`], in flat-index order) as the records the
+    /// writer takes: one each, unless the sink stores a group as one.
+    fn encode_group(&self, recs: Vec<PointRecord>) -> Vec<Self::Record> {
+        recs.into_iter().map(|r| self.encode(r)).collect()
+    }
 }
 
 /// For sinks that take points as they come.
@@ -57,6 +62,13 @@ pub trait Sink: Send {
     type Encoder: Encode;
     /// The encoder the workers share.
     fn encoder(&self) -> Self::Encoder;
+    /// How the sink groups points (each on its own unless it says otherwise): the driver
+    /// computes a group's points on one worker, one after the other, and hands them to
+    /// [`Encode::encode_group`] together. A sink that groups reports a group's points done
+    /// all or none ([`Self::is_done`]).
+    fn groups(&self) -> PointGroups {
+        PointGroups::single()
+    }
     /// Is the point at this flat index already in the output (resume)? The driver asks for
     /// every point of its range once, before the workers start, and skips those points
     /// without resolving them.

@@ -27,8 +27,8 @@
 use super::error::StoreError;
 use super::journal::{
     begin_frame, checksum, end_frame, history_chunks, history_pieces, put_history_chunk,
-    put_history_in_file, refers_to_file, split_prefix, sync_parent_dir, unfinished_path, Piece,
-    Scan, IN_FILE, OK_SUMMARY_LEN, REC_PREFIX,
+    put_history_in_file, refers_to_file, split_prefix, summary_part, sync_parent_dir,
+    unfinished_path, Piece, Scan, IN_FILE, REC_PREFIX,
 };
 use super::paths::create_fresh;
 use std::fs::File;
@@ -43,12 +43,13 @@ use std::path::Path;
 pub fn record_in_file(framed: &[u8], offsets: &[Option<u64>]) -> Option<Vec<u8>> {
     let payload = framed.get(REC_PREFIX..)?;
     let chunks = history_chunks(payload)?;
-    if chunks.len() != offsets.len() || payload.len() < OK_SUMMARY_LEN {
+    let (summaries, _) = summary_part(payload)?;
+    if chunks.len() != offsets.len() {
         return None;
     }
-    let mut out = Vec::with_capacity(REC_PREFIX + OK_SUMMARY_LEN + 16 * chunks.len());
+    let mut out = Vec::with_capacity(REC_PREFIX + summaries + 16 * chunks.len());
     begin_frame(&mut out);
-    out.extend_from_slice(&payload[..OK_SUMMARY_LEN]);
+    out.extend_from_slice(&payload[..summaries]);
     for (bytes, at) in chunks.iter().zip(offsets) {
         let len = u32::try_from(bytes.len()).ok().filter(|&l| l < IN_FILE)?;
         put_history_in_file((*at)?, len, checksum(bytes), &mut out);
@@ -132,11 +133,12 @@ pub fn bring_back(journal: &Path, scan: &Scan, prev: &Path) -> Result<Recovered,
 /// `payload` framed in `out` with each chunk it names in `prev` read back into it; false
 /// when one is not there intact (or `prev` is missing).
 fn read_back(payload: &[u8], prev: Option<&File>, out: &mut Vec<u8>) -> bool {
-    let Some(pieces) = history_pieces(payload) else {
+    let (Some(pieces), Some((summaries, _))) = (history_pieces(payload), summary_part(payload))
+    else {
         return false;
     };
     begin_frame(out);
-    out.extend_from_slice(&payload[..OK_SUMMARY_LEN]);
+    out.extend_from_slice(&payload[..summaries]);
     for piece in pieces {
         match piece {
             Piece::Bytes(bytes) => put_history_chunk(bytes, out),
@@ -162,6 +164,7 @@ fn read_back(payload: &[u8], prev: Option<&File>, out: &mut Vec<u8>) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::store::journal::OK_SUMMARY_LEN;
 
     /// A payload as `store::encode` makes it: a summary part, then chunks.
     fn framed(chunks: &[&[u8]]) -> Vec<u8> {
@@ -231,5 +234,46 @@ mod tests {
             Some(&File::open(&path).unwrap()),
             &mut out
         ));
+    }
+
+    /// A group record (several points sharing chunks) goes by reference and back whole the
+    /// same way: its points' summaries are kept as they are, its chunks named.
+    #[test]
+    fn a_group_record_in_the_file_reads_back_whole() {
+        use crate::model::outcome::Outcome;
+        use crate::results::PointRecord;
+        let point = |index, result| PointRecord {
+            index,
+            id: index as u64,
+            bat: 0,
+            result,
+        };
+        let points = [
+            point(8, Ok(Outcome::default())),
+            point(9, Err("failed".into())),
+        ];
+        let chunk: Vec<u8> = (0..900).map(|i| (i * 7) as u8).collect();
+        let mut whole = Vec::new();
+        begin_frame(&mut whole);
+        crate::store::journal::encode_group_summaries(&points, &[true, false], &mut whole);
+        put_history_chunk(&chunk, &mut whole);
+        end_frame(&mut whole);
+        let by_ref = record_in_file(&whole, &[Some(50)]).unwrap();
+        let payload = &by_ref[REC_PREFIX..];
+        assert!(refers_to_file(payload));
+        let (summaries, _) = summary_part(&whole[REC_PREFIX..]).unwrap();
+        assert_eq!(payload.len(), summaries + 16);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("partial");
+        let mut file = vec![0u8; 1000];
+        file[50..950].copy_from_slice(&chunk);
+        std::fs::write(&path, &file).unwrap();
+        let mut out = Vec::new();
+        assert!(read_back(
+            payload,
+            Some(&File::open(&path).unwrap()),
+            &mut out
+        ));
+        assert_eq!(out, whole);
     }
 }

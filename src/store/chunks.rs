@@ -8,7 +8,10 @@ use super::fixed_deflate;
 use super::modal::mode_major_block;
 use super::run_huffman;
 pub use super::shuffle::ChunkValue;
-use super::shuffle::{le_bytes, shuffle, shuffle_modes_into, shuffle_values_into, with_scratch};
+use super::shuffle::{
+    fill_at, le_bytes, shuffle, shuffle_modes_at, shuffle_modes_into, shuffle_values_at,
+    shuffle_values_into, with_scratch, Planes,
+};
 use hdf5::Dataset;
 use hdf5_sys::h5::{herr_t, hsize_t};
 use hdf5_sys::h5i::hid_t;
@@ -78,6 +81,107 @@ pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     with_scratch(values.len() * T::SIZE, |out| {
         shuffle_values_into(values, out);
         deflate_planes(out, T::SIZE, level)
+    })
+}
+
+/// The stored chunk of a group of points' history series (`store::encode`): each place's
+/// values one after the other, `per` a place, in the stored type `T` (`convert`), a place's
+/// values short of `per`, or a place without any (`None`), completed with `fill`;
+/// shuffled, each byte plane in deflate blocks with its own Huffman codes ([`run_huffman`]);
+/// level 0: the raw values. Each place is shuffled straight into its part of the planes.
+/// One code and one block header serve the group's points where a chunk of each point's
+/// own needed one each (issue 37: `benches/chunk_groups.rs` measured the saving before
+/// this was built).
+pub fn filtered_group<T: ChunkValue>(
+    places: &[Option<&[f64]>],
+    per: usize,
+    level: u8,
+    convert: impl Fn(f64) -> T,
+    fill: T,
+) -> Vec<u8> {
+    let n = places.len() * per;
+    if level == 0 {
+        let mut v = Vec::with_capacity(n);
+        for a in places {
+            let a = a.unwrap_or_default();
+            v.extend(a.iter().map(|&x| convert(x)));
+            v.resize(v.len() + per - a.len(), fill);
+        }
+        return le_bytes(&v);
+    }
+    with_scratch(n * T::SIZE, |out| {
+        let mut values = Vec::with_capacity(per);
+        for (p, a) in places.iter().enumerate() {
+            let a = a.unwrap_or_default();
+            values.clear();
+            values.extend(a.iter().map(|&x| convert(x)));
+            shuffle_values_at(
+                &values,
+                out,
+                Planes {
+                    len: n,
+                    at: p * per,
+                },
+            );
+            let rest = Planes {
+                len: n,
+                at: p * per + a.len(),
+            };
+            fill_at(fill, per - a.len(), out, rest);
+        }
+        run_huffman::zlib_planes(out, n)
+    })
+}
+
+/// A place of a group chunk of modal coordinates: a point's coordinates (row-major
+/// [time][`modes`]) and the modes of them the chunk's block holds.
+pub type CoordinatePlace<'a> = (&'a [f64], usize, std::ops::Range<usize>);
+
+/// The stored chunk of one block of a group's modal coordinates: each place's modes
+/// mode-major ([mode][time]), then zero rows up to `block` modes (a whole block of zeros
+/// for a place without one), shuffled and coded as [`filtered_group`] codes series.
+pub fn filtered_group_coordinates(
+    places: &[Option<CoordinatePlace>],
+    n_samples: usize,
+    block: usize,
+    level: u8,
+) -> Vec<u8> {
+    let per = block * n_samples;
+    let n = places.len() * per;
+    if level == 0 {
+        let mut v = Vec::with_capacity(n);
+        for p in places {
+            match p {
+                Some((q, modes, rows)) => {
+                    v.extend(mode_major_block(q, *modes, n_samples, rows.clone(), block))
+                }
+                None => v.resize(v.len() + per, 0.0),
+            }
+        }
+        return le_bytes(&v);
+    }
+    with_scratch(n * 8, |out| {
+        for (p, place) in places.iter().enumerate() {
+            let at = p * per;
+            let used = match place {
+                Some((q, modes, rows)) => {
+                    let planes = Planes { len: n, at };
+                    shuffle_modes_at(q, *modes, n_samples, rows.clone(), out, planes);
+                    rows.len() * n_samples
+                }
+                None => 0,
+            };
+            fill_at(
+                0.0f64,
+                per - used,
+                out,
+                Planes {
+                    len: n,
+                    at: at + used,
+                },
+            );
+        }
+        run_huffman::zlib_planes(out, n)
     })
 }
 

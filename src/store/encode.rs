@@ -11,17 +11,17 @@ use super::header::history_vars;
 use super::journal;
 use super::layout::{self, HistoryDims};
 use super::modal::{coordinate_block_rows, padded_points, ModalExtents};
-use crate::model::outcome::HistoryPrecision;
-use crate::results::{PointRecord, StudyInfo};
+use crate::model::outcome::{History, HistoryPrecision};
+use crate::results::{PointGroups, PointRecord, StudyInfo};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// One point ready for the journal.
+/// One point, or a group of points sharing history chunks, ready for the journal.
 #[derive(Debug, Clone)]
 pub struct EncodedRecord {
-    /// The point without its histories (the writer's bookkeeping: the done set and the
-    /// summary gathered for the final file).
-    pub summary: PointRecord,
+    /// The points without their histories, in flat-index order (the writer's bookkeeping:
+    /// the done set and the summary gathered for the final file).
+    pub points: Vec<PointRecord>,
     /// The framed journal record (prefix, payload).
     pub framed: Vec<u8>,
     /// Whether the record holds histories (chunks for the final file's `/history`).
@@ -93,6 +93,83 @@ impl StoredHistory {
     }
 }
 
+/// A history variable's values for one slot of a group chunk: the point's, or the
+/// dataset's fill value where the slot has no history (`None`).
+type SlotValues<'a> = Option<&'a [f64]>;
+
+impl StoredHistory {
+    /// The stored chunks of variable `k` of a group whose places along the study's last dim
+    /// hold these histories (`None`: a point without one, or a place past the row's end),
+    /// or why one does not fit: one chunk, but a block of modes per chunk for the modal
+    /// coordinates, as many as the group's points need.
+    fn group_chunks_of(
+        &self,
+        k: usize,
+        places: &[SlotValues],
+        precision: HistoryPrecision,
+    ) -> Result<Vec<Vec<u8>>, String> {
+        let (nt, ext) = (self.n_samples, &self.modal);
+        let dims = layout::HISTORY_VARS[k].2;
+        let per = match dims {
+            HistoryDims::Time => nt,
+            HistoryDims::TimeZ => nt * self.nz,
+            HistoryDims::ShapePoint => ext.points,
+            HistoryDims::ModeTime => return self.group_coordinates(places),
+        };
+        for a in places.iter().flatten() {
+            match dims {
+                HistoryDims::ShapePoint if a.len() > per => {
+                    return Err(format!("{} values, at most {per}", a.len()))
+                }
+                HistoryDims::ShapePoint => {}
+                _ if a.len() != per => return Err(format!("{} values, expected {per}", a.len())),
+                _ => {}
+            }
+        }
+        let level = self.level;
+        Ok(vec![match precision {
+            HistoryPrecision::F64 => chunks::filtered_group(places, per, level, |x| x, f64::NAN),
+            HistoryPrecision::F32 => {
+                chunks::filtered_group(places, per, level, |x| x as f32, f32::NAN)
+            }
+        }])
+    }
+
+    /// The chunks of a group's modal coordinates: one a block of modes, as many as reach
+    /// the last mode any of its points stepped; zero (the fill value) where a point has
+    /// fewer blocks, or none.
+    fn group_coordinates(&self, places: &[SlotValues]) -> Result<Vec<Vec<u8>>, String> {
+        let (nt, ext) = (self.n_samples.max(1), &self.modal);
+        for a in places.iter().flatten() {
+            if a.len() % nt != 0 || a.len() / nt > ext.modes {
+                return Err(format!(
+                    "{} values, not {nt} samples of at most {} modes",
+                    a.len(),
+                    ext.modes
+                ));
+            }
+        }
+        let rows: Vec<Vec<_>> = places
+            .iter()
+            .map(|a| a.map_or(Vec::new(), |a| coordinate_block_rows(a, nt, ext.block)))
+            .collect();
+        let blocks = rows.iter().map(Vec::len).max().unwrap_or(0);
+        Ok((0..blocks)
+            .map(|b| {
+                let block: Vec<_> = places
+                    .iter()
+                    .zip(&rows)
+                    .map(|(a, r)| {
+                        let a = (*a)?;
+                        Some((a, a.len() / nt, r.get(b)?.clone()))
+                    })
+                    .collect();
+                chunks::filtered_group_coordinates(&block, nt, ext.block, self.level)
+            })
+            .collect())
+    }
+}
+
 /// Turns finished points into journal records. Cheap to clone, shared by every worker.
 #[derive(Debug, Clone)]
 pub struct RecordEncoder {
@@ -106,11 +183,19 @@ struct Inner {
     n_points: usize,
     n_bats: usize,
     history: Option<StoredHistory>,
+    groups: PointGroups,
 }
 
 impl RecordEncoder {
     /// The encoder of output `path` for this study.
     pub fn new(path: &Path, info: &StudyInfo) -> Self {
+        Self::with_groups(path, info, layout::history_groups(info))
+    }
+
+    /// [`Self::new`] with points grouped as `groups` says, not as the study's layout does:
+    /// for `benches/chunk_groups.rs`, which measures groups of several sizes. Its records
+    /// fit only a file whose chunks span the same groups.
+    pub fn with_groups(path: &Path, info: &StudyInfo, groups: PointGroups) -> Self {
         let history = info.history.as_ref().map(|h| StoredHistory {
             vars: history_vars(h)
                 .into_iter()
@@ -127,6 +212,7 @@ impl RecordEncoder {
                 n_points: info.shape.n_points(),
                 n_bats: info.bats.len(),
                 history,
+                groups,
             }),
         }
     }
@@ -140,20 +226,24 @@ impl RecordEncoder {
 
     /// Check a point against the study (index, bat, history sizes) and encode it. Histories
     /// the study does not store are dropped.
-    pub fn encode(&self, mut rec: PointRecord) -> Result<EncodedRecord, StoreError> {
+    /// A study whose points share history chunks ([`Self::groups`]) takes whole groups
+    /// ([`Self::encode_group`]): a point encoded alone is refused.
+    pub fn encode(&self, rec: PointRecord) -> Result<EncodedRecord, StoreError> {
+        let size = self.inner.groups.size();
+        if size > 1 {
+            return Err(self.reject(format!(
+                "point {}: this study stores its histories in chunks of {size} points, \
+                 which are encoded a group at a time",
+                rec.index
+            )));
+        }
+        self.encode_point(rec)
+    }
+
+    /// [`Self::encode`], whatever the study's groups.
+    fn encode_point(&self, mut rec: PointRecord) -> Result<EncodedRecord, StoreError> {
         let s = &*self.inner;
-        if rec.index >= s.n_points {
-            return Err(self.reject(format!(
-                "point index {} is outside the study's {} points",
-                rec.index, s.n_points
-            )));
-        }
-        if rec.bat as usize >= s.n_bats {
-            return Err(self.reject(format!(
-                "point {} refers to bat {} but the study has {} bats",
-                rec.index, rec.bat, s.n_bats
-            )));
-        }
+        self.check(&rec)?;
         let history = match &mut rec.result {
             Ok(o) => o.history.take(),
             Err(_) => None,
@@ -184,9 +274,112 @@ impl RecordEncoder {
         }
         journal::end_frame(&mut framed);
         Ok(EncodedRecord {
-            summary: rec,
+            points: vec![rec],
             framed,
             has_history: stored.is_some(),
         })
+    }
+
+    /// A point's index and bat, against the study's.
+    pub fn check(&self, rec: &PointRecord) -> Result<(), StoreError> {
+        let s = &*self.inner;
+        if rec.index >= s.n_points {
+            return Err(self.reject(format!(
+                "point index {} is outside the study's {} points",
+                rec.index, s.n_points
+            )));
+        }
+        if rec.bat as usize >= s.n_bats {
+            return Err(self.reject(format!(
+                "point {} refers to bat {} but the study has {} bats",
+                rec.index, rec.bat, s.n_bats
+            )));
+        }
+        Ok(())
+    }
+
+    /// How the study's points are grouped in its history chunks.
+    pub fn groups(&self) -> PointGroups {
+        self.inner.groups
+    }
+
+    /// Check points of one group ([`Self::groups`], in increasing flat-index order; the
+    /// whole group, or at the finish of a run what it has of it) and encode them as one
+    /// record whose history chunks span the group's places along the study's last dim.
+    /// The places without a point, or past the end of a row, hold the fill value. With
+    /// groups of one point this is [`Self::encode`], byte for byte.
+    pub fn encode_group(&self, mut recs: Vec<PointRecord>) -> Result<EncodedRecord, StoreError> {
+        let groups = self.inner.groups;
+        if recs.len() == 1 && groups.size() == 1 {
+            return self.encode_point(recs.pop().expect("one point"));
+        }
+        let start = recs.first().map_or(0, |r| groups.start(r.index));
+        let increasing = recs.windows(2).all(|w| w[1].index > w[0].index);
+        let one_group = recs.iter().all(|r| groups.start(r.index) == start);
+        if recs.is_empty() || !increasing || !one_group {
+            let indices: Vec<usize> = recs.iter().map(|r| r.index).collect();
+            return Err(self.reject(format!(
+                "points {indices:?} are not of one group of {} in increasing order",
+                groups.size()
+            )));
+        }
+        recs.iter().try_for_each(|r| self.check(r))?;
+        let st = self.inner.history.as_ref();
+        let mut histories: Vec<Option<History>> = vec![None; groups.size()];
+        let mut has = Vec::with_capacity(recs.len());
+        for r in &mut recs {
+            let h = match &mut r.result {
+                Ok(o) => o.history.take().filter(|_| st.is_some()),
+                Err(_) => None,
+            };
+            has.push(h.is_some());
+            histories[r.index - start] = h;
+        }
+        let chunks = match st.filter(|_| has.contains(&true)) {
+            Some(st) => self.group_chunks(st, &recs, &histories)?,
+            None => Vec::new(),
+        };
+        let chunk_bytes: usize = chunks.iter().map(|c| c.len() + 4).sum();
+        let mut framed = Vec::with_capacity(
+            journal::REC_PREFIX + recs.len() * (journal::OK_SUMMARY_LEN + 64) + chunk_bytes,
+        );
+        journal::begin_frame(&mut framed);
+        journal::encode_group_summaries(&recs, &has, &mut framed);
+        for bytes in &chunks {
+            journal::put_history_chunk(bytes, &mut framed);
+        }
+        journal::end_frame(&mut framed);
+        Ok(EncodedRecord {
+            points: recs,
+            framed,
+            has_history: has.contains(&true),
+        })
+    }
+
+    /// Every stored variable's group chunks, in the file's order (`histories`: one per
+    /// place of the group).
+    fn group_chunks(
+        &self,
+        st: &StoredHistory,
+        recs: &[PointRecord],
+        histories: &[Option<History>],
+    ) -> Result<Vec<Vec<u8>>, StoreError> {
+        let mut chunks = Vec::new();
+        for &(k, precision) in &st.vars {
+            let values: Vec<SlotValues> = histories
+                .iter()
+                .map(|h| h.as_ref().map(|h| layout::history_array(h, k).as_slice()))
+                .collect();
+            let these = st.group_chunks_of(k, &values, precision).map_err(|e| {
+                self.reject(format!(
+                    "points {}..={}: history {} has {e}",
+                    recs[0].index,
+                    recs[recs.len() - 1].index,
+                    layout::HISTORY_VARS[k].0.name
+                ))
+            })?;
+            chunks.extend(these);
+        }
+        Ok(chunks)
     }
 }

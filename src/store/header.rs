@@ -30,6 +30,19 @@ pub struct JournalHeader {
     /// Stored history variable names, samples and z count (None: summary only).
     pub history: Option<(Vec<String>, usize, usize)>,
     pub n_bats: usize,
+    /// Points whose histories share a chunk along the last dim
+    /// (`layout::history_groups`): a journal's records hold whole groups of this size. 1,
+    /// and not written, where each point has its own (every journal and file before groups).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub history_group: usize,
+}
+
+fn one() -> usize {
+    1
+}
+
+fn is_one(n: &usize) -> bool {
+    *n == 1
 }
 
 impl JournalHeader {
@@ -55,6 +68,16 @@ impl JournalHeader {
                 )
             }),
             n_bats: info.bats.len(),
+            history_group: layout::history_groups(info).size(),
+        }
+    }
+
+    /// `self` with the history group of `found`: a finished file's points are read back
+    /// whatever its chunks, and encoded again in this study's groups (a resume from it).
+    pub fn with_group_of(&self, found: &JournalHeader) -> JournalHeader {
+        JournalHeader {
+            history_group: found.history_group,
+            ..self.clone()
         }
     }
 
@@ -69,6 +92,12 @@ impl JournalHeader {
             format!(
                 "it belongs to study '{}' (sha256 {}), not to study '{}' (sha256 {}): the study file changed or is another study",
                 self.study_name, short(&self.study_sha256), want.study_name, short(&want.study_sha256)
+            )
+        } else if self.history_group != want.history_group {
+            format!(
+                "its histories are stored in chunks of {} points along the last dim, this \
+                 batstudy stores them in chunks of {}: run again with --force to start over",
+                self.history_group, want.history_group
             )
         } else if self != want {
             format!(

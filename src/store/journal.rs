@@ -11,6 +11,13 @@
 //!   where it is there (u32 length with [`IN_FILE`] set, u64 offset in that file, u32 CRC-32
 //!   of the chunk; `store::by_reference`). The modal coordinates are as many chunks as the
 //!   point has blocks of modes (the record's chunks beyond one per variable).
+//! - a record may instead hold a group: points of consecutive flat indices whose histories
+//!   share chunks (each chunk spans the group along the study's last dim). Its payload
+//!   begins with a head shaped like a point's summary, whose ok byte is [`GROUP_FLAG`]: u64
+//!   flat index of the first point, u32 points, u32 bytes of their summaries, u32 0, the
+//!   flag; then each point's summary ([`encode_summary`]); then the group's chunks as
+//!   above. A torn tail drops whole groups: a group is stored, and its histories with it,
+//!   or none of its points is.
 //!
 //! Records are only appended. A run killed mid-write leaves at worst a torn last record; a
 //! record whose magic, length or checksum is wrong ends the journal (it and everything after it
@@ -45,6 +52,12 @@ const MAX_PAYLOAD: u64 = u32::MAX as u64;
 pub(crate) const OK_SUMMARY_LEN: usize = 8 + 8 + 4 + 1 + 8 * N_SUMMARY_FLOATS + 1 + 1;
 /// Offset of the ok flag in a payload.
 const OK_FLAG_AT: usize = 20;
+/// The ok byte of a group record's head, where a point's record has 1 (ok) or 0 (failed).
+pub const GROUP_FLAG: u8 = 2;
+/// Bytes of a group record's head: first index, points, bytes of their summaries, 0, flag.
+const GROUP_HEAD_LEN: usize = OK_FLAG_AT + 1;
+/// Most points a group record may hold (a corrupt count beyond this is not a record).
+const MAX_GROUP: usize = 1 << 16;
 
 /// CRC-32 (libdeflate's, several GB/s): the journal's checksum. Format 1's byte-at-a-time
 /// FNV-1a ran at about 1 GB/s and was a fifth of a history study's writer time (issue 22).
@@ -73,6 +86,24 @@ pub fn encode_summary(rec: &PointRecord, has_history: bool, out: &mut Vec<u8>) {
             out.extend_from_slice(msg.as_bytes());
         }
     }
+}
+
+/// Encode a group record's summary part: its head, then each point's summary, with whether
+/// its histories are in the group's chunks (`has_history`, one per point; the caller
+/// appends the chunks). The points must be in increasing flat-index order.
+pub fn encode_group_summaries(points: &[PointRecord], has_history: &[bool], out: &mut Vec<u8>) {
+    debug_assert!(points.windows(2).all(|w| w[1].index > w[0].index));
+    debug_assert!(!points.is_empty() && points.len() <= MAX_GROUP);
+    let head = out.len();
+    out.extend_from_slice(&(points[0].index as u64).to_le_bytes());
+    out.extend_from_slice(&(points.len() as u32).to_le_bytes());
+    out.extend_from_slice(&[0u8; 8]); // the summaries' length, below; then 0
+    out.push(GROUP_FLAG);
+    for (p, &h) in points.iter().zip(has_history) {
+        encode_summary(p, h, out);
+    }
+    let len = (out.len() - head - GROUP_HEAD_LEN) as u32;
+    out[head + 12..head + 16].copy_from_slice(&len.to_le_bytes());
 }
 
 /// Start a framed record in `out` (empty): room for the prefix, which [`end_frame`] fills.
@@ -134,7 +165,7 @@ pub fn put_history_in_file(at: u64, len: u32, sum: u32, out: &mut Vec<u8>) {
 pub fn history_pieces(payload: &[u8]) -> Option<Vec<Piece<'_>>> {
     let mut c = Cursor {
         b: payload,
-        p: OK_SUMMARY_LEN,
+        p: summary_part(payload)?.0,
     };
     let mut out = Vec::new();
     while c.p < payload.len() {
@@ -166,7 +197,55 @@ pub fn history_chunks(payload: &[u8]) -> Option<Vec<&[u8]>> {
 
 /// Whether a payload holds histories of which some are in the results file.
 pub(super) fn refers_to_file(payload: &[u8]) -> bool {
-    decode_summary(payload).is_some_and(|(_, history)| history) && names_file_chunks(payload)
+    summary_part(payload).is_some_and(|(_, history)| history) && names_file_chunks(payload)
+}
+
+/// A payload's summary part (one point's, or a group's head and its points'): where the
+/// history chunks after it begin, and whether any of its points has histories in them.
+/// `None` when it is not a summary part.
+pub fn summary_part(payload: &[u8]) -> Option<(usize, bool)> {
+    let mut c = Cursor { b: payload, p: 0 };
+    if payload.get(OK_FLAG_AT) != Some(&GROUP_FLAG) {
+        let history = skip_summary(&mut c)?;
+        return Some((c.p, history));
+    }
+    let (n, len) = group_head(&mut c)?;
+    let end = GROUP_HEAD_LEN.checked_add(len)?;
+    let mut m = Cursor {
+        b: payload.get(..end)?,
+        p: GROUP_HEAD_LEN,
+    };
+    let mut any = false;
+    for _ in 0..n {
+        any |= skip_summary(&mut m)?;
+    }
+    (m.p == end).then_some((end, any))
+}
+
+/// A group record's head: its points and the bytes of their summaries.
+fn group_head(c: &mut Cursor) -> Option<(usize, usize)> {
+    let _first = c.u64()?;
+    let n = c.u32()? as usize;
+    let len = c.u32()? as usize;
+    let (zero, flag) = (c.u32()?, c.u8()?);
+    (zero == 0 && flag == GROUP_FLAG && (1..=MAX_GROUP).contains(&n)).then_some((n, len))
+}
+
+/// Step over one point's summary; whether histories follow it.
+fn skip_summary(c: &mut Cursor) -> Option<bool> {
+    c.take(OK_FLAG_AT)?;
+    match c.u8()? {
+        1 => {
+            c.take(8 * N_SUMMARY_FLOATS + 1)?;
+            Some(c.u8()? != 0)
+        }
+        0 => {
+            let n = usize::try_from(c.u64()?).ok()?;
+            c.take(n)?;
+            Some(false)
+        }
+        _ => None,
+    }
 }
 
 /// Whether the history chunks after a payload's summary name some in the results file.
@@ -202,7 +281,33 @@ impl<'a> Cursor<'a> {
 /// Decode a payload's summary part (an ok record's first [`OK_SUMMARY_LEN`] bytes, a failed
 /// record whole): the point without histories, and whether histories follow.
 pub fn decode_summary(payload: &[u8]) -> Option<(PointRecord, bool)> {
+    summary_at(&mut Cursor { b: payload, p: 0 })
+}
+
+/// Decode a payload's points: its one point, or each point of its group, without
+/// histories, each with whether its histories are in the record's chunks. `None` when the
+/// summary part is not whole, or a group's points do not begin at its first index and
+/// increase.
+pub fn decode_points(payload: &[u8]) -> Option<Vec<(PointRecord, bool)>> {
     let mut c = Cursor { b: payload, p: 0 };
+    if payload.get(OK_FLAG_AT) != Some(&GROUP_FLAG) {
+        return Some(vec![summary_at(&mut c)?]);
+    }
+    let first = u64::from_le_bytes(payload.get(..8)?.try_into().ok()?) as usize;
+    let (n, len) = group_head(&mut c)?;
+    let mut m = Cursor {
+        b: payload.get(..GROUP_HEAD_LEN.checked_add(len)?)?,
+        p: GROUP_HEAD_LEN,
+    };
+    let points: Vec<(PointRecord, bool)> =
+        (0..n).map(|_| summary_at(&mut m)).collect::<Option<_>>()?;
+    let ordered =
+        points[0].0.index == first && points.windows(2).all(|w| w[1].0.index > w[0].0.index);
+    (ordered && m.p == m.b.len()).then_some(points)
+}
+
+/// One point's summary at the cursor.
+fn summary_at(c: &mut Cursor) -> Option<(PointRecord, bool)> {
     let index = c.u64()? as usize;
     let id = c.u64()?;
     let bat = c.u32()?;
@@ -215,10 +320,12 @@ pub fn decode_summary(payload: &[u8]) -> Option<(PointRecord, bool)> {
         let mut o = layout::outcome_from_floats(&f);
         o.recontact = c.u8()? != 0;
         (Ok(o), c.u8()? != 0)
-    } else {
-        let n = c.u64()? as usize;
+    } else if ok == 0 {
+        let n = usize::try_from(c.u64()?).ok()?;
         let s = c.take(n)?;
         (Err(String::from_utf8_lossy(s).into_owned()), false)
+    } else {
+        return None;
     };
     Some((
         PointRecord {
@@ -366,15 +473,19 @@ pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, Stor
         }
         // The whole payload: a failed point's message follows the fixed part and may be
         // longer than OK_SUMMARY_LEN.
-        let Some((rec, has_history)) = decode_summary(&payload) else {
+        let (Some(points), Some((_, history))) = (decode_points(&payload), summary_part(&payload))
+        else {
             break;
         };
-        visit(RecordMeta {
-            index: rec.index,
-            id: rec.id,
-            ok: rec.result.is_ok(),
-            in_file: has_history && names_file_chunks(&payload),
-        });
+        let in_file = history && names_file_chunks(&payload);
+        for (rec, _) in points {
+            visit(RecordMeta {
+                index: rec.index,
+                id: rec.id,
+                ok: rec.result.is_ok(),
+                in_file,
+            });
+        }
         pos += REC_PREFIX as u64 + len;
     }
     Ok(Scan {
@@ -402,8 +513,9 @@ pub struct RecordPlace {
 }
 
 /// Sequential reading of a scanned journal's valid records, in file order: summaries
-/// cheaply (histories are skipped over, not read; [`Self::place`] says where they are).
-/// Memory: one record's summary.
+/// cheaply (histories are skipped over, not read; [`Self::history_place`] says where they
+/// are), one point at a time (a group record's points one after the other). Memory: one
+/// record's summaries.
 pub struct RecordReader {
     r: BufReader<File>,
     path: PathBuf,
@@ -412,8 +524,12 @@ pub struct RecordReader {
     /// End of the valid part.
     end: u64,
     payload: Vec<u8>,
-    /// Current record: where its payload is, and whether histories follow its summary.
+    /// Current record: where its payload is, and whether histories follow its summaries.
     current: Option<(RecordPlace, bool)>,
+    /// The current record's points not returned yet (a group's after its first).
+    pending: std::collections::VecDeque<PointRecord>,
+    /// The point last returned is its record's first.
+    at_first: bool,
 }
 
 impl RecordReader {
@@ -436,6 +552,8 @@ impl RecordReader {
             end: scan.valid_len,
             payload: Vec::new(),
             current: None,
+            pending: Default::default(),
+            at_first: false,
         })
     }
 
@@ -450,9 +568,14 @@ impl RecordReader {
         StoreError::io(&self.path, "read the journal", e)
     }
 
-    /// Move to the next record and decode its summary (a failed record whole, an ok record
-    /// without its histories). `None` at the end of the valid part.
+    /// Move to the next point and decode its summary (a failed point whole, an ok point
+    /// without its histories): the next of the current group's points, else the next
+    /// record's first. `None` at the end of the valid part.
     pub fn next_summary(&mut self) -> Result<Option<PointRecord>, StoreError> {
+        if let Some(rec) = self.pending.pop_front() {
+            self.at_first = false;
+            return Ok(Some(rec));
+        }
         if let Some((place, _)) = self.current.take() {
             let next = place.at + place.len;
             self.r
@@ -474,12 +597,7 @@ impl RecordReader {
             )));
         }
         self.pos = at;
-        self.payload.clear();
-        self.extend((len as usize).min(OK_SUMMARY_LEN))?;
-        // failed records keep their message after the fixed part: read them whole
-        if self.payload.get(OK_FLAG_AT) == Some(&0) {
-            self.extend(len as usize - self.payload.len())?;
-        }
+        self.read_summary_part(len as usize)?;
         // a record read whole (every record without histories) is checked here; one with
         // histories is checked when they are read ([`read_payload`])
         if self.payload.len() as u64 == len && checksum(&self.payload) != sum {
@@ -487,10 +605,33 @@ impl RecordReader {
                 "record at byte {at} fails its checksum: the journal changed after it was written"
             )));
         }
-        let (rec, has_history) = decode_summary(&self.payload)
-            .ok_or_else(|| self.bad(format!("undecodable record at byte {at}")))?;
-        self.current = Some((RecordPlace { at, len, sum }, has_history));
-        Ok(Some(rec))
+        let Some(points) = decode_points(&self.payload) else {
+            return Err(self.bad(format!("undecodable record at byte {at}")));
+        };
+        let history = points.iter().any(|(_, h)| *h);
+        self.current = Some((RecordPlace { at, len, sum }, history));
+        let mut points = points.into_iter().map(|(p, _)| p);
+        let first = points.next().expect("a record holds a point");
+        self.pending.extend(points);
+        self.at_first = true;
+        Ok(Some(first))
+    }
+
+    /// Read the summary part of a payload of `len` bytes into `self.payload`: a failed
+    /// point's record whole (its message follows the fixed part), an ok point's fixed part,
+    /// a group's head and its points' summaries.
+    fn read_summary_part(&mut self, len: usize) -> Result<(), StoreError> {
+        self.payload.clear();
+        self.extend(len.min(OK_SUMMARY_LEN))?;
+        let want = match self.payload.get(OK_FLAG_AT) {
+            Some(&0) => len,
+            Some(&GROUP_FLAG) if self.payload.len() >= GROUP_HEAD_LEN => {
+                let summaries = u32::from_le_bytes(self.payload[12..16].try_into().expect("4"));
+                (GROUP_HEAD_LEN + summaries as usize).min(len)
+            }
+            _ => 0,
+        };
+        self.extend(want.saturating_sub(self.payload.len()))
     }
 
     fn extend(&mut self, n: usize) -> Result<(), StoreError> {
@@ -503,9 +644,13 @@ impl RecordReader {
         Ok(())
     }
 
-    /// Where the record last returned by [`Self::next_summary`] is, when it has histories.
+    /// Where the record of the point last returned by [`Self::next_summary`] is, when it
+    /// has histories and that point is its first (a group's record is named once).
     pub fn history_place(&self) -> Option<RecordPlace> {
-        self.current.filter(|(_, h)| *h).map(|(p, _)| p)
+        match self.at_first {
+            true => self.current.filter(|(_, h)| *h).map(|(p, _)| p),
+            false => None,
+        }
     }
 }
 
@@ -701,5 +846,168 @@ pub fn sync_parent_dir(path: &Path) {
     };
     if let Ok(d) = File::open(dir) {
         let _ = d.sync_all();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::outcome::Outcome;
+
+    fn ok(index: usize, exit_speed: f64) -> PointRecord {
+        PointRecord {
+            index,
+            id: 100 + index as u64,
+            bat: (index % 2) as u32,
+            result: Ok(Outcome {
+                exit_speed,
+                ..Default::default()
+            }),
+        }
+    }
+
+    fn failed(index: usize, msg: &str) -> PointRecord {
+        PointRecord {
+            index,
+            id: 100 + index as u64,
+            bat: 0,
+            result: Err(msg.into()),
+        }
+    }
+
+    /// A point as the journal keeps it, bit for bit (its NaNs compare).
+    fn key(p: &PointRecord) -> (usize, u64, u32, Result<Vec<u64>, String>) {
+        let floats = p.result.as_ref().map_err(Clone::clone).map(|o| {
+            layout::summary_floats(o)
+                .iter()
+                .map(|x| x.to_bits())
+                .collect()
+        });
+        (p.index, p.id, p.bat, floats)
+    }
+
+    /// A framed record of one point, with these chunks when it has histories.
+    fn point_record(p: &PointRecord, chunks: &[&[u8]]) -> Vec<u8> {
+        let mut f = Vec::new();
+        begin_frame(&mut f);
+        encode_summary(p, !chunks.is_empty(), &mut f);
+        chunks.iter().for_each(|c| put_history_chunk(c, &mut f));
+        end_frame(&mut f);
+        f
+    }
+
+    /// A framed group record: its points, then the group's chunks, the second named in the
+    /// results file.
+    fn group_record(points: &[PointRecord], history: &[bool], chunk: &[u8]) -> Vec<u8> {
+        let mut f = Vec::new();
+        begin_frame(&mut f);
+        encode_group_summaries(points, history, &mut f);
+        put_history_chunk(chunk, &mut f);
+        put_history_in_file(4096, 77, 0xdead_beef, &mut f);
+        end_frame(&mut f);
+        f
+    }
+
+    fn header() -> JournalHeader {
+        JournalHeader {
+            layout_version: layout::LAYOUT_VERSION,
+            study_name: "t".into(),
+            study_sha256: "0".into(),
+            dims: vec![("impact_z".into(), 12)],
+            history: None,
+            n_bats: 2,
+            history_group: 1,
+        }
+    }
+
+    /// A group record's points come back one by one, in order, with their results; its
+    /// chunks come after all their summaries; a reader names its place once, at its first
+    /// point. Point records before and after it read as before.
+    #[test]
+    fn a_group_record_reads_back_point_by_point() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("j");
+        let members = [ok(4, 30.5), failed(5, "no contact"), ok(6, 31.25)];
+        let group = group_record(&members, &[true, false, true], &[7u8; 300]);
+        let payload = &group[REC_PREFIX..];
+        let (chunks_at, history) = summary_part(payload).unwrap();
+        assert!(history);
+        let pieces = history_pieces(payload).unwrap();
+        assert_eq!(pieces[0], Piece::Bytes(&[7u8; 300]));
+        assert_eq!(
+            pieces[1],
+            Piece::InFile {
+                at: 4096,
+                len: 77,
+                sum: 0xdead_beef
+            }
+        );
+        assert_eq!(chunks_at, payload.len() - (4 + 300) - 16);
+        assert!(refers_to_file(payload) && history_chunks(payload).is_none());
+
+        let mut w = JournalWriter::create(&path, &header()).unwrap();
+        w.append(&point_record(&ok(0, 29.0), &[&[1, 2, 3]]))
+            .unwrap();
+        w.append(&group).unwrap();
+        w.append(&point_record(&failed(9, "panic"), &[])).unwrap();
+        w.flush().unwrap();
+
+        let mut seen = Vec::new();
+        let scan = scan(&path, |m| seen.push((m.index, m.ok, m.in_file))).unwrap();
+        assert_eq!(
+            seen,
+            [
+                (0, true, false),
+                (4, true, true),
+                (5, false, true),
+                (6, true, true),
+                (9, false, false)
+            ]
+        );
+        let mut rr = RecordReader::open_with_buffer(&path, &scan, 64).unwrap();
+        let mut got = Vec::new();
+        while let Some(rec) = rr.next_summary().unwrap() {
+            got.push((rec.clone(), rr.history_place().is_some()));
+        }
+        let want = [
+            ok(0, 29.0),
+            members[0].clone(),
+            members[1].clone(),
+            members[2].clone(),
+        ];
+        for (g, w) in got.iter().zip(&want) {
+            assert_eq!(key(&g.0), key(w));
+        }
+        let places: Vec<bool> = got.iter().map(|g| g.1).collect();
+        assert_eq!(places, [true, true, false, false, false]);
+        assert_eq!(key(&got[4].0), key(&failed(9, "panic")));
+    }
+
+    /// A journal cut anywhere inside a group record keeps none of its points (the torn tail
+    /// is dropped whole), and a group whose points do not increase is no record.
+    #[test]
+    fn a_torn_group_drops_all_its_points() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("j");
+        let mut w = JournalWriter::create(&path, &header()).unwrap();
+        w.append(&point_record(&ok(0, 29.0), &[])).unwrap();
+        let members = [ok(1, 30.0), ok(2, 30.5)];
+        w.append(&group_record(&members, &[true, true], &[5u8; 40]))
+            .unwrap();
+        w.flush().unwrap();
+        let whole = std::fs::read(&path).unwrap();
+        let group_len = group_record(&members, &[true, true], &[5u8; 40]).len();
+        for cut in [1, REC_PREFIX + 3, REC_PREFIX + 30, group_len - 1] {
+            std::fs::write(&path, &whole[..whole.len() - group_len + cut]).unwrap();
+            let mut seen = Vec::new();
+            let s = scan(&path, |m| seen.push(m.index)).unwrap();
+            assert_eq!(seen, [0], "cut {cut} bytes into the group");
+            assert_eq!(s.dropped_bytes, cut as u64);
+        }
+        let mut apart = group_record(&members, &[true, true], &[5u8; 40]);
+        let second = REC_PREFIX + GROUP_HEAD_LEN + OK_SUMMARY_LEN;
+        apart[second..second + 8].copy_from_slice(&1u64.to_le_bytes());
+        end_frame(&mut apart);
+        assert!(decode_points(&apart[REC_PREFIX..]).is_none());
     }
 }

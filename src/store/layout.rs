@@ -5,6 +5,7 @@ use crate::model::outcome::{
     History, HistoryCompression, HistoryDisplacement, HistoryField, HistoryPrecision,
     HistoryRequest, Outcome,
 };
+use crate::results::{PointGroups, ResultShape, StudyInfo};
 
 /// Version of the file layout documented in docs/layout.md.
 pub const LAYOUT_VERSION: u32 = 4;
@@ -831,6 +832,28 @@ pub const BAT_SPEC: VarDef = v(
     "bat spec",
     "the bat's resolved parameters as canonical JSON",
 );
+
+/// Points whose modal histories share a chunk, along the study's last dim (issue 37: one
+/// Huffman code, one block header and one `H5Dwrite_chunk` serve the group's points;
+/// `benches/chunk_groups.rs`).
+pub const MODAL_HISTORY_GROUP: usize = 8;
+
+/// How a study's points are grouped in its history chunks ([`PointGroups`]): in groups of
+/// [`MODAL_HISTORY_GROUP`] along the last dim when it stores the displacement's modal form,
+/// each point on its own otherwise.
+pub fn history_groups(info: &StudyInfo) -> PointGroups {
+    history_groups_of(info.history.as_ref(), &info.shape)
+}
+
+/// [`history_groups`] of a study of this shape storing these histories.
+pub fn history_groups_of(history: Option<&HistoryRequest>, shape: &ResultShape) -> PointGroups {
+    let modal = history
+        .is_some_and(|h| (0..HISTORY_VARS.len()).any(|k| is_modal(k) && history_stored(h, k)));
+    match (modal, shape.dims.last()) {
+        (true, Some(last)) => PointGroups::new(MODAL_HISTORY_GROUP, last.size),
+        _ => PointGroups::single(),
+    }
+}
 
 /// Target number of elements in one summary chunk.
 pub const SUMMARY_CHUNK_ELEMS: usize = 65536;

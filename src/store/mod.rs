@@ -14,7 +14,7 @@
 //! Modules, from the bottom up: [`layout`] (names, units), [`error`], [`header`] (what
 //! identifies a study's journal and file), [`journal`] (the append-only record file),
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
-//! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`options`] (what the caller passes and gets back), [`paths`] (the files next
+//! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`gather`] (points handed over one by one gathered into their groups), [`options`] (what the caller passes and gets back), [`paths`] (the files next
 //! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
 //! [`by_reference`] (histories journalled by their place in the file), [`session`] (an open
 //! output), [`writeback`] (the final file sent to the disk as it is
@@ -29,6 +29,7 @@ pub mod direct;
 pub mod encode;
 pub mod error;
 pub mod fixed_deflate;
+pub mod gather;
 pub mod header;
 pub mod inspect;
 pub mod journal;

@@ -7,6 +7,7 @@ use super::build;
 use super::by_reference::{self, Recovered};
 use super::encode::{EncodedRecord, RecordEncoder};
 use super::error::{H5Ctx, StoreError};
+use super::gather::GroupGatherer;
 use super::header::JournalHeader;
 use super::journal::{self, JournalWriter};
 use super::options::{iso8601_now, RunMeta, StoreOptions, Summary};
@@ -41,6 +42,9 @@ pub struct Session {
     gathered: Option<build::Gathered>,
     /// Encodes the points handed to [`Session::write`]; the runner's workers use clones.
     encoder: RecordEncoder,
+    /// The points handed to [`Session::write`] whose group is not whole yet (when points
+    /// share history chunks).
+    gatherer: Option<GroupGatherer>,
     /// Writes the histories into the final file as the run goes on, in flat-index order
     /// (a fresh journal of a study with histories; `store::placer`).
     placer: Option<HistoryPlacer>,
@@ -244,6 +248,10 @@ impl Session {
             skeleton,
             gathered: None,
             encoder: RecordEncoder::new(path, info),
+            gatherer: {
+                let groups = super::layout::history_groups(info);
+                (groups.size() > 1).then(|| GroupGatherer::new(groups))
+            },
             placer: None,
             history_tail: None,
             writeback: Writeback::new(&partial_path(path)),
@@ -302,20 +310,35 @@ impl Session {
     fn resume_finished_file(&mut self, want: &JournalHeader) -> Result<(), StoreError> {
         let n_points = self.info.shape.n_points();
         let fi = read::file_info(&self.path)?;
-        if let Some(e) = fi.header.mismatch(want, &self.path) {
+        // its points are encoded again in this study's groups, whatever its chunks
+        if let Some(e) = fi
+            .header
+            .mismatch(&want.with_group_of(&fi.header), &self.path)
+        {
             return Err(e);
         }
         let mut w = JournalWriter::create(&self.journal_path, want)?;
         let done = &mut self.done;
         let encoder = &self.encoder;
+        // Only whole groups are done: a group whose histories share chunks is stored whole,
+        // so the points of one the file has only in part are computed again with the rest
+        // (to the same bits).
+        let mut gather = GroupGatherer::new(encoder.groups());
         read::for_each_record(&self.path, |rec| {
             let index = rec.index;
-            if index < n_points && !done.contains(index) {
-                w.append(&encoder.encode(rec)?.framed)?;
-                done.insert(index);
-                if w.buffered_bytes() > 1 << 22 {
-                    w.flush()?;
-                }
+            if index >= n_points || done.contains(index) {
+                return Ok(());
+            }
+            gather.drop_before(index);
+            let Some(points) = gather.add(rec) else {
+                return Ok(());
+            };
+            for p in &points {
+                done.insert(p.index);
+            }
+            w.append(&encoder.encode_group(points)?.framed)?;
+            if w.buffered_bytes() > 1 << 22 {
+                w.flush()?;
             }
             Ok(())
         })?;
@@ -378,32 +401,61 @@ impl Session {
 
     /// Store one finished point (buffered; see the module docs for when it becomes durable).
     /// A point already stored is ignored. Encodes it here; the runner's writer thread takes
-    /// points its workers encoded ([`Self::write_encoded`]).
+    /// points its workers encoded ([`Self::write_encoded`]). Where points share history
+    /// chunks ([`RecordEncoder::groups`]), a point waits until its group is whole, or until
+    /// the finish, which stores what there is of each group (a session dropped unfinished
+    /// loses the points of groups not whole).
     pub fn write(&mut self, rec: PointRecord) -> Result<(), StoreError> {
         if rec.index < self.done.len() && self.done.contains(rec.index) {
             return Ok(());
         }
-        let e = self.encoder.encode(rec)?;
+        self.encoder.check(&rec)?;
+        let whole = match self.gatherer.as_mut() {
+            None => vec![rec],
+            Some(g) => match g.add(rec) {
+                Some(whole) => whole,
+                None => return Ok(()),
+            },
+        };
+        let e = self.encoder.encode_group(whole)?;
         self.write_encoded(e)
     }
 
-    /// Store one point encoded by this session's [`RecordEncoder`] (a clone of
-    /// [`Self::encoder`]): the record's bytes are appended as they are. A point already
-    /// stored is ignored.
+    /// Store what [`Self::write`] holds of groups that are not whole.
+    fn write_gathered(&mut self) -> Result<(), StoreError> {
+        let Some(g) = self.gatherer.take() else {
+            return Ok(());
+        };
+        for points in g.into_rest() {
+            let e = self.encoder.encode_group(points)?;
+            self.write_encoded(e)?;
+        }
+        Ok(())
+    }
+
+    /// Store one point, or a group of points, encoded by this session's [`RecordEncoder`]
+    /// (a clone of [`Self::encoder`]): the record's bytes are appended as they are. A point
+    /// already stored is ignored, and so is a group whose first point is: a group is stored
+    /// whole or not at all.
     pub fn write_encoded(&mut self, rec: EncodedRecord) -> Result<(), StoreError> {
-        let index = rec.summary.index;
         let n = self.done.len();
-        if index >= n || !journal::is_framed(&rec.framed) {
+        let (Some(first), Some(last)) = (rec.points.first(), rec.points.last()) else {
+            return Err(self.reject("a record of no point".into()));
+        };
+        let (index, last) = (first.index, last.index);
+        if last >= n || !journal::is_framed(&rec.framed) {
             return Err(self.reject(format!(
-                "point {index}: not a record encoded for this study's {n} points"
+                "points {index}..={last}: not a record encoded for this study's {n} points"
             )));
         }
         if self.done.contains(index) {
             return Ok(());
         }
-        self.done.insert(index);
-        if let Some(g) = self.gathered.as_mut() {
-            g.put(&rec.summary);
+        for p in &rec.points {
+            self.done.insert(p.index);
+            if let Some(g) = self.gathered.as_mut() {
+                g.put(p);
+            }
         }
         self.prepare_final_file()?;
         if rec.has_history && self.placer.is_some() {
@@ -598,6 +650,7 @@ impl Session {
     /// remove the journal. Works for incomplete studies too (missing points have status -1,
     /// e.g. a shard or an interrupted run); `--resume` continues from such a file.
     pub fn finish(mut self) -> Result<Summary, StoreError> {
+        self.write_gathered()?;
         // To the OS, not fsync'd: the journal is removed only after the finished file is
         // fsync'd and renamed into place, and a power loss before that loses at most what an
         // unfinished run would (issue 7: one fsync less on every run's critical path).

@@ -79,12 +79,34 @@ pub(super) fn shuffle_modes_into(
     out: &mut [u8],
 ) {
     let n = rows.len() * n_samples;
+    shuffle_modes_at(q, modes, n_samples, rows, out, Planes { len: n, at: 0 });
+}
+
+/// Where a run of values goes in shuffled bytes: each byte plane `len` bytes long, the
+/// run's values from value `at` of the planes on (a group chunk holds several points'
+/// values one after the other, `store::encode`).
+#[derive(Debug, Clone, Copy)]
+pub struct Planes {
+    pub len: usize,
+    pub at: usize,
+}
+
+/// [`shuffle_modes_into`] into the planes of a larger chunk, at `planes.at`.
+pub(super) fn shuffle_modes_at(
+    q: &[f64],
+    modes: usize,
+    n_samples: usize,
+    rows: std::ops::Range<usize>,
+    out: &mut [u8],
+    planes: Planes,
+) {
+    let (n, base) = (planes.len, planes.at);
     let whole = n_samples - n_samples % 8;
     for t in (0..whole).step_by(8) {
         let eight = &q[t * modes..(t + 8) * modes];
         for (r, j) in rows.clone().enumerate() {
             let words = std::array::from_fn(|k| eight[k * modes + j].to_bits());
-            let at = r * n_samples + t;
+            let at = base + r * n_samples + t;
             for (p, row) in transpose_bytes(words).iter().enumerate() {
                 out[p * n + at..][..8].copy_from_slice(&row.to_le_bytes());
             }
@@ -93,9 +115,19 @@ pub(super) fn shuffle_modes_into(
     for (r, j) in rows.enumerate() {
         for t in whole..n_samples {
             for (p, b) in q[t * modes + j].to_le_bytes().into_iter().enumerate() {
-                out[p * n + r * n_samples + t] = b;
+                out[p * n + base + r * n_samples + t] = b;
             }
         }
+    }
+}
+
+/// `count` copies of `value` into the planes of a chunk, at `planes.at`: each plane's run
+/// set to the value's byte (the fill value of a group chunk's empty places).
+pub(super) fn fill_at<T: ChunkValue>(value: T, count: usize, out: &mut [u8], planes: Planes) {
+    let mut e = [0u8; 16];
+    value.write_le(&mut e);
+    for (p, &b) in e[..T::SIZE].iter().enumerate() {
+        out[p * planes.len + planes.at..][..count].fill(b);
     }
 }
 
@@ -105,19 +137,25 @@ pub(super) fn shuffle_modes_into(
 /// modal coordinates; gathering each row by shifts was still a quarter of it). Public for
 /// `benches/chunk_groups.rs`, which shuffles chunks of a layout the store does not write.
 pub fn shuffle_values_into<T: ChunkValue>(values: &[T], out: &mut [u8]) {
-    let n = values.len();
-    let whole = n - n % 8;
+    let len = values.len();
+    shuffle_values_at(values, out, Planes { len, at: 0 });
+}
+
+/// [`shuffle_values_into`] into the planes of a larger chunk, at `planes.at`.
+pub(super) fn shuffle_values_at<T: ChunkValue>(values: &[T], out: &mut [u8], planes: Planes) {
+    let (n, base) = (planes.len, planes.at);
+    let whole = values.len() - values.len() % 8;
     for (b, eight) in values[..whole].chunks_exact(8).enumerate() {
         let rows = transpose_bytes(std::array::from_fn(|k| eight[k].le_word()));
         for (j, row) in rows.iter().enumerate().take(T::SIZE) {
-            out[j * n + 8 * b..][..8].copy_from_slice(&row.to_le_bytes());
+            out[j * n + base + 8 * b..][..8].copy_from_slice(&row.to_le_bytes());
         }
     }
     let mut e = [0u8; 16];
     for (i, &v) in values.iter().enumerate().skip(whole) {
         v.write_le(&mut e);
         for (j, &b) in e[..T::SIZE].iter().enumerate() {
-            out[j * n + i] = b;
+            out[j * n + base + i] = b;
         }
     }
 }

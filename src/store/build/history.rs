@@ -13,7 +13,7 @@ use crate::store::dimscale::{self as h5u, attr_str, Attacher};
 use crate::store::error::{H5Ctx, StoreError};
 use crate::store::header::history_vars;
 use crate::store::journal::{
-    decode_summary, history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
+    decode_points, history_chunks, read_payload, RecordPlace, RecordReader, Scan, REC_PREFIX,
 };
 use crate::store::layout::{self as l, HistoryDims};
 use crate::store::modal::ModalExtents;
@@ -46,6 +46,9 @@ pub(super) fn create_history(
         let (def, _, tail) = &l::HISTORY_VARS[k];
         let mut s: Vec<usize> = dims.iter().map(|d| d.size).collect();
         let mut c = vec![1; s.len()];
+        if let Some(last) = c.last_mut() {
+            *last = l::history_groups(info).size(); // a group's points share a chunk
+        }
         let mut sc: Vec<&Dataset> = scales.iter().collect();
         for (size, chunk, scale) in tails.of(*tail) {
             s.push(size);
@@ -207,7 +210,11 @@ impl Into<'_> {
             .filter(|&b| b == 1 || self.created.iter().any(|v| v.0 == l::MODAL_COORDINATE))
             .ok_or_else(bad)?;
         let rank = self.info.shape.dims.len();
-        let idx = self.info.shape.unravel(index);
+        // a group's chunk begins at its first place, whichever of its points the record has
+        let idx = self
+            .info
+            .shape
+            .unravel(l::history_groups(self.info).start(index));
         let mut pieces = pieces.into_iter();
         // the file's end of allocation as the last chunk left it (nothing else allocates
         // between a point's chunks)
@@ -237,10 +244,15 @@ impl Into<'_> {
                 }
             }
         }
-        if let (Some(shapes), Some((rec, _))) =
-            (self.shapes.as_deref_mut(), decode_summary(payload))
-        {
-            shapes.ensure(self.info, rec.bat as usize, blocks, self.out)?;
+        if let Some(shapes) = self.shapes.as_deref_mut() {
+            // each bat a group's points use (a group may span several along the last dim)
+            for (rec, _) in decode_points(payload)
+                .ok_or_else(bad)?
+                .iter()
+                .filter(|p| p.1)
+            {
+                shapes.ensure(self.info, rec.bat as usize, blocks, self.out)?;
+            }
         }
         Ok(())
     }
