@@ -632,6 +632,11 @@ pub fn history_stored(h: &HistoryRequest, k: usize) -> bool {
     h.fields.contains(&field) && form_ok
 }
 
+/// Whether a request stores the displacement in modal form.
+pub fn stores_modal(h: &HistoryRequest) -> bool {
+    (0..HISTORY_VARS.len()).any(|k| is_modal(k) && history_stored(h, k))
+}
+
 /// The precision variable `k` is stored in: the request's, but f64 for the modal form, whose
 /// variables the model has already rounded to what the request's precision calls for
 /// (`model::collision::modal_precision`): the low modes' terms cancel, so they need more
@@ -847,8 +852,7 @@ pub fn history_groups(info: &StudyInfo) -> PointGroups {
 
 /// [`history_groups`] of a study of this shape storing these histories.
 pub fn history_groups_of(history: Option<&HistoryRequest>, shape: &ResultShape) -> PointGroups {
-    let modal = history
-        .is_some_and(|h| (0..HISTORY_VARS.len()).any(|k| is_modal(k) && history_stored(h, k)));
+    let modal = history.is_some_and(stores_modal);
     match (modal, shape.dims.last()) {
         (true, Some(last)) => PointGroups::new(MODAL_HISTORY_GROUP, last.size),
         _ => PointGroups::single(),

@@ -12,7 +12,7 @@
 //! their order or on interruptions, so a resumed run's data equal an uninterrupted run's.
 //!
 //! Modules, from the bottom up: [`layout`] (names, units), [`error`], [`header`] (what
-//! identifies a study's journal and file), [`journal`] (the append-only record file),
+//! identifies a study's journal and file), [`record`] (a journal record's payload: summaries and history chunks), [`journal`] (the append-only record file),
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
 //! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`gather`] (points handed over one by one gathered into their groups), [`options`] (what the caller passes and gets back), [`paths`] (the files next
 //! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
@@ -42,6 +42,7 @@ pub mod options;
 pub mod paths;
 pub mod placer;
 pub mod read;
+pub mod record;
 pub mod run_huffman;
 pub mod session;
 pub mod shuffle;

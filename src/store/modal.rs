@@ -4,8 +4,7 @@
 //! `/bat/mode_shape`. A block is mode-major ([mode][time], [mode][shape point]) and ends in
 //! zero rows after the modes it holds.
 
-use super::layout::{self, MODE_BLOCK};
-use crate::model::outcome::HistoryRequest;
+use super::layout::MODE_BLOCK;
 use crate::results::{ShapeSource, StudyInfo};
 use std::ops::Range;
 
@@ -32,11 +31,6 @@ impl ModalExtents {
             points,
         }
     }
-}
-
-/// Whether a request stores the displacement in modal form.
-pub fn stores_modal(h: &HistoryRequest) -> bool {
-    (0..layout::HISTORY_VARS.len()).any(|k| layout::is_modal(k) && layout::history_stored(h, k))
 }
 
 /// Rows up to the last one holding a value other than +0.0 (bit for bit: −0.0 is kept).
