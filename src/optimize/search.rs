@@ -10,6 +10,11 @@
 //! candidates in the same order. Every candidate evaluated is recorded (the caller's
 //! `record`); on a resume the recorded ones are answered from the record, bit for bit, and
 //! only those after it are computed.
+//!
+//! **No design twice.** A design asked for again (Nelder–Mead's shrink steps revisit
+//! vertices, and scaled points outside the box clamp to one design on its boundary) is
+//! answered from the candidates already evaluated, without a new evaluation or record, and
+//! does not count against `max_evaluations`.
 
 use super::design::Design;
 use super::evaluate::Evaluation;
@@ -106,60 +111,115 @@ pub fn unscale(design: &Design, u: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// What a search has done so far.
+struct Progress {
+    /// Candidates evaluated (or replayed), in order.
+    candidates: Vec<Candidate>,
+    /// Why it stopped, once it has.
+    stopped: Option<Stop>,
+    /// How many came from the record.
+    replayed: usize,
+    /// The objective's scale (its magnitude at the first candidate).
+    scale: f64,
+    /// Calls of the cost function so far (argmin's first simplex takes the first n + 1).
+    calls: usize,
+    /// Index into `candidates` by the evaluated design's bits: a design asked for again
+    /// (a shrink step, or two scaled points clamped to one design) is answered from it.
+    seen: HashMap<Vec<u64>, usize>,
+}
+
 struct Problem<'a> {
     design: &'a Design,
     eval: &'a (dyn Fn(&[f64]) -> Evaluation + Sync),
     record: &'a (dyn Fn(&Candidate) -> Result<(), String> + Sync),
     stop: &'a AtomicBool,
     replay: Mutex<HashMap<Vec<u64>, Candidate>>,
-    state: Mutex<(Vec<Candidate>, Option<Stop>, usize, f64)>,
+    progress: Mutex<Progress>,
+}
+
+impl Problem<'_> {
+    /// Stop the search. argmin unwraps the costs of its first simplex, so within it the
+    /// stop is a cost no vertex can beat, and argmin's first step then meets the error.
+    fn halt(&self, why: Stop) -> Result<f64, Error> {
+        let mut p = self.progress.lock().expect("search state");
+        p.stopped.get_or_insert(why);
+        match p.calls <= self.design.variables.len() + 1 {
+            true => Ok(f64::INFINITY),
+            false => Err(Error::msg(format!("{why:?}"))),
+        }
+    }
+
+    /// A design evaluated before: its cost at `u` (the penalty for leaving the box is
+    /// `u`'s own), without evaluating or recording it again.
+    fn seen(&self, u: &[f64], x: &[f64]) -> Option<f64> {
+        let p = self.progress.lock().expect("search state");
+        let c = &p.candidates[*p.seen.get(&key(x))?];
+        Some(penalized(self.design, u, &c.evaluation, p.scale))
+    }
+
+    /// A new candidate, taken into the progress; its cost.
+    fn push(&self, c: Candidate, replayed: bool) -> f64 {
+        let mut p = self.progress.lock().expect("search state");
+        if p.candidates.is_empty() {
+            p.scale = objective_scale(&c.evaluation);
+        }
+        let f = c.penalized;
+        let n = p.candidates.len();
+        p.seen.insert(key(&c.x), n);
+        p.replayed += usize::from(replayed);
+        p.candidates.push(c);
+        f
+    }
+
+    /// Evaluate the design at `u` and record it.
+    fn evaluate(&self, u: &[f64], x: Vec<f64>) -> Result<f64, Error> {
+        let evaluation = (self.eval)(&x);
+        let scale = {
+            let p = self.progress.lock().expect("search state");
+            match p.candidates.is_empty() {
+                true => objective_scale(&evaluation),
+                false => p.scale,
+            }
+        };
+        let c = Candidate {
+            penalized: penalized(self.design, u, &evaluation, scale),
+            u: u.to_vec(),
+            x,
+            evaluation,
+        };
+        if (self.record)(&c).is_err() {
+            return self.halt(Stop::Record);
+        }
+        Ok(self.push(c, false))
+    }
 }
 
 impl CostFunction for Problem<'_> {
     type Param = Vec<f64>;
     type Output = f64;
     fn cost(&self, u: &Vec<f64>) -> Result<f64, Error> {
-        let halt = |s: Stop| {
-            self.state.lock().expect("search state").1 = Some(s);
-            Err(Error::msg(format!("{s:?}")))
+        let (n, stopped) = {
+            let mut p = self.progress.lock().expect("search state");
+            p.calls += 1;
+            (p.candidates.len(), p.stopped)
         };
-        let (n, scale) = {
-            let st = self.state.lock().expect("search state");
-            (st.0.len(), st.3)
-        };
-        if n >= self.design.block.max_evaluations {
-            return halt(Stop::Budget);
-        }
-        if let Some(c) = self.replay.lock().expect("replay").remove(&key(u)) {
-            let mut st = self.state.lock().expect("search state");
-            st.2 += 1;
-            let f = c.penalized;
-            st.0.push(c);
-            return Ok(f);
-        }
-        if self.stop.load(Ordering::SeqCst) {
-            return halt(Stop::Interrupted);
+        if let Some(why) = stopped {
+            return self.halt(why);
         }
         let x = unscale(self.design, u);
-        let evaluation = (self.eval)(&x);
-        let scale = match n {
-            0 => objective_scale(&evaluation),
-            _ => scale,
-        };
-        let c = Candidate {
-            penalized: penalized(self.design, u, &evaluation, scale),
-            u: u.clone(),
-            x,
-            evaluation,
-        };
-        if (self.record)(&c).is_err() {
-            return halt(Stop::Record);
+        if let Some(f) = self.seen(u, &x) {
+            return Ok(f);
         }
-        let mut st = self.state.lock().expect("search state");
-        st.3 = if n == 0 { scale } else { st.3 };
-        let f = c.penalized;
-        st.0.push(c);
-        Ok(f)
+        if n >= self.design.block.max_evaluations {
+            return self.halt(Stop::Budget);
+        }
+        if let Some(c) = self.replay.lock().expect("replay").remove(&key(u)) {
+            return Ok(self.push(c, true));
+        }
+        if self.stop.load(Ordering::SeqCst) {
+            return self.halt(Stop::Interrupted);
+        }
+        self.evaluate(u, x)
     }
 }
 
@@ -195,9 +255,6 @@ pub fn search(
     recorded: Vec<Candidate>,
     stop: &AtomicBool,
 ) -> Outcome {
-    let scale = recorded
-        .first()
-        .map_or(1.0, |c| objective_scale(&c.evaluation));
     let replay = recorded.into_iter().map(|c| (key(&c.u), c)).collect();
     let problem = Problem {
         design,
@@ -205,7 +262,14 @@ pub fn search(
         record,
         stop,
         replay: Mutex::new(replay),
-        state: Mutex::new((Vec::new(), None, 0, scale)),
+        progress: Mutex::new(Progress {
+            candidates: Vec::new(),
+            stopped: None,
+            replayed: 0,
+            scale: 1.0,
+            calls: 0,
+            seen: HashMap::new(),
+        }),
     };
     let solver = NelderMead::new(simplex(design))
         .with_sd_tolerance(design.block.tolerance)
@@ -216,11 +280,11 @@ pub fn search(
     let _ = Executor::new(&problem, solver)
         .configure(|s| s.max_iters(iters))
         .run();
-    let (candidates, stopped, replayed, _) = problem.state.into_inner().expect("search state");
+    let p = problem.progress.into_inner().expect("search state");
     Outcome {
-        candidates,
-        stopped,
-        replayed,
+        candidates: p.candidates,
+        stopped: p.stopped,
+        replayed: p.replayed,
     }
 }
 
