@@ -166,6 +166,7 @@ fn load_study(path: Option<PathBuf>, text: Option<&str>) -> Result<study::Study,
         (Some(p), None) => study::load(&p, &opts),
         (None, None) => unreachable!("the Python side gives a path or text"),
     }
+    .and_then(batstudy::optimize::checked)
     .map_err(|e| (cli::EXIT_BAD_INPUT, e.to_string()))
 }
 

@@ -55,10 +55,16 @@ pub(super) fn check_replaceable(output: &Path) -> Result<(), (String, String)> {
 
 /// Load a study; on bad input print the located error and give the exit code.
 pub(super) fn load_or_report(path: &Path, max_points: usize) -> Result<Study, i32> {
-    study::load(path, &LoadOptions { max_points }).map_err(|e| {
+    load_checked(path, max_points).map_err(|e| {
         eprintln!("{e}");
         EXIT_BAD_INPUT
     })
+}
+
+/// A study read and checked whole, its `optimize` block included: every command that reads
+/// a study (and the Python binding) refuses what `batstudy optimize` would.
+pub(super) fn load_checked(path: &Path, max_points: usize) -> Result<Study, StudyError> {
+    study::load(path, &LoadOptions { max_points }).and_then(crate::optimize::checked)
 }
 
 /// Most worker threads a run may start (issue 31: `-j 100000` spawned threads until the

@@ -8,6 +8,7 @@ use crate::model::outcome::HistoryPrecision;
 use crate::run::ModelSimulator;
 use crate::run::Simulator;
 use crate::study::checks::bat_length;
+use crate::study::error::printable;
 use crate::study::Study;
 use crate::study::DEFAULT_MAX_POINTS;
 use clap::Args;
@@ -39,7 +40,7 @@ pub(super) fn cmd_plan(a: &PlanArgs) -> i32 {
         plan.bats().len()
     );
     if !s.file.description.trim().is_empty() {
-        println!("  {}", s.file.description.trim());
+        println!("  {}", printable(s.file.description.trim(), true));
     }
     print_dims(&s);
     print_estimates(&s);
@@ -65,12 +66,31 @@ fn print_dims(s: &Study) {
                         });
                     format!("{lo} .. {hi} {}", c.units)
                 }
-                crate::results::CoordValues::Labels(l) => l.join(", "),
+                crate::results::CoordValues::Labels(l) => labels_text(l),
             };
-            println!("    {} ({}): {}", c.name, c.path, vals);
+            println!(
+                "    {} ({}): {}",
+                printable(&c.name, false),
+                printable(&c.path, false),
+                vals
+            );
         }
     }
 }
+
+/// Labels as one short line: each quoted (labels hold commas themselves), at most
+/// [`LABELS_SHOWN`] of them with a count of the rest (`plan --list` shows every point).
+fn labels_text(l: &[String]) -> String {
+    let quoted = |s: &String| format!("\"{}\"", printable(s, false).replace('"', "\\\""));
+    let mut out: Vec<String> = l.iter().take(LABELS_SHOWN).map(quoted).collect();
+    if l.len() > LABELS_SHOWN {
+        out.push(format!("… and {} more", l.len() - LABELS_SHOWN));
+    }
+    out.join(", ")
+}
+
+/// Most labels `plan` prints of one dimension.
+const LABELS_SHOWN: usize = 6;
 
 /// The measured estimate of the run time and the output's size.
 fn print_estimates(s: &Study) {
@@ -111,7 +131,7 @@ fn print_estimates(s: &Study) {
     println!(
         "estimated output size: ~{} uncompressed (written to {})",
         human_bytes(bytes_per_point * n as f64),
-        s.output_path(None).display()
+        printable(&s.output_path(None).display().to_string(), false)
     );
 }
 
@@ -121,12 +141,16 @@ fn list_points(s: &Study) {
     println!("points (index, id, parameters):");
     for i in 0..plan.n_points() {
         match plan.point(i) {
-            Ok(p) => println!("{i}\t{:016x}\t{}", p.id, plan.describe(i)),
+            Ok(p) => println!(
+                "{i}\t{:016x}\t{}",
+                p.id,
+                printable(&plan.describe(i), false)
+            ),
             Err(e) => println!(
                 "{i}\t{:016x}\t{}\tERROR: {}",
                 e.id,
-                plan.describe(i),
-                e.message
+                printable(&plan.describe(i), false),
+                printable(&e.message, false)
             ),
         }
     }

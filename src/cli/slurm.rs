@@ -121,6 +121,10 @@ pub(super) fn cmd_slurm(a: &SlurmArgs, invocation: &Invocation) -> i32 {
         Ok(s) => s,
         Err(code) => return code,
     };
+    if let Err(e) = refuse_search(&study) {
+        eprintln!("{e}");
+        return EXIT_BAD_INPUT;
+    }
     let job = check_flags(a, study_file, shards)
         .map_err(JobError::Flag)
         .and_then(|()| job_of(a, invocation, &study, shards));
@@ -280,4 +284,22 @@ fn write_job(job: &crate::slurm::SlurmJob) -> i32 {
             EXIT_RUN_FAILED
         }
     }
+}
+
+/// A design search is one sequence of candidates, each run over the study's grid: shards
+/// of its grid would run the base design alone, which is not what the study asks.
+fn refuse_search(study: &crate::study::Study) -> Result<(), crate::study::StudyError> {
+    if study.file.optimize.is_none() {
+        return Ok(());
+    }
+    let mut e = crate::study::StudyError::new(
+        &study.path,
+        "a study with an `optimize` block is a design search, which `batstudy slurm` cannot split into shards",
+    )
+    .field("optimize")
+    .allowed("`batstudy optimize STUDY --resume -o OUT` in one job (its candidates run on all the job's cores; --resume continues it after a time limit)");
+    if let Some(p) = study.position_of("optimize") {
+        e = e.at(Some(p));
+    }
+    Err(e)
 }

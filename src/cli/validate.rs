@@ -21,7 +21,7 @@ pub(super) fn cmd_validate(files: &[PathBuf], max_points: usize) -> i32 {
         match res {
             Ok(s) => println!(
                 "ok: {}: {} points, {} dimensions, {} bats{}",
-                f.display(),
+                crate::study::error::printable(&f.display().to_string(), false),
                 s.plan.n_points(),
                 s.plan.dims().len(),
                 s.plan.bats().len(),

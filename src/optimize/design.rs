@@ -103,6 +103,12 @@ fn at(parts: &[&str]) -> Vec<Seg> {
     v
 }
 
+/// The study, its `optimize` block (if any) checked as `batstudy optimize` checks it.
+pub fn checked(study: Study) -> Result<Study, StudyError> {
+    design_of(&study)?;
+    Ok(study)
+}
+
 /// The study's `optimize` block, checked (None: the study has none).
 pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
     let Some(block) = study.file.optimize.clone() else {
@@ -147,6 +153,24 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
             .field("optimize.variables")
             .allowed("at least one `path: {min, max}` under `variables`, or a `profile` with a radius `{min, max}`"));
     }
+    if block.max_evaluations <= variables.len() {
+        return Err(located(
+            study,
+            &at(&["max_evaluations"]),
+            format!(
+                "`optimize.max_evaluations` is too small for {} design variables: the first simplex alone takes {}",
+                variables.len(),
+                variables.len() + 1
+            ),
+        )
+        .field("optimize.max_evaluations")
+        .value(block.max_evaluations.to_string())
+        .allowed(format!(
+            "at least {} (variables + 1) and at most 100000",
+            variables.len() + 1
+        )));
+    }
+    check_plausible_bounds(study, &variables)?;
     let objective = objective_of(study, &block)?;
     let limits = limits_of(study, &block)?;
     check_solid_wood(study, &block)?;
@@ -164,6 +188,8 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
 fn bounds_ok(b: &Bounds) -> Result<f64, &'static str> {
     let start = b.start.unwrap_or(0.5 * (b.min + b.max));
     match () {
+        // a span that overflows (bounds of ±1e308) scales every candidate to inf or NaN
+        _ if !(b.max - b.min).is_finite() => Err("finite bounds whose difference is finite"),
         _ if b.min.partial_cmp(&b.max) != Some(std::cmp::Ordering::Less) => Err("min < max"),
         _ if !(b.min..=b.max).contains(&start) => Err("min <= start <= max"),
         _ => Ok(start),
@@ -202,7 +228,10 @@ fn path_variables(study: &Study, block: &OptimizeBlock) -> Result<Vec<Variable>,
         let start = bounds_ok(b).map_err(|allowed| {
             located(study, &here, format!("bad bounds of `{path}`"))
                 .field(format!("optimize.variables.{path}"))
-                .value(format!("min {}, max {}, start {:?}", b.min, b.max, b.start))
+                .value(format!(
+                    "min {:?}, max {:?}, start {:?}",
+                    b.min, b.max, b.start
+                ))
                 .allowed(allowed)
         })?;
         out.push(Variable {
@@ -451,6 +480,42 @@ fn check_solid_wood(study: &Study, block: &OptimizeBlock) -> Result<(), StudyErr
         .field("base.bat")
         .value(format!("{:?}", spec.bat.preset).to_lowercase())
         .allowed("bat.preset r161 (wood) without shell, bore or fill"));
+    }
+    Ok(())
+}
+
+/// Each variable's bounds within its parameter's plausible range (a knot's radius within a
+/// bat's), unless the study allows implausible values: a search would otherwise spend its
+/// whole budget on candidates every point of which is refused.
+fn check_plausible_bounds(study: &Study, variables: &[Variable]) -> Result<(), StudyError> {
+    if study.file.allow_implausible {
+        return Ok(());
+    }
+    for v in variables {
+        let range = match v.knot {
+            Some(_) if v.wall => crate::model::plausible::range_of("bat.shell.thickness"),
+            Some(_) => crate::model::plausible::range_of(crate::model::plausible::PROFILE_RADIUS),
+            None => crate::model::plausible::range_of(&v.name),
+        };
+        let Some(r) = range else { continue };
+        if v.min < r.min || v.max > r.max {
+            let here = match v.knot {
+                Some(_) if v.wall => at(&["profile", "thickness"]),
+                Some(_) => at(&["profile", "radius"]),
+                None => at(&["variables", &v.name]),
+            };
+            return Err(located(
+                study,
+                &here,
+                format!("the bounds of `{}` leave its plausible range", v.name),
+            )
+            .field(format!("optimize.variables.{}", v.name))
+            .value(format!("min {:?}, max {:?}", v.min, v.max))
+            .allowed(format!(
+                "bounds within {} to {} {} ({}); a what-if study beyond it sets `allow_implausible: true`",
+                r.min, r.max, r.unit, r.reason
+            )));
+        }
     }
     Ok(())
 }

@@ -16,6 +16,6 @@ pub mod quantity;
 pub mod rules;
 pub mod search;
 
-pub use design::{design_of, Design, Variable};
+pub use design::{checked, design_of, Design, Variable};
 pub use evaluate::{Evaluation, Evaluator};
 pub use search::{search, Candidate, Stop};
