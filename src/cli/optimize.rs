@@ -80,9 +80,16 @@ pub(super) fn cmd_optimize(a: &OptimizeArgs) -> i32 {
             if !a.quiet {
                 eprint!("{}", report_text(&done, a));
             }
-            match (done.interrupted, done.failed_points) {
-                (true, _) => EXIT_INTERRUPTED,
-                (false, 0) => EXIT_OK,
+            let found = done.table.best.is_some();
+            if !found && !done.interrupted {
+                eprintln!(
+                    "error: no candidate of the search met its constraints without failing: {} holds the study at the start design, which is not a feasible design (its /optimize says why each candidate was refused)",
+                    done.output.display()
+                );
+            }
+            match (done.interrupted, done.failed_points, found) {
+                (true, _, _) => EXIT_INTERRUPTED,
+                (false, 0, true) => EXIT_OK,
                 _ => EXIT_POINTS_FAILED,
             }
         }
@@ -125,6 +132,9 @@ fn settings(a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFail
         _ => Existing::Refuse,
     };
     check_output_of(&study, &output, a.output.is_some(), existing).map_err(bad)?;
+    // the final run writes beside the output first: a file there that is not a leftover
+    // results file would be found only after the whole search
+    check_output_of(&study, &optimum_path(&output), true, Existing::Overwrite).map_err(bad)?;
     if journal_path(&output).exists() && !a.resume && !a.force {
         return Err(bad(StudyError::new(
             &study.path,
@@ -144,8 +154,12 @@ pub fn optimize_study(a: &OptimizeArgs, stop: &AtomicBool) -> Result<FinishedSea
     let started = std::time::Instant::now();
     let io = |e: crate::store::StoreError| failure(EXIT_RUN_FAILED, format!("error: {e}"));
     let (journal, recorded) = match a.resume && journal_path(&output).exists() {
-        true => OptimizeJournal::resume(&output, &study.sha256)
-            .map_err(|e| failure(EXIT_BAD_INPUT, format!("error: {e}")))?,
+        true => OptimizeJournal::resume(
+            &output,
+            &study.sha256,
+            (design.variables.len(), design.limits.len()),
+        )
+        .map_err(|e| failure(EXIT_BAD_INPUT, format!("error: {e}")))?,
         false => (
             OptimizeJournal::create(&output, &study.sha256).map_err(io)?,
             Vec::new(),
@@ -209,9 +223,7 @@ fn write_results(
     stop: &AtomicBool,
 ) -> Result<usize, RunFailure> {
     let at_best = study_at(study, design, x, a.max_points).map_err(bad)?;
-    let mut tmp = output.as_os_str().to_owned();
-    tmp.push(".optimum.h5");
-    let tmp = PathBuf::from(tmp);
+    let tmp = optimum_path(output);
     let args = RunArgs {
         study: study.path.clone(),
         output: Some(tmp.clone()),
@@ -233,6 +245,13 @@ fn write_results(
         .map_err(|e| failure(EXIT_RUN_FAILED, format!("error: {}: {e}", output.display())))?;
     crate::store::journal::sync_parent_dir(output);
     Ok(run.report.failed)
+}
+
+/// Where the study at the best design is run before it is renamed to the output.
+fn optimum_path(output: &Path) -> PathBuf {
+    let mut tmp = output.as_os_str().to_owned();
+    tmp.push(".optimum.h5");
+    PathBuf::from(tmp)
 }
 
 /// The study as a plain study at design `x`: its base with the design applied, without the

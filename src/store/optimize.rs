@@ -21,7 +21,8 @@ pub const INFEASIBLE: i8 = 1;
 /// Status: its evaluation failed (the message says why).
 pub const FAILED: i8 = 2;
 
-const JOURNAL_FORMAT: &str = "batstudy-optimize-journal-1";
+/// Version 2: each row carries a checksum (a flipped bit is a torn row, not a candidate).
+const JOURNAL_FORMAT: &str = "batstudy-optimize-journal-2";
 
 /// One evaluated candidate. Numbers are kept as their bits in the journal (exact, NaN too).
 #[derive(Debug, Clone, PartialEq)]
@@ -55,6 +56,24 @@ fn floats(v: &[u64]) -> Vec<f64> {
     v.iter().map(|&b| f64::from_bits(b)).collect()
 }
 
+/// A row's checksum: the first 8 bytes of the SHA-256 of its JSON, in hex.
+fn checksum(json: &str) -> String {
+    use sha2::{Digest, Sha256};
+    let d = Sha256::digest(json.as_bytes());
+    d[..8].iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A journal line (`CHECKSUM JSON`) whose checksum holds and whose row has `shape` =
+/// (variables, constraints) numbers.
+fn checked_line(line: &str, (vars, limits): (usize, usize)) -> Option<Line> {
+    let (sum, json) = line.split_once(' ')?;
+    if sum != checksum(json) {
+        return None;
+    }
+    let l: Line = serde_json::from_str(json).ok()?;
+    (l.u.len() == vars && l.x.len() == vars && l.constraints.len() == limits).then_some(l)
+}
+
 /// The journal of a search: `OUT.h5.optimize`.
 pub fn journal_path(output: &Path) -> PathBuf {
     let mut s = output.as_os_str().to_owned();
@@ -81,8 +100,14 @@ impl OptimizeJournal {
     }
 
     /// Open an existing journal of the search `id`: its candidates, and the journal cut
-    /// after the last whole one, ready to append.
-    pub fn resume(output: &Path, id: &str) -> Result<(Self, Vec<CandidateRow>), StoreError> {
+    /// after the last whole one, ready to append. A row is whole when its checksum holds
+    /// and it has `shape` = (variables, constraints) numbers; the first that is not ends
+    /// the record (what follows it is computed again: the search is deterministic).
+    pub fn resume(
+        output: &Path,
+        id: &str,
+        shape: (usize, usize),
+    ) -> Result<(Self, Vec<CandidateRow>), StoreError> {
         let path = journal_path(output);
         let io = |e| StoreError::io(&path, "read the search's journal", e);
         let f = std::fs::File::open(&path).map_err(io)?;
@@ -103,7 +128,7 @@ impl OptimizeJournal {
         let mut keep = head.to_string().len() as u64 + 1;
         for line in lines {
             let Ok(line) = line else { break };
-            let Ok(l) = serde_json::from_str::<Line>(&line) else {
+            let Some(l) = checked_line(&line, shape) else {
                 break;
             };
             keep += line.len() as u64 + 1;
@@ -135,7 +160,7 @@ impl OptimizeJournal {
             penalized: row.penalized.to_bits(),
         };
         let text = serde_json::to_string(&line).expect("a line serializes");
-        writeln!(self.file, "{text}")
+        writeln!(self.file, "{} {text}", checksum(&text))
             .and_then(|_| self.file.sync_data())
             .map_err(|e| StoreError::io(&self.path, "append to the search's journal", e))
     }
