@@ -135,6 +135,26 @@ fn hash_str(s: &str) -> PointId {
     u64::from_be_bytes(d[..8].try_into().unwrap())
 }
 
+/// The dotted path and value of the first number in `v` that is not finite.
+fn first_non_finite(v: &Value, path: String) -> Option<(String, f64)> {
+    let join = |k: &str| match path.is_empty() {
+        true => k.to_string(),
+        false => format!("{path}.{k}"),
+    };
+    match v {
+        Value::Number(n) => n.as_f64().filter(|x| !x.is_finite()).map(|x| (path, x)),
+        Value::Sequence(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| first_non_finite(x, format!("{path}[{i}]"))),
+        Value::Mapping(m) => m
+            .iter()
+            .find_map(|(k, x)| first_non_finite(x, join(&value_text(k)))),
+        Value::Tagged(t) => first_non_finite(&t.value, path),
+        _ => None,
+    }
+}
+
 /// Path touches path: equal, or one inside the other.
 pub(crate) fn related(a: &str, b: &str) -> bool {
     a.is_empty()
@@ -249,6 +269,17 @@ impl Plan {
                 .map(|[z, r]| Value::Sequence(vec![Value::from(*z), Value::from(*r)]))
                 .collect();
             let _ = super::paths::set_path(v, "bat.profile.knots", Value::Sequence(k));
+        }
+        // A number that is not finite would become `null` on its way through JSON, and
+        // `null` means "the preset's value": a drawn or searched value of inf would run
+        // silently at the preset's. The study text is checked on load; this holds for
+        // every value a block, a sample or a search puts in.
+        if let Some((path, x)) = first_non_finite(v, String::new()) {
+            return Err(ResolveError::Shape {
+                value: Some(x.to_string()),
+                path,
+                message: "not a finite number (NaN and infinities are refused)".into(),
+            });
         }
         // Through JSON: yaml_serde's Value reads enums only from YAML tags, while a
         // study writes `profile: {knots: …}`.

@@ -152,6 +152,13 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
     }))
 }
 
+/// The score at probability `p` of a standard normal truncated to [za, zb] (za ≤ 0 or the
+/// interval mirrored so that it is: its CDF values then keep their digits).
+fn truncated_score(za: f64, zb: f64, p: f64) -> f64 {
+    let (a, b) = (normal_cdf(za), normal_cdf(zb));
+    normal_quantile(a + p * (b - a))
+}
+
 /// The standard normal CDF.
 pub fn normal_cdf(z: f64) -> f64 {
     0.5 * statrs::function::erf::erfc(-z / std::f64::consts::SQRT_2)
@@ -186,21 +193,37 @@ impl Distribution {
             return min + p * (max - min);
         }
         let (mu, sigma, lo, hi, log) = self.normal_form();
+        let (za, zb) = self.scores();
+        // In the upper tail the CDF rounds to 1 (at 9 sd, 1 − 1e-19), so the interval is
+        // mirrored into the lower tail, where erfc keeps its digits down to 1e-308.
+        let z = match za > 0.0 {
+            true => -truncated_score(-zb, -za, 1.0 - p),
+            false => truncated_score(za, zb, p),
+        };
+        let x = mu + sigma * z;
+        let x = if log { x.exp() } else { x };
+        // rounding may step over a bound by an ulp
+        x.clamp(lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY))
+    }
+
+    /// The truncation's bounds as scores of the normal behind it (±∞ where open).
+    fn scores(&self) -> (f64, f64) {
+        let (mu, sigma, lo, hi, log) = self.normal_form();
         let score = |x: Option<f64>, inf: f64| match x {
             Some(x) if log => (x.ln() - mu) / sigma,
             Some(x) => (x - mu) / sigma,
             None => inf,
         };
-        let (a, b) = (
-            normal_cdf(score(lo, f64::NEG_INFINITY)),
-            normal_cdf(score(hi, f64::INFINITY)),
-        );
-        let z = normal_quantile(a + p * (b - a));
-        let x = mu + sigma * z;
-        if log {
-            x.exp()
-        } else {
-            x
+        (score(lo, f64::NEG_INFINITY), score(hi, f64::INFINITY))
+    }
+
+    /// The probability the truncation keeps, computed in the tail it lies in (0 when the
+    /// interval lies too far out to be drawn in floating point).
+    fn kept(&self) -> f64 {
+        let (za, zb) = self.scores();
+        match za > 0.0 {
+            true => normal_cdf(-za) - normal_cdf(-zb),
+            false => normal_cdf(zb) - normal_cdf(za),
         }
     }
 
@@ -214,7 +237,9 @@ impl Distribution {
             Distribution::Normal { sd, .. } if sd <= 0.0 => {
                 Some(("sd", sd, "a standard deviation > 0"))
             }
-            Distribution::Normal { min, max, .. } => bounds(min, max),
+            Distribution::Normal { min, max, .. } => {
+                bounds(min, max).or_else(|| self.unreachable_tail())
+            }
             Distribution::Lognormal { mean, .. } if mean <= 0.0 => {
                 Some(("mean", mean, "a mean > 0"))
             }
@@ -226,12 +251,33 @@ impl Distribution {
                 m,
                 "a lower bound > 0 (lognormal values are positive)",
             )),
-            Distribution::Lognormal { min, max, .. } => bounds(min, max),
+            Distribution::Lognormal { min, max, .. } => {
+                bounds(min, max).or_else(|| self.unreachable_tail())
+            }
             Distribution::Uniform { min, max } if min >= max => {
                 Some(("max", max, "greater than `min`"))
             }
             Distribution::Uniform { .. } => None,
         }
+    }
+
+    /// A truncation so far in a tail that no double can draw from it (about 37 standard
+    /// deviations out): it would draw ±∞.
+    fn unreachable_tail(&self) -> Option<(&'static str, f64, &'static str)> {
+        if self.kept() > 0.0 {
+            return None;
+        }
+        let (za, _) = self.scores();
+        let (_, _, lo, hi, _) = self.normal_form();
+        let (field, value) = match za > 0.0 {
+            true => ("min", lo.unwrap_or(f64::NAN)),
+            false => ("max", hi.unwrap_or(f64::NAN)),
+        };
+        Some((
+            field,
+            value,
+            "bounds that keep some of the distribution: within about 37 standard deviations of the mean (further out no value can be drawn)",
+        ))
     }
 
     fn kind(&self) -> &'static str {
@@ -423,6 +469,38 @@ mod tests {
             max: None,
         };
         assert!((ln.quantile(0.5) - 2.0 / 1.25f64.sqrt()).abs() < 1e-12);
+    }
+
+    /// A normal truncated far in its upper tail (9 to 15 sd out, where the CDF rounds to
+    /// 1) draws finite values inside its bounds; one beyond any double's reach is refused.
+    #[test]
+    fn truncations_far_in_a_tail_draw_inside_their_bounds() {
+        let tail = |min: f64, max: f64| Distribution::Normal {
+            mean: 649.0,
+            sd: 10.0,
+            min: Some(min),
+            max: Some(max),
+        };
+        for d in [tail(740.0, 800.0), tail(498.0, 558.0)] {
+            let v = draw(&block(&[("a", d.clone())], vec![], 64)).unwrap();
+            let (lo, hi) = match d {
+                Distribution::Normal { min, max, .. } => (min.unwrap(), max.unwrap()),
+                _ => unreachable!(),
+            };
+            assert!(
+                v[0].iter().all(|x| x.is_finite() && (lo..=hi).contains(x)),
+                "{v:?}"
+            );
+            // the truncated normal piles up at the bound nearest the mean: the sample's
+            // mean lies within one sd/z of it (the exponential tail's mean excess)
+            let mean = v[0].iter().sum::<f64>() / 64.0;
+            let near = if lo > 649.0 { lo } else { hi };
+            assert!((mean - near).abs() < 10.0 / 9.0, "{mean}");
+        }
+        let e = draw(&block(&[("a", tail(1100.0, 1200.0))], vec![], 8)).unwrap_err();
+        assert_eq!(e.field, "sample.params.a.normal.min");
+        let e = draw(&block(&[("a", tail(100.0, 200.0))], vec![], 8)).unwrap_err();
+        assert_eq!(e.field, "sample.params.a.normal.max");
     }
 
     #[test]
