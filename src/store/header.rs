@@ -90,7 +90,7 @@ impl JournalHeader {
             )
         } else if self.study_sha256 != want.study_sha256 {
             format!(
-                "it belongs to study '{}' (sha256 {}), not to study '{}' (sha256 {}): the study file changed or is another study",
+                "it belongs to study '{}' (sha256 {}), not to study '{}' (sha256 {}): the study file or a file it names (a profile CSV) changed, or it is another study; --force starts over",
                 self.study_name, short(&self.study_sha256), want.study_name, short(&want.study_sha256)
             )
         } else if self.history_group != want.history_group {

@@ -25,7 +25,7 @@ pub struct Study {
     pub path: PathBuf,
     /// Its text, verbatim.
     pub text: String,
-    /// Hex SHA-256 of `text`.
+    /// Hex SHA-256 of `text` and of the files it names (profiles): see `study_digest`.
     pub sha256: String,
     pub file: StudyFile,
     pub plan: Plan,
@@ -44,6 +44,9 @@ pub const MAX_STUDY_BYTES: u64 = 16 << 20;
 
 /// Validate study text (`path` names it in messages and anchors relative profile paths).
 pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, StudyError> {
+    // A byte-order mark (as some Windows editors write) is not part of the YAML: the
+    // parser would take it for the content of a first document.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let cx = Ctx {
         file: path,
         src: SourceMap::build(text),
@@ -92,9 +95,14 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         let value = get_segs(&root, &segs).map(value_text);
         let msg = e.into_inner().to_string();
         let whole_document = p.is_empty();
-        let mut err =
-            cx.err(&segs, msg.clone())
-                .field(if whole_document { "study".into() } else { p });
+        // serde's own words for an untagged enum name a Rust type; `allowed` names the forms
+        let said = match msg.starts_with("data did not match any variant of untagged enum") {
+            true => "not one of the forms this field takes".to_string(),
+            false => msg.clone(),
+        };
+        let mut err = cx
+            .err(&segs, said)
+            .field(if whole_document { "study".into() } else { p });
         if let Some(v) = value.filter(|_| !whole_document) {
             err = err.value(v);
         }
@@ -109,10 +117,30 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
     Ok(Study {
         path: path.to_path_buf(),
         text: text.to_string(),
-        sha256: hex(&Sha256::digest(text.as_bytes())),
+        sha256: study_digest(text, &plan),
         file,
         plan,
     })
+}
+
+/// Hex SHA-256 of the study's text and of every file it names (each profile CSV's path
+/// and knots, in the order of their paths): what `--resume` and `merge` compare, so that
+/// a profile changed between two runs is a changed study. A study that names no file
+/// keeps the digest of its text alone.
+fn study_digest(text: &str, plan: &Plan) -> String {
+    let mut h = Sha256::new();
+    h.update(text.as_bytes());
+    let mut named: Vec<_> = plan.profiles.iter().collect();
+    named.sort_by(|a, b| a.0.cmp(b.0));
+    for (path, knots) in named {
+        h.update(b"\0profile\0");
+        h.update(path.as_bytes());
+        h.update(b"\0");
+        for x in knots.iter().flatten() {
+            h.update(x.to_le_bytes());
+        }
+    }
+    hex(&h.finalize())
 }
 
 fn hex(b: &[u8]) -> String {
