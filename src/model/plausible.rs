@@ -365,6 +365,14 @@ pub const RANGES: &[Range] = &[
         get: |s| s.flight.as_ref().map(|f| f.temperature),
     },
     Range {
+        path: "flight.pressure",
+        min: 85000.0,
+        max: 110000.0,
+        unit: "Pa",
+        reason: "barometric pressures reduced to sea level on record lie between 870 and 1084 hPa; weather reports give 980-1040",
+        get: |s| s.flight.as_ref().map(|f| f.pressure),
+    },
+    Range {
         path: "flight.wind_speed",
         min: -30.0,
         max: 30.0,
@@ -374,14 +382,62 @@ pub const RANGES: &[Range] = &[
     },
 ];
 
+/// The label of a profile's length (its last knot's z) in [`PROFILE_RANGES`].
+pub const PROFILE_LENGTH: &str = "bat.profile.length";
+/// The label of a profile's knot radii in [`PROFILE_RANGES`].
+pub const PROFILE_RADIUS: &str = "bat.profile.radius";
+
+/// The knots of a profile given by value or read from its CSV (the study layer puts a
+/// CSV's knots in the spec before it is checked).
+fn knots(s: &CollisionSpec) -> Option<&[[f64; 2]]> {
+    match &s.bat.profile {
+        Some(crate::model::spec::ProfileSpec::Knots(k)) => Some(k),
+        _ => None,
+    }
+}
+
+/// Of `values`, the first outside [lo, hi], else the largest: the one a range check needs.
+fn extreme(values: impl Iterator<Item = f64>, lo: f64, hi: f64) -> Option<f64> {
+    let mut largest: Option<f64> = None;
+    for v in values {
+        if !(lo..=hi).contains(&v) {
+            return Some(v);
+        }
+        largest = Some(largest.map_or(v, |l| l.max(v)));
+    }
+    largest
+}
+
+/// Ranges of what a profile implies rather than of one field: a profile file in the wrong
+/// unit (the R161 table read as metres when written in centimetres is an 84 m bat) must
+/// meet the same bounds as `bat.length` and a bat's radius.
+pub const PROFILE_RANGES: &[Range] = &[
+    Range {
+        path: PROFILE_LENGTH,
+        min: 0.4,
+        max: 1.5,
+        unit: "m",
+        reason: "the last knot is the bat's length: youth bats are about 0.6 m, adult bats 0.8-0.9 m",
+        get: |s| knots(s).and_then(|k| k.last()).map(|k| k[0]),
+    },
+    Range {
+        path: PROFILE_RADIUS,
+        min: 0.003,
+        max: 0.06,
+        unit: "m",
+        reason: "bat radii lie between about 0.5 cm (the thinnest handles) and 3.5 cm (big-barrel youth bats); a profile in cm or mm is 10-1000 times that",
+        get: |s| knots(s).and_then(|k| extreme(k.iter().map(|p| p[1]), 0.003, 0.06)),
+    },
+];
+
 /// The plausible range of a path, if it has one.
 pub fn range_of(path: &str) -> Option<&'static Range> {
-    RANGES.iter().find(|r| r.path == path)
+    RANGES.iter().chain(PROFILE_RANGES).find(|r| r.path == path)
 }
 
 /// The first value of `spec` outside its plausible range.
 pub fn check_plausible(spec: &CollisionSpec) -> Result<(), ModelError> {
-    for r in RANGES {
+    for r in RANGES.iter().chain(PROFILE_RANGES) {
         if let Some(v) = (r.get)(spec) {
             if !(v >= r.min && v <= r.max) {
                 return Err(ModelError::OutOfRange {
@@ -441,9 +497,34 @@ mod tests {
         }
     }
 
+    /// A profile written in other units than metres (the R161 table in centimetres, radii
+    /// in millimetres) is refused by the same bounds as a bat's length and radius.
+    #[test]
+    fn profiles_in_the_wrong_unit_are_refused() {
+        use crate::model::spec::ProfileSpec;
+        let metres = vec![[0.0, 0.012], [0.5, 0.016], [0.84, 0.033]];
+        let with = |k: Vec<[f64; 2]>| {
+            let mut s = CollisionSpec::base_case(0.6);
+            s.bat.profile = Some(ProfileSpec::Knots(k));
+            check_plausible(&s)
+        };
+        with(metres.clone()).unwrap();
+        let scaled = |fz: f64, fr: f64| metres.iter().map(|p| [p[0] * fz, p[1] * fr]).collect();
+        for (k, path) in [
+            (scaled(100.0, 100.0), PROFILE_LENGTH),
+            (scaled(1.0, 1000.0), PROFILE_RADIUS),
+            (scaled(1.0, 0.1), PROFILE_RADIUS),
+        ] {
+            match with(k) {
+                Err(ModelError::OutOfRange { path: p, .. }) => assert_eq!(p, path),
+                other => panic!("{path}: {other:?}"),
+            }
+        }
+    }
+
     #[test]
     fn every_range_is_ordered() {
-        for r in RANGES {
+        for r in RANGES.iter().chain(PROFILE_RANGES) {
             assert!(r.min < r.max, "{}", r.path);
         }
     }

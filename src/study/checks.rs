@@ -28,8 +28,14 @@ pub fn bat_length(bat: &BatSpec) -> f64 {
 pub fn check_spec(spec: &CollisionSpec, allow_implausible: bool) -> Vec<Violation> {
     let violation = |e: crate::model::ModelError, message: Option<String>| {
         let (path, value, allowed) = e.field_value_allowed();
+        use crate::model::ModelError as E;
+        // errors that name no single field say what is wrong in the model's own sentence
         let message = message.or_else(|| {
-            matches!(e, crate::model::ModelError::StepBudget { .. }).then(|| e.to_string())
+            matches!(
+                e,
+                E::StepBudget { .. } | E::Unsupported(_) | E::NoSeparation { .. }
+            )
+            .then(|| e.to_string())
         });
         vec![Violation {
             path,

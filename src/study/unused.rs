@@ -56,8 +56,43 @@ fn speed_dependent(t: &Value) -> bool {
     law(t) == "speed_dependent"
 }
 
+/// Whether the point has a batter (whose pitch and swing set the ball's speed).
+fn batter(t: &Value) -> bool {
+    get_path(t, "batter").is_some_and(|b| !b.is_null())
+}
+
+/// Whether the target is a bat (not the rigid wall, which has no geometry or material).
+fn a_bat(t: &Value) -> bool {
+    text(t, "bat.preset", "r161") != "wall"
+}
+
+/// A bat field the wall ignores.
+macro_rules! bat_field {
+    ($field:literal) => {
+        Rule {
+            field: $field,
+            used_when:
+                "with a bat (bat.preset other than wall: a wall has no geometry or material)",
+            uses: a_bat,
+        }
+    };
+}
+
 /// Every field that an option can make irrelevant.
 pub const RULES: &[Rule] = &[
+    Rule {
+        field: "ball.speed",
+        used_when: "without a batter block (a batter's pitch_speed and bat_speed set the approach)",
+        uses: |t| !batter(t),
+    },
+    bat_field!("bat.length"),
+    bat_field!("bat.material"),
+    bat_field!("bat.shell"),
+    bat_field!("bat.fill"),
+    bat_field!("bat.bore"),
+    bat_field!("bat.profile"),
+    bat_field!("bat.handle"),
+    bat_field!("bat.ends"),
     Rule {
         field: "ball.law.stiffness",
         used_when: "by the wave model with ball.law.kind linear_hysteresis or elastic, or speed_dependent with loading linear",

@@ -15,6 +15,20 @@ pub fn swing_rate(batter: &BatterSpec, bat: &PreparedBat) -> f64 {
     reference_rate * (batter.reference_moi / inertia).powf(batter.exponent)
 }
 
+/// A batter sets the swing: a spec that also sets `swing.omega` or `swing.cm_speed` says
+/// two things at once.
+pub fn swing_conflict(spec: &CollisionSpec) -> Option<ModelError> {
+    spec.batter.as_ref()?;
+    let allowed = "unset with a batter block (the batter's bat_speed and the bat's moment of inertia set the swing)";
+    [
+        ("swing.omega", spec.swing.omega),
+        ("swing.cm_speed", spec.swing.cm_speed),
+    ]
+    .into_iter()
+    .find(|&(_, v)| v != 0.0)
+    .map(|(path, v)| crate::model::error::out_of_range(path, v, allowed))
+}
+
 /// `spec` with the swing its batter gives this bat: the bat turns about the pivot, which is
 /// at rest at contact, so in the frame of the bat's CM it turns at ω = −Ω (toward the
 /// ball) while the CM moves at Ω (z_cm − pivot) toward the pitcher; the ball meets the CM
@@ -26,10 +40,8 @@ pub fn swung<'a>(
     let Some(batter) = &spec.batter else {
         return Ok(Cow::Borrowed(spec));
     };
-    if spec.swing.omega != 0.0 || spec.swing.cm_speed != 0.0 {
-        return Err(ModelError::Unsupported(
-            "swing.omega or swing.cm_speed with a batter (the batter sets the swing)",
-        ));
+    if let Some(e) = swing_conflict(spec) {
+        return Err(e);
     }
     let rate = swing_rate(batter, bat);
     let cm_speed = rate * (bat.properties().z_cm - batter.pivot);

@@ -204,6 +204,9 @@ fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
             "a batter with bat.preset: wall (a wall is not swung)",
         ));
     }
+    if let Some(e) = crate::model::collision::batter::swing_conflict(spec) {
+        return Err(e);
+    }
     check(
         "batter.pitch_speed",
         b.pitch_speed,
@@ -269,7 +272,10 @@ fn check_flight(f: &crate::model::spec::FlightSpec) -> Result<(), ModelError> {
         relative_humidity: f.humidity,
         wind_m_s: [0.0; 3],
     };
-    atmosphere.validate().map_err(|e| flight_field(e, f))
+    // the air's density, not only each field: dry air less its water vapour can be
+    // negative (a pressure near 0), which would fail every flight
+    atmosphere.air_density().map_err(|e| flight_field(e, f))?;
+    Ok(())
 }
 
 /// A flight error named by the study's field.
@@ -293,7 +299,9 @@ fn flight_field(
             };
             out_of_range(path, value, allowed)
         }
-        other => out_of_range("flight.humidity", f.humidity, &other.to_string()),
+        // dry air less its water vapour below zero: the pressure is far too low (weather
+        // reports' pressures always exceed the vapour term)
+        other => out_of_range("flight.pressure", f.pressure, &other.to_string()),
     }
 }
 
