@@ -264,12 +264,14 @@ pub fn run_settings(
                     }
                 })
                 .map(StoreSink::new)
-                .map_err(|e| {
-                    let code = match e.is_bad_input() {
-                        true => EXIT_BAD_INPUT,
-                        false => EXIT_RUN_FAILED,
-                    };
-                    RunFailure::new(code, format!("error: {}: {e}", path.display()))
+                .map_err(|e| match e.is_bad_input() {
+                    true => {
+                        RunFailure::new(EXIT_BAD_INPUT, format!("error: {}: {e}", path.display()))
+                    }
+                    false => RunFailure::new(
+                        EXIT_RUN_FAILED,
+                        run_failed_text(&settings, &format!("{}: {e}", path.display())),
+                    ),
                 })
         },
         stop,
@@ -337,8 +339,47 @@ where
         &settings.options,
         stop,
     )
-    .map_err(|e| RunFailure::new(EXIT_RUN_FAILED, format!("error: {e}")))?;
+    .map_err(|e| RunFailure::new(EXIT_RUN_FAILED, run_failed_text(settings, &e.to_string())))?;
     Ok((report, started.elapsed()))
+}
+
+/// The message of a run that failed midway (I/O): its cause, a full disk named as such,
+/// and the command that finishes it (the journal keeps every finished point).
+fn run_failed_text(settings: &RunSettings, error: &str) -> String {
+    let dir = match settings.output.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let free = free_bytes(&dir);
+    let full = error.contains("No space left") || free.is_some_and(|b| b < 1 << 20);
+    let mut t = format!("error: {error}");
+    if full {
+        t.push_str(&format!(
+            "\nno space left on the device that holds {} ({} bytes free)",
+            dir.display(),
+            free.map_or_else(|| "?".into(), |b| b.to_string())
+        ));
+    }
+    let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());
+    t.push_str(&format!(
+        "\nthe points finished so far are kept; once the cause is fixed, finish the run with:\n  {program} run {} --resume -o {}",
+        settings.study.path.display(),
+        settings.output.display()
+    ));
+    if let Some(sh) = settings.options.shard {
+        t.push_str(&format!(" --shard {sh}"));
+    }
+    t
+}
+
+/// Bytes free for this user on the file system holding `dir`.
+fn free_bytes(dir: &Path) -> Option<u64> {
+    use std::os::unix::ffi::OsStrExt;
+    let c = std::ffi::CString::new(dir.as_os_str().as_bytes()).ok()?;
+    let mut st: libc::statvfs = unsafe { std::mem::zeroed() };
+    // SAFETY: `c` is a NUL-terminated path and `st` a statvfs the call fills in.
+    let ok = unsafe { libc::statvfs(c.as_ptr(), &mut st) } == 0;
+    ok.then(|| st.f_bavail as u64 * st.f_frsize as u64)
 }
 
 /// Exit code of a finished run.

@@ -31,10 +31,29 @@ pub fn merge(
             ..opts.clone()
         },
     )?;
-    for p in shards {
-        read::for_each_record(p, |r| s.write(r))?;
+    let copied = shards
+        .iter()
+        .try_for_each(|p| read::for_each_record(p, |r| s.write(r)).map(drop));
+    let merged = match copied {
+        Ok(()) => s.finish(),
+        Err(e) => {
+            drop(s);
+            Err(e)
+        }
+    };
+    // A merge has nothing to resume (its shards are its record): what a failed one wrote
+    // would only make the retry refuse the output as an interrupted run.
+    if merged.is_err() {
+        discard(out);
     }
-    s.finish()
+    merged
+}
+
+/// Remove what a failed merge into `out` left: its journal and the file it was building.
+fn discard(out: &Path) {
+    use super::paths::{journal_path, partial_path};
+    let _ = super::paths::remove_if_exists(&journal_path(out));
+    let _ = super::paths::remove_if_exists(&partial_path(out));
 }
 
 /// The id a point of the study at this flat index has (the study's own, recomputed).

@@ -170,7 +170,7 @@ pub fn for_each_record(
         });
     }
     let shape: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
-    let summary = SummaryArrays::open(&f, path, shape.iter().product())?;
+    let summary = SummaryArrays::open(&f, path, &shape)?;
     let mut messages = error_messages(&f, path)?;
     let histories = history_arrays(&f, path, &header)?;
     let result_shape = crate::results::ResultShape {
@@ -237,7 +237,7 @@ struct SummarySlab {
 }
 
 impl SummaryArrays {
-    fn open(f: &hdf5::File, path: &Path, n: usize) -> Result<Self, StoreError> {
+    fn open(f: &hdf5::File, path: &Path, shape: &[usize]) -> Result<Self, StoreError> {
         let g = f.group(l::GROUP_SUMMARY).ctx(path, "open group summary")?;
         let get = |name: &str| g.dataset(name).ctx(path, &format!("open summary/{name}"));
         let mut floats = Vec::new();
@@ -254,11 +254,20 @@ impl SummaryArrays {
             ids: get(l::POINT_ID.name)?,
             bats: get(l::BAT_INDEX.name)?,
         };
-        if [&a.status, &a.recontact, &a.ids, &a.bats]
-            .iter()
-            .any(|d| d.size() != n)
-        {
-            return Err(bad(path, "summary arrays do not match the study's shape"));
+        // every array has the study's shape (a file reshaped since it was written would
+        // be read with slabs of the wrong rank: the library's error, not the file's)
+        let every = [&a.status, &a.recontact, &a.ids, &a.bats]
+            .into_iter()
+            .chain(a.floats.iter().flatten());
+        if let Some(d) = every.into_iter().find(|d| d.shape() != shape) {
+            return Err(bad(
+                path,
+                format!(
+                    "{} has shape {:?}, where the study's dimensions are {shape:?}",
+                    d.name(),
+                    d.shape()
+                ),
+            ));
         }
         Ok(a)
     }
@@ -345,6 +354,16 @@ fn history_arrays(
         let ds = hg
             .dataset(name)
             .ctx(path, &format!("open history/{name}"))?;
+        let study: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
+        if ds.shape().get(..rank) != Some(&study[..]) {
+            return Err(bad(
+                path,
+                format!(
+                    "history/{name} has shape {:?}, where the study's dimensions are {study:?}",
+                    ds.shape()
+                ),
+            ));
+        }
         let tail = ds.shape().get(rank..).unwrap_or_default().to_vec();
         v.push((k, ds, tail));
     }

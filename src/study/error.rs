@@ -51,9 +51,27 @@ impl StudyError {
     }
 }
 
+/// `s` as it may reach a terminal: control characters (an escape sequence would recolour
+/// or clear the user's screen, a carriage return overwrite a line) written as `\u{..}`
+/// escapes. `lines` keeps line breaks (a description's own).
+pub fn printable(s: &str, lines: bool) -> std::borrow::Cow<'_, str> {
+    let bad = |c: char| c.is_control() && !(lines && c == '\n');
+    if !s.chars().any(bad) {
+        return s.into();
+    }
+    s.chars()
+        .map(|c| match bad(c) {
+            true => c.escape_unicode().to_string(),
+            false => c.to_string(),
+        })
+        .collect::<String>()
+        .into()
+}
+
 impl fmt::Display for StudyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file.display())?;
+        let p = |s: &str| printable(s, false).into_owned();
+        write!(f, "{}", p(&self.file.display().to_string()))?;
         if let Some(l) = self.line {
             write!(f, ":{l}")?;
             if let Some(c) = self.column {
@@ -62,14 +80,14 @@ impl fmt::Display for StudyError {
         }
         write!(f, ": error")?;
         if let Some(field) = &self.field {
-            write!(f, " in `{field}`")?;
+            write!(f, " in `{}`", p(field))?;
         }
-        write!(f, ": {}", self.message)?;
+        write!(f, ": {}", printable(&self.message, true))?;
         if let Some(v) = &self.value {
-            write!(f, "\n  value: {v}")?;
+            write!(f, "\n  value: {}", p(v))?;
         }
         if let Some(a) = &self.allowed {
-            write!(f, "\n  allowed: {a}")?;
+            write!(f, "\n  allowed: {}", printable(a, true))?;
         }
         Ok(())
     }
@@ -104,6 +122,7 @@ pub(crate) fn allowed_from_serde(msg: &str) -> Option<String> {
                 "PointsBlock" => "a list of parameter sets `[{path: value, …}, …]`, or `{name: DIM, sets: [{path: value, …}, …]}`",
                 "AxisValues" => "a non-empty list, {linspace: [start, stop, n]}, {range: [start, stop, step]}",
                 "ProfileSpec" => "`{csv: PATH}` or a list of knots `[[z, radius], …]` (m)",
+                "Knot" => "a number (fixed, m) or `{min, max, start}` (a design variable, m)",
                 _ => "one of the forms in docs/study-files.md",
             }
             .to_string(),

@@ -82,6 +82,9 @@ pub(super) fn build_plan(
     let mut unused = check_axis_values(cx, file, &plan)?;
     distinct_bats(cx, file, &mut plan)?;
     super::coords::complete_coords(&mut plan);
+    // again with the coordinates just derived (`<dim>_label`, a record's fields), which
+    // may meet a name the study gave
+    check_stored_names(cx, file, &plan.dims, &plan.shape)?;
     if n <= FULL_CHECK_LIMIT {
         check_every_point(cx, file, &mut plan, &mut unused)?;
     }
@@ -141,6 +144,13 @@ fn grid_dims(cx: &Ctx, file: &StudyFile) -> Result<Vec<PlanDim>, StudyError> {
                     "a non-empty list, {linspace: [start, stop, n]}, {range: [start, stop, step]}",
                 )
         })?;
+        if let Some(v) = repeated(&values) {
+            return Err(cx
+                .err(&at, format!("`grid.{key}` lists a value twice"))
+                .field(format!("grid.{key}"))
+                .value(value_text(v))
+                .allowed("each value once: a coordinate that repeats makes its points ambiguous (selection, the sweet spot along the axis)"));
+        }
         dims.push(PlanDim {
             name: coord_name(key),
             size: values.len(),
@@ -149,6 +159,26 @@ fn grid_dims(cx: &Ctx, file: &StudyFile) -> Result<Vec<PlanDim>, StudyError> {
         });
     }
     Ok(dims)
+}
+
+/// A value an axis lists twice (numbers equal as `same_value` takes them), if any.
+fn repeated(values: &[Value]) -> Option<&Value> {
+    let mut numbers: Vec<(f64, &Value)> = values
+        .iter()
+        .filter_map(|v| v.as_f64().map(|x| (x, v)))
+        .collect();
+    numbers.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let twice = numbers
+        .windows(2)
+        .find(|w| super::plan::same_value(w[0].1, w[1].1))
+        .map(|w| w[1].1);
+    let mut texts = std::collections::HashSet::new();
+    twice.or_else(|| {
+        values
+            .iter()
+            .filter(|v| v.as_f64().is_none())
+            .find(|v| !texts.insert(value_text(v)))
+    })
 }
 
 fn axis_text(axis: &AxisValues) -> String {

@@ -122,7 +122,7 @@ fn default_over() -> Aggregate {
 }
 
 /// A constraint: a bound on a quantity, or a rule set by name.
-#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, JsonSchema)]
 #[serde(untagged)]
 pub enum Constraint {
     /// `{rules: ncaa_bbcor}` or `{rules: mlb_wood}`: the rule book's limits
@@ -132,6 +132,25 @@ pub enum Constraint {
     /// within [min, max] (either may be left out). `over` defaults to the worst case: the
     /// grid's largest value against `max`, its smallest against `min`.
     Bound(QuantityBound),
+}
+
+/// Told apart by their keys (`rules` or `quantity`), so that a mistake inside one form is
+/// reported as that form's (an unknown rule set, a misspelt bound) and not as "no form
+/// matched".
+impl<'de> Deserialize<'de> for Constraint {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let v = serde_json::Value::deserialize(d)?;
+        let has = |k: &str| v.as_object().is_some_and(|m| m.contains_key(k));
+        let form = |e: serde_json::Error| D::Error::custom(e.to_string());
+        match (has("rules"), has("quantity")) {
+            (true, false) => serde_json::from_value(v).map(Constraint::Rules).map_err(form),
+            (false, true) => serde_json::from_value(v).map(Constraint::Bound).map_err(form),
+            _ => Err(D::Error::custom(
+                "a constraint is either `{rules: ncaa_bbcor | mlb_wood}` or `{quantity: NAME, min: a, max: b}`",
+            )),
+        }
+    }
 }
 
 /// A rule set by name.

@@ -24,6 +24,16 @@ pub fn check_output(path: &Path, existing: Existing) -> Result<(), (String, Stri
             "a file path such as results/study.h5".into(),
         ));
     }
+    // The C library that writes the file ends a path at its first NUL byte.
+    if path.as_os_str().as_encoded_bytes().contains(&0) {
+        return Err((
+            format!(
+                "output `{}` holds a NUL byte",
+                path.display().to_string().escape_debug()
+            ),
+            "a file path without NUL bytes, such as results/study.h5".into(),
+        ));
+    }
     if path.is_dir() {
         return Err((
             format!("output `{}` is a folder", path.display()),
