@@ -9,23 +9,6 @@ use hdf5::types::VarLenUnicode;
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// `text` safe to print on a terminal: control characters other than the newline (escape
-/// sequences, carriage returns) and the bidirectional overrides become `\u{…}`. A results
-/// file's strings (labels carry user-chosen profile paths; a file can be edited) are data,
-/// never commands to the terminal (issue 31).
-pub fn printable(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        let bidi = matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}');
-        if (c.is_control() && c != '\n') || bidi {
-            out.push_str(&format!("\\u{{{:x}}}", c as u32));
-        } else {
-            out.push(c);
-        }
-    }
-    out
-}
-
 /// A human-readable description of a results file: study, layout version, dims, counts by
 /// status, sweet spots.
 pub fn inspect(path: &Path) -> Result<String, StoreError> {
@@ -53,7 +36,9 @@ pub fn inspect(path: &Path) -> Result<String, StoreError> {
     if let Ok(bg) = f.group(l::GROUP_BAT) {
         inspect_bats(&bg, &mut s);
     }
-    Ok(printable(&s))
+    // a results file's strings (labels carry user-chosen profile paths; a file can be
+    // edited) are data, never commands to the terminal
+    Ok(crate::study::error::printable(&s, true).into_owned())
 }
 
 /// The dims, the points by status, the histories.

@@ -50,7 +50,7 @@ pub mod writeback;
 
 pub use encode::{EncodedRecord, RecordEncoder};
 pub use error::StoreError;
-pub use inspect::{inspect, printable};
+pub use inspect::inspect;
 pub use merge::{merge, merge_check};
 pub use options::{iso8601_now, RunMeta, StoreOptions, Summary};
 pub use paths::{discard_output, journal_path, partial_path};

@@ -61,7 +61,7 @@ pub struct StudyFile {
     /// Search a design (`batstudy optimize`): design variables with bounds, an objective
     /// over the study's other dimensions, constraints and rule sets. `batstudy run` runs
     /// the study at its base design and ignores this block.
-    #[serde(default, deserialize_with = "via_json")]
+    #[serde(default)]
     pub optimize: Option<super::optimize_block::OptimizeBlock>,
     /// Time histories to store. Default: summaries only.
     #[serde(default)]

@@ -38,3 +38,20 @@ def test_optimize_finds_the_centre_of_mass(tmp_path):
 def test_optimize_refuses_a_study_without_the_block(tmp_path):
     with pytest.raises(RuntimeError, match="status 2"):
         batstudy.optimize({k: v for k, v in STUDY.items() if k != "optimize"}, tmp_path / "x.h5")
+
+
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"max_evaluations": 0}, "optimize.max_evaluations"),
+        ({"objective": {"maximize": "exit_sped"}}, "optimize.objective.maximize"),
+        ({"variables": {"impact.z": {"min": 0.83, "max": 0.40}}}, "optimize.variables.impact.z"),
+    ],
+)
+def test_validate_and_plan_refuse_what_the_command_refuses(change, field):
+    """`validate()` and `plan()` check the `optimize` block as `batstudy optimize` does (they
+    accepted these three blocks, which the command refuses with exit status 2)."""
+    bad = {**STUDY, "optimize": {**STUDY["optimize"], **change}}
+    for call in (batstudy.validate, batstudy.plan):
+        with pytest.raises(batstudy.StudyError, match=field.replace(".", r"\.")):
+            call(bad)
