@@ -95,6 +95,21 @@ const TOKENS: &[&str] = &[
     "\r",
     "\u{2028}",
     "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[",
+    // the `sample` and `optimize` blocks: far tails, huge bounds, tiny budgets, rule sets
+    "sample: {n: 8, params: {bat.material.density: {normal: {mean: 649, sd: 10, min: 740, max: 800}}}}",
+    "{normal: {mean: 649, sd: 10, min: 1100, max: 1200}}",
+    "{lognormal: {mean: 0.5, cov: 0.01, min: 0.9}}",
+    "{uniform: {min: 0.4, max: 0.4}}",
+    "correlation: [{between: [a, b], rho: 1}]",
+    "max_evaluations: 1",
+    "max_evaluations: 0",
+    "{min: -1.0e308, max: 1.0e308}",
+    "{min: 0.5, max: 0.8, start: 0.9}",
+    "{rules: ncaa_bbcor}",
+    "{rules: ncaa}",
+    "{quantity: exit_speed, max: -100}",
+    "{maximize: sweet_spot.exit_speed}",
+    "objective: {minimize: bat.mass}",
 ];
 
 fn mutate(text: &str, rng: &mut Rng) -> String {
@@ -198,8 +213,84 @@ fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
     true
 }
 
+/// A rigid design search and a sampled study, small enough that most mutants run.
+const SMALL_SEEDS: [(&str, &str); 2] = [
+    (
+        "search.yaml",
+        "name: search\nmodel: rigid\nbase:\n  impact: {z: 0.6}\n  swing: {omega: -30}\ngrid:\n  ball.speed: [30, 40]\n\
+         optimize:\n  max_evaluations: 20\n  variables:\n    impact.z: {min: 0.40, max: 0.83}\n    ball.law.cor: {min: 0.4, max: 0.6}\n\
+         \x20 objective: {maximize: exit_speed}\n  constraints:\n    - {quantity: exit_speed, min: 5}\n",
+    ),
+    (
+        "sample.yaml",
+        "name: sample\nmodel: rigid\nbase:\n  impact: {z: 0.7}\nsample:\n  n: 8\n  seed: 3\n  params:\n\
+         \x20   bat.material.density: {normal: {mean: 649, sd: 10, min: 600, max: 700}}\n\
+         \x20   ball.law.cor: {uniform: {min: 0.45, max: 0.55}}\n  correlation:\n    - {between: [bat.material.density, ball.law.cor], rho: 0.3}\n",
+    ),
+];
+
 /// Accepted studies run per fuzz pass (each a real run into an HDF5 file; bounded time).
 const MAX_RUNS: usize = 150;
+
+/// Accepted design searches run per fuzz pass, and the candidates each may evaluate.
+const MAX_SEARCHES: usize = 40;
+const SEARCH_BUDGET: usize = 6;
+
+/// What an accepted study stores as coordinates is finite (a drawn or written inf ran at a
+/// preset's value with exit 0).
+fn coordinates_are_finite(study: &batstudy::study::Study, case: &str) {
+    for d in &study.plan.shape().dims {
+        for c in &d.coords {
+            if let batstudy::results::CoordValues::Numbers(v) = &c.values {
+                // NaN marks "not set by this entry" in points/zip coordinates; never ±inf
+                assert!(
+                    v.iter().all(|x| !x.is_infinite()),
+                    "{} holds an infinite value: {case}",
+                    c.name
+                );
+            }
+        }
+    }
+}
+
+/// An accepted study with an `optimize` block: the block checked as `batstudy optimize`
+/// checks it (a refusal positioned), and a short search run when its candidates are cheap.
+/// The oracle: no panic; every candidate evaluated inside the bounds. Returns whether a
+/// search ran.
+fn search_if_small(study: &batstudy::study::Study, case: &str) -> bool {
+    use batstudy::optimize::{design_of, search, Evaluator};
+    let design = match design_of(study) {
+        Err(e) => {
+            assert!(e.line.is_some(), "no position: {e}\n{case}");
+            return false;
+        }
+        Ok(None) => return false,
+        Ok(Some(d)) => d,
+    };
+    let plan = &study.plan;
+    let cost: f64 = (0..plan.n_points().min(65))
+        .filter_map(|i| plan.point(i).ok())
+        .map(|p| batstudy::run::estimate_cost(&p.spec, None))
+        .sum();
+    if plan.n_points() > 64 || cost > 0.1 {
+        return false;
+    }
+    let mut short = design.clone();
+    short.block.max_evaluations = SEARCH_BUDGET.max(design.variables.len() + 1);
+    let ev = Evaluator::new(study, &short);
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let out = search(&short, &|x| ev.evaluate(x), &|_| Ok(()), Vec::new(), &stop);
+    for c in &out.candidates {
+        for (v, x) in short.variables.iter().zip(&c.x) {
+            assert!(
+                x.is_finite() && *x >= v.min && *x <= v.max,
+                "{}: {x}\n{case}",
+                v.name
+            );
+        }
+    }
+    true
+}
 
 #[test]
 fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
@@ -214,6 +305,10 @@ fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
         }
     }
     seeds.sort();
+    // small seeds whose mutants are cheap to search and to sample
+    for (name, text) in SMALL_SEEDS {
+        seeds.push((Path::new(name).to_path_buf(), text.to_string()));
+    }
     // Large seeds are checked point by point at load time; keep the run short by using
     // each seed a number of times inversely related to its size.
     let opts = LoadOptions {
@@ -224,7 +319,7 @@ fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
     let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
     let mut rng = Rng(env("BATSTUDY_FUZZ_SEED").unwrap_or(0x5EED_BA75));
     let rounds = env("BATSTUDY_FUZZ_ROUNDS").unwrap_or(1) as usize;
-    let (mut runs, mut refused, mut ran) = (0usize, 0usize, 0usize);
+    let (mut runs, mut refused, mut ran, mut searched) = (0usize, 0usize, 0usize, 0usize);
     let out_dir = tempfile::tempdir().unwrap();
     for (path, text) in &seeds {
         let tries = rounds * if text.len() > 1500 { 40 } else { 80 };
@@ -245,9 +340,21 @@ fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
                     );
                     assert!(!e.message.is_empty(), "no message: {e}\n{case}");
                 }
-                // what validate accepts, run (issue 31: accepted studies failed after
+                Ok(study) if study.file.optimize.is_some() => {
+                    coordinates_are_finite(&study, &case);
+                    if searched < MAX_SEARCHES {
+                        let run = catch_unwind(AssertUnwindSafe(|| search_if_small(&study, &case)));
+                        match run {
+                            Ok(true) => searched += 1,
+                            Ok(false) => {}
+                            Err(_) => panic!("the search panicked on {case}"),
+                        }
+                    }
+                }
+                // what validate accepts, run (accepted studies once failed after
                 // computing everything, or wrote broken files)
                 Ok(study) if ran < MAX_RUNS => {
+                    coordinates_are_finite(&study, &case);
                     let out = out_dir.path().join(format!("run{runs}.h5"));
                     let run = catch_unwind(AssertUnwindSafe(|| run_if_small(study, &out)));
                     match run {
@@ -260,8 +367,11 @@ fn mutated_studies_never_panic_and_every_refusal_is_positioned() {
             }
         }
     }
-    eprintln!("{runs} mutated studies, {refused} refused, {ran} accepted ones run");
+    eprintln!(
+        "{runs} mutated studies, {refused} refused, {ran} accepted ones run, {searched} searches"
+    );
     assert!(ran >= 20, "only {ran} accepted studies were run");
+    assert!(searched >= 10, "only {searched} accepted searches were run");
     assert!(runs >= 1500, "{runs} mutated studies");
     assert!(
         refused * 4 >= runs,
