@@ -91,7 +91,9 @@ def simulate(
     return summary
 
 
-def _progress_bar(enabled: bool) -> Optional[Callable[[int, int], None]]:
+def _progress_bar(
+    enabled: bool, unit: str = "points", desc: str = "simulating"
+) -> Optional[Callable[[int, int], None]]:
     if not enabled:
         return None
     try:
@@ -107,11 +109,11 @@ def _progress_bar(enabled: bool) -> Optional[Callable[[int, int], None]]:
             pct = 100 * done // total
             if state.get("pct") != pct:
                 state["pct"] = pct
-                print(f"\r{done}/{total} points", end="", file=sys.stderr, flush=True)
+                print(f"\r{done}/{total} {unit}", end="", file=sys.stderr, flush=True)
             return
         bar = state.get("bar")
         if bar is None:
-            bar = state["bar"] = tqdm(total=total, unit="points", desc="simulating")
+            bar = state["bar"] = tqdm(total=total, unit=unit, desc=desc)
         bar.update(done - bar.n)
 
     def close() -> None:
@@ -132,12 +134,20 @@ def _study_source(study: StudyLike) -> tuple:
     """(path, text) for the native module: a path (str or os.PathLike), or YAML text (a str
     with a line break, or a dict given as JSON, which is YAML)."""
     if isinstance(study, Mapping):
-        return None, json.dumps(study, allow_nan=True)
+        return None, json.dumps(study, allow_nan=True, default=_plain)
     if isinstance(study, os.PathLike):
         return os.fspath(study), None
     if isinstance(study, str):
         return (None, study) if ("\n" in study or "\r" in study) else (study, None)
     raise TypeError(f"study must be a path, YAML text or a dict, not {type(study).__name__}")
+
+
+def _plain(value: Any) -> Any:
+    """NumPy's numbers and arrays (``np.linspace(...)``, ``np.int64(-30)``) as the plain
+    numbers and lists a study holds."""
+    if isinstance(value, (np.generic, np.ndarray)):
+        return value.tolist()
+    raise TypeError(f"a study holds numbers, text, lists and mappings, not {type(value).__name__}: {value!r}")
 
 
 def _shard(shard: Optional[Tuple[int, int]]) -> Optional[Tuple[int, int]]:

@@ -1,68 +1,83 @@
-"""`batstudy.optimize`: a study's design search (its ``optimize`` block), the command
-``batstudy optimize`` from Python (issue 36). Needs the native module."""
+"""`batstudy.optimize`: a study's design search (its ``optimize`` block), as the command
+``batstudy optimize`` runs it, in this process. Needs the native module."""
 
 from __future__ import annotations
 
 import os
 import pathlib
-import subprocess
 import sys
-import tempfile
-from typing import Any, Mapping, Optional, Union
+import warnings
+from typing import Optional, Union
+
+from ._api import (
+    EXIT_BAD_INPUT,
+    EXIT_POINTS_FAILED,
+    RunError,
+    StudyError,
+    StudyLike,
+    _progress_bar,
+    _study_source,
+)
 
 
 def optimize(
-    study: Union[str, os.PathLike, Mapping[str, Any]],
-    output: Union[str, os.PathLike],
+    study: StudyLike,
+    output: Union[str, os.PathLike, None] = None,
     *,
     jobs: Optional[int] = None,
     resume: bool = False,
     force: bool = False,
+    progress: bool = True,
     quiet: bool = True,
 ):
     """Search the design of ``study`` (a path, YAML text or a dict with an ``optimize``
-    block) into the results file ``output`` and return the results file's ``/optimize`` group as an :class:`xarray.Dataset`
-    (one row per candidate; the best feasible design and its margins in ``.attrs``).
+    block; relative profile paths of text and dicts are taken from the working folder) into
+    the results file ``output`` (default: the study's ``output``, else
+    ``results/<name>.h5``) and return the file's ``/optimize`` group as an
+    :class:`xarray.Dataset` (one row per candidate; the best feasible design and its margins
+    in ``.attrs``).
 
     The file itself holds the study run at the best design (``/summary``, ``/sweet_spot``,
-    ``/bat``) beside ``/optimize``. ``resume=True`` continues a search that was stopped
-    (its candidates are replayed from ``OUT.h5.optimize``); ``force=True`` starts over.
-    The search runs in a process of its own (``python -m batstudy optimize``), so Ctrl-C
-    stops it as it stops the command (:class:`KeyboardInterrupt` here; resume with
-    ``resume=True``). Raises :class:`RuntimeError` with the command's message when it does
-    not finish (bad input: exit status 2)."""
+    ``/bat``) beside ``/optimize``. The search runs in this process as :func:`run` does: a
+    progress bar in candidates (tqdm's; a widget in Jupyter), and Ctrl-C (KeyboardInterrupt)
+    stops it as the CLI's first Ctrl-C does: the candidate in flight finishes and is kept,
+    then KeyboardInterrupt is raised, and ``resume=True`` continues the search (its
+    candidates are replayed from ``OUT.h5.optimize``); ``force=True`` starts over. Raises
+    :class:`StudyError` for a bad study or output (exit status 2) and :class:`RunError`
+    when the search itself fails (3); a search that finds no feasible design, or whose
+    final run has failed points, warns (exit status 1). ``quiet=False`` prints the report.
+    """
     import xarray as xr
 
-    with tempfile.TemporaryDirectory() as tmp:
-        path = _study_path(study, pathlib.Path(tmp))
-        argv = [sys.executable, "-m", "batstudy", "optimize", str(path), "-o", os.fspath(output)]
-        if jobs is not None:
-            argv += ["-j", str(int(jobs))]
-        argv += ["--resume"] * bool(resume) + ["--force"] * bool(force) + ["--quiet"] * bool(quiet)
-        # a process of its own: Ctrl-C stops its search (the candidate in flight finishes and
-        # is kept), and this interpreter's own handling of Ctrl-C is left alone
-        r = subprocess.run(argv, stderr=subprocess.PIPE, text=True)
-    if r.stderr and not quiet:
-        print(r.stderr, end="", file=sys.stderr)
-    if r.returncode == 130:
-        raise KeyboardInterrupt("the search was interrupted: resume=True continues it")
-    if r.returncode not in (0, 1):
-        raise RuntimeError(f"batstudy optimize exited with status {r.returncode}:\n{r.stderr}")
-    with xr.open_dataset(output, engine="h5netcdf", group="optimize") as ds:
+    from . import _native
+
+    path, text = _study_source(study)
+    bar = _progress_bar(progress, unit="candidates", desc="searching")
+    try:
+        code, message, out, report, interrupted = _native.optimize_study(
+            path,
+            text,
+            None if output is None else os.fspath(output),
+            jobs,
+            resume,
+            force,
+            bar,
+        )
+    finally:
+        if bar is not None:
+            bar.close()  # type: ignore[attr-defined]
+    if code == EXIT_BAD_INPUT:
+        raise StudyError(message)
+    if out is None:
+        raise RunError(message, code)
+    result = pathlib.Path(out)
+    if interrupted:
+        raise KeyboardInterrupt(
+            f"{report.strip()}\n(in Python: batstudy.optimize(..., output={os.fspath(result)!r}, resume=True))"
+        )
+    if code == EXIT_POINTS_FAILED:
+        warnings.warn("\n".join(x for x in (message, report.strip()) if x), RuntimeWarning, stacklevel=2)
+    elif not quiet and report:
+        print(report.strip(), file=sys.stderr)
+    with xr.open_dataset(result, engine="h5netcdf", group="optimize") as ds:
         return ds.load()
-
-
-def _study_path(study, tmp: pathlib.Path) -> pathlib.Path:
-    """A study file for the command: the path itself, or text / a dict written to ``tmp``."""
-    if isinstance(study, Mapping):
-        import json
-
-        text = json.dumps(study)  # JSON is YAML
-    elif isinstance(study, (str, os.PathLike)) and pathlib.Path(study).is_file():
-        return pathlib.Path(study)
-    else:
-        text = str(study)
-    p = tmp / "study.yaml"
-    p.write_text(text)
-    return p
-

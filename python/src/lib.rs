@@ -224,14 +224,41 @@ fn run_study(
         Ok(s) => s,
         Err((code, message)) => return Ok((code, message, None, String::new(), false)),
     };
+    let (result, interrupted) = drive(py, progress, "batstudy-run", move |stop, counter| {
+        cli::run_settings(settings, output_given, &stop, Some(counter))
+    })?;
+    Ok(match result {
+        Err(f) => (f.code, f.message, None, String::new(), false),
+        Ok(done) => (
+            cli::exit_code(&done.report),
+            String::new(),
+            Some(done.settings.output.clone()),
+            done.report_text("batstudy"),
+            done.report.interrupted || interrupted,
+        ),
+    })
+}
+
+/// Run `work` on a thread of its own with the GIL released, as a command runs: calls
+/// `progress(done, total)` about ten times a second from its counter; a KeyboardInterrupt
+/// (Ctrl-C, or raised by a signal handler or the progress bar) sets its stop flag, as the
+/// CLI's first Ctrl-C does, and is reported as `interrupted`; any other exception of the
+/// progress bar stops the work too and is raised once the work has stopped. Returns what
+/// `work` returned and whether it was interrupted.
+fn drive<T: Send + 'static>(
+    py: Python<'_>,
+    progress: Option<Bound<'_, PyAny>>,
+    name: &str,
+    work: impl FnOnce(Arc<AtomicBool>, Arc<PointCounter>) -> T + Send + 'static,
+) -> PyResult<(T, bool)> {
     let stop = Arc::new(AtomicBool::new(false));
     let counter = Arc::new(PointCounter::default());
     let handle = {
         let (stop, counter) = (Arc::clone(&stop), Arc::clone(&counter));
         std::thread::Builder::new()
-            .name("batstudy-run".into())
-            .spawn(move || cli::run_settings(settings, output_given, &stop, Some(counter)))
-            .map_err(|e| PyValueError::new_err(format!("cannot start the run: {e}")))?
+            .name(name.into())
+            .spawn(move || work(stop, counter))
+            .map_err(|e| PyValueError::new_err(format!("cannot start {name}: {e}")))?
     };
     let mut callback_error: Option<PyErr> = None;
     let mut interrupted = false;
@@ -264,26 +291,73 @@ fn run_study(
         if finished {
             break;
         }
-        if py.check_signals().is_err() {
-            // Ctrl-C: finish the points in flight; the wrapper raises KeyboardInterrupt
+        if let Err(e) = py.check_signals() {
+            // Ctrl-C: finish the points in flight; the wrapper raises KeyboardInterrupt. A
+            // signal handler's own exception is raised as itself once the work stopped.
             stop.store(true, Ordering::SeqCst);
-            interrupted = true;
+            match e.is_instance_of::<PyKeyboardInterrupt>(py) {
+                true => interrupted = true,
+                false => {
+                    callback_error.get_or_insert(e);
+                }
+            }
         }
     }
     let result = handle
         .join()
-        .map_err(|_| PyValueError::new_err("the run's thread panicked"))?;
+        .map_err(|_| PyValueError::new_err(format!("{name}'s thread panicked")))?;
     if let Some(e) = callback_error {
         return Err(e);
     }
+    Ok((result, interrupted))
+}
+
+/// Search a study's design as `batstudy optimize` does, in this process, with the GIL
+/// released: from a file (`study`) or YAML text (`text`, its relative profile paths taken
+/// from the working folder). Progress is in candidates; Ctrl-C stops the search as the
+/// CLI's first Ctrl-C does (the candidate in flight finishes and is recorded; `resume`
+/// continues it). Returns (exit code, message, output path or None, report text,
+/// interrupted).
+#[pyfunction]
+#[pyo3(signature = (study=None, text=None, output=None, jobs=None, resume=false, force=false, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn optimize_study(
+    py: Python<'_>,
+    study: Option<PathBuf>,
+    text: Option<String>,
+    output: Option<PathBuf>,
+    jobs: Option<usize>,
+    resume: bool,
+    force: bool,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<(i32, String, Option<PathBuf>, String, bool)> {
+    let args = cli::optimize::OptimizeArgs {
+        study: study
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("<study text>")),
+        output,
+        jobs,
+        resume,
+        force,
+        quiet: true,
+        max_points: DEFAULT_MAX_POINTS,
+    };
+    let loaded = match py.detach(|| load_study(study, text.as_deref())) {
+        Ok(s) => s,
+        Err((code, message)) => return Ok((code, message, None, String::new(), false)),
+    };
+    let (result, interrupted) = drive(py, progress, "batstudy-optimize", move |stop, counter| {
+        let done = cli::optimize::optimize_study(loaded, &args, &stop, Some(counter));
+        done.map(|d| (d.exit_code(), d.no_answer(), cli::optimize::report_text(&d, &args), d))
+    })?;
     Ok(match result {
         Err(f) => (f.code, f.message, None, String::new(), false),
-        Ok(done) => (
-            cli::exit_code(&done.report),
-            String::new(),
-            Some(done.settings.output.clone()),
-            done.report_text("batstudy"),
-            done.report.interrupted || interrupted,
+        Ok((code, no_answer, report, done)) => (
+            code,
+            no_answer.unwrap_or_default(),
+            Some(done.output.clone()),
+            report,
+            done.interrupted || interrupted,
         ),
     })
 }
@@ -361,6 +435,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cli_main, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(run_study, m)?)?;
+    m.add_function(wrap_pyfunction!(optimize_study, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

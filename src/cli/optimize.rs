@@ -1,4 +1,4 @@
-//! `batstudy optimize`: a study's design search (issue 36). Flags and the study are checked
+//! `batstudy optimize`: a study's design search. Flags and the study are checked
 //! before anything is written; the output's lock is held throughout; every evaluated
 //! candidate goes to `OUT.h5.optimize` (synced) before the search goes on, so a killed
 //! search loses nothing finished and `--resume` replays it. At the end the study is run at
@@ -71,7 +71,14 @@ pub(super) fn cmd_optimize(a: &OptimizeArgs) -> i32 {
             eprintln!("\ninterrupt: finishing the candidate in flight…");
         });
     }
-    match optimize_study(a, &stop) {
+    let study = match super::common::load_checked(&a.study, a.max_points) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    match optimize_study(study, a, &stop, None) {
         Err(f) => {
             eprintln!("{}", f.message);
             f.code
@@ -80,18 +87,31 @@ pub(super) fn cmd_optimize(a: &OptimizeArgs) -> i32 {
             if !a.quiet {
                 eprint!("{}", report_text(&done, a));
             }
-            let found = done.table.best.is_some();
-            if !found && !done.interrupted {
-                eprintln!(
-                    "error: no candidate of the search met its constraints without failing: {} holds the study at the start design, which is not a feasible design (its /optimize says why each candidate was refused)",
-                    done.output.display()
-                );
+            if let Some(m) = done.no_answer() {
+                eprintln!("{m}");
             }
-            match (done.interrupted, done.failed_points, found) {
-                (true, _, _) => EXIT_INTERRUPTED,
-                (false, 0, true) => EXIT_OK,
-                _ => EXIT_POINTS_FAILED,
-            }
+            done.exit_code()
+        }
+    }
+}
+
+impl FinishedSearch {
+    /// What a search that found no feasible candidate says (None when it found one, or
+    /// was interrupted before it could tell).
+    pub fn no_answer(&self) -> Option<String> {
+        (self.table.best.is_none() && !self.interrupted).then(|| format!(
+            "error: no candidate of the search met its constraints without failing: {} holds the study at the start design, which is not a feasible design (its /optimize says why each candidate was refused)",
+            self.output.display()
+        ))
+    }
+
+    /// The command's exit status: 0 with a feasible design and every point of its run
+    /// computed, 1 without a feasible design or with failed points, 130 interrupted.
+    pub fn exit_code(&self) -> i32 {
+        match (self.interrupted, self.failed_points, self.table.best) {
+            (true, _, _) => EXIT_INTERRUPTED,
+            (false, 0, Some(_)) => EXIT_OK,
+            _ => EXIT_POINTS_FAILED,
         }
     }
 }
@@ -107,15 +127,8 @@ fn failure(code: i32, message: String) -> RunFailure {
     RunFailure { code, message }
 }
 
-/// The study, its design problem, the output and the threads, all checked.
-fn settings(a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFailure> {
-    let study = study::load(
-        &a.study,
-        &LoadOptions {
-            max_points: a.max_points,
-        },
-    )
-    .map_err(bad)?;
+/// The study's design problem, the output and the threads, all checked.
+fn settings(study: Study, a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFailure> {
     let design = design_of(&study).map_err(bad)?.ok_or_else(|| {
         bad(
             StudyError::new(&study.path, "the study has no `optimize` block")
@@ -148,8 +161,19 @@ fn settings(a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, usize), RunFail
 }
 
 /// `batstudy optimize` without the terminal: check, search, run the best design, write.
-pub fn optimize_study(a: &OptimizeArgs, stop: &AtomicBool) -> Result<FinishedSearch, RunFailure> {
-    let (study, design, output, jobs) = settings(a)?;
+/// `progress`, when given, counts candidates (the recorded ones of a resume at once)
+/// against the budget.
+pub fn optimize_study(
+    study: Study,
+    a: &OptimizeArgs,
+    stop: &AtomicBool,
+    progress: Option<Arc<crate::run::PointCounter>>,
+) -> Result<FinishedSearch, RunFailure> {
+    let (study, design, output, jobs) = settings(study, a)?;
+    if let Some(p) = &progress {
+        p.total
+            .store(design.block.max_evaluations, Ordering::Relaxed);
+    }
     let _lock = lock_output(&output).map_err(|(c, m)| failure(c, m))?;
     let started = std::time::Instant::now();
     let io = |e: crate::store::StoreError| failure(EXIT_RUN_FAILED, format!("error: {e}"));
@@ -178,8 +202,18 @@ pub fn optimize_study(a: &OptimizeArgs, stop: &AtomicBool) -> Result<FinishedSea
             .append(&row_of(c))
             .map_err(|e| e.to_string())
     };
-    let eval = |x: &[f64]| evaluator.evaluate(x);
+    let eval = |x: &[f64]| {
+        let e = evaluator.evaluate(x);
+        if let Some(p) = &progress {
+            p.done.fetch_add(1, Ordering::Relaxed);
+        }
+        e
+    };
     let recorded: Vec<Candidate> = recorded.into_iter().map(candidate_of).collect();
+    if let Some(p) = &progress {
+        // replayed candidates are answered at once
+        p.done.store(recorded.len(), Ordering::Relaxed);
+    }
     let outcome = pool.install(|| search(&design, &eval, &record, recorded, stop));
     let journal = journal.into_inner().expect("journal");
     let table = table_of(&design, &outcome.candidates, outcome.stopped);
@@ -386,7 +420,7 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
     }
 }
 
-fn report_text(d: &FinishedSearch, a: &OptimizeArgs) -> String {
+pub fn report_text(d: &FinishedSearch, a: &OptimizeArgs) -> String {
     use std::fmt::Write;
     let t = &d.table;
     let mut s = String::new();

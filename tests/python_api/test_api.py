@@ -223,6 +223,31 @@ def test_ctrl_c_stops_like_the_cli_and_resume_finishes(tmp_path, root):
         np.testing.assert_array_equal(a["summary/exit_speed"][()], b["summary/exit_speed"][()])
 
 
+def test_a_signal_handlers_own_exception_comes_out_as_itself(tmp_path):
+    """A handler that raises (a notebook's time limit, a scheduler's SIGTERM hook) stops the
+    run as Ctrl-C does, but its exception is raised, not a KeyboardInterrupt."""
+
+    class TimeLimit(Exception):
+        pass
+
+    def handler(signum, frame):
+        raise TimeLimit("from the handler")
+
+    study = {
+        "name": "long",
+        "base": {"impact": {"z": 0.7}},
+        "grid": {"swing.omega": np.linspace(0, -60, 120), "impact.z": np.arange(0.40, 0.84, 0.005)},
+    }
+    old = signal.signal(signal.SIGALRM, handler)
+    signal.setitimer(signal.ITIMER_REAL, 0.3)
+    try:
+        with pytest.raises(TimeLimit):
+            batstudy.run(study, output=tmp_path / "long.h5", jobs=1, progress=False)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
 def test_the_batstudy_command_has_the_cli_exit_codes(tmp_path, small_study):
     assert subprocess.run([BATSTUDY, "--version"], capture_output=True).returncode == 0
     bad = tmp_path / "bad.yaml"

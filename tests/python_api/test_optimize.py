@@ -1,4 +1,4 @@
-"""Issue 36: `batstudy.optimize` from the installed wheel: the rigid bat's best impact point
+"""`batstudy.optimize` from the installed wheel: the rigid bat's best impact point
 (closed form: at rest, the centre of mass, Brody 1986) found from a dict, the record of the
 search in `/optimize`, a bad study refused."""
 
@@ -36,8 +36,26 @@ def test_optimize_finds_the_centre_of_mass(tmp_path):
 
 
 def test_optimize_refuses_a_study_without_the_block(tmp_path):
-    with pytest.raises(RuntimeError, match="status 2"):
+    with pytest.raises(batstudy.StudyError, match="no `optimize` block"):
         batstudy.optimize({k: v for k, v in STUDY.items() if k != "optimize"}, tmp_path / "x.h5")
+
+
+def test_a_dict_reads_its_profile_from_the_working_folder(tmp_path, monkeypatch):
+    """A dict's relative profile path is the working folder's (it was a temporary folder's,
+    so the profile was never found), and NumPy values in it are numbers."""
+    import numpy as np
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "bat.csv").write_text("z,radius\n0,0.012\n0.5,0.016\n0.84,0.033\n")
+    study = {
+        **STUDY,
+        "base": {"impact": {"z": np.float64(0.6)}, "bat": {"profile": {"csv": "bat.csv"}}},
+        "grid": {"swing.cm_speed": np.array([0])},
+        "optimize": {**STUDY["optimize"], "max_evaluations": np.int64(30)},
+    }
+    o = batstudy.optimize(study, "out.h5")
+    assert 5 < o.sizes["candidate"] <= 30
+    assert (tmp_path / "out.h5").is_file()
 
 
 @pytest.mark.parametrize(
