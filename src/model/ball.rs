@@ -27,6 +27,58 @@ pub const MLB_SPEC_COR: f64 = 0.546;
 pub const MLB_SPEC_SPEED: f64 = 25.9;
 pub const CROSS_LOW_SPEED_COR: f64 = 0.64;
 pub const CROSS_LOW_SPEED: f64 = 1.0;
+/// 36 MLB game balls of 2014–16 fired at 120 mph into a steel cylinder at the Washington
+/// State University Sports Science Laboratory (data/mlb_balls_cylinder_2014_2016.csv): the
+/// speed (m/s), the mean cylindrical COR, and the mean dynamic stiffness (N/m, 12,768 lbf/in
+/// as ASTM F2845 reports it, taken as (F_peak / v)² / m).
+pub const CYLINDER_SPEED: f64 = 120.0 * 0.44704;
+pub const CYLINDER_COR: f64 = 0.4920;
+pub const CYLINDER_DYNAMIC_STIFFNESS: f64 = 2.236e6;
+/// The loading's exponent α of the `mlb` ball: Nathan's (2000), shaped to Adair's
+/// force–time curves (one speed's dynamic stiffness cannot pin it).
+pub const MLB_ALPHA: f64 = 1.84;
+/// The mass the calibration takes the ball to have, kg (the rule book's 5–5.25 oz; the
+/// cylinder test's balls weighed 145.2 ± 1.0 g).
+pub const MLB_MASS: f64 = 0.145;
+
+/// The `mlb` ball's COR curve e(v) = e₀ − (e₀ − e_spec) (v / v_spec)^q through its three
+/// anchors (Cross's 1 m/s, the specification's 25.9 m/s, the cylinder's 53.6 m/s): (e₀, q).
+/// Three anchors, three parameters: the curve meets each exactly.
+pub fn mlb_cor_curve() -> (f64, f64) {
+    static CURVE: std::sync::OnceLock<(f64, f64)> = std::sync::OnceLock::new();
+    *CURVE.get_or_init(|| {
+        let (low, high) = (
+            CROSS_LOW_SPEED / MLB_SPEC_SPEED,
+            CYLINDER_SPEED / MLB_SPEC_SPEED,
+        );
+        // e₀ − e_spec as each outer anchor asks it at power q; they agree at the answer
+        let from_low = |q: f64| (CROSS_LOW_SPEED_COR - MLB_SPEC_COR) / (1.0 - low.powf(q));
+        let from_high = |q: f64| (MLB_SPEC_COR - CYLINDER_COR) / (high.powf(q) - 1.0);
+        let gap = |q: f64| from_low(q) - from_high(q);
+        let (mut a, mut b) = (0.01, 4.0);
+        for _ in 0..200 {
+            let m = 0.5 * (a + b);
+            if (gap(m) > 0.0) == (gap(a) > 0.0) {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        let q = 0.5 * (a + b);
+        (MLB_SPEC_COR + from_high(q), q)
+    })
+}
+
+/// The `mlb` ball's k₁ (N/m^α): a power-law loading F = k₁ s^α that gives the cylinder
+/// test's dynamic stiffness. On a rigid target the peak force is the loading's at the
+/// largest compression, where the loading work is the ball's kinetic energy, so
+/// (F_peak / v)² / m = DS solves in closed form: k₁ = (DS m v²)^((α+1)/2) / C^α with
+/// C = (α + 1) m v² / 2.
+pub fn mlb_k1() -> f64 {
+    let (m, v, a) = (MLB_MASS, CYLINDER_SPEED, MLB_ALPHA);
+    let c = (a + 1.0) * m * v * v / 2.0;
+    (CYLINDER_DYNAMIC_STIFFNESS * m * v * v).powf((a + 1.0) / 2.0) / c.powf(a)
+}
 
 /// The ball's radius, m: a 9.125-in circumference, the middle of the rule book's 9–9.25 in
 /// (the same ball as the flight's, `flight::BallProperties`).
@@ -38,27 +90,25 @@ pub const DEFAULT_INERTIA_FACTOR: f64 = 0.4;
 pub const DEFAULT_FRICTION: f64 = 0.2;
 /// The contact patch's tangential stiffness over the ball's normal tangent stiffness dN/ds
 /// (docs/physics.md, "Oblique impacts").
-pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.35;
-
-/// The `mlb` preset's COR exponent γ in e(v) = e_spec (v / v_spec)^(−γ): the curve through
-/// both calibration points (0.0488).
-pub fn mlb_cor_exponent() -> f64 {
-    (CROSS_LOW_SPEED_COR / MLB_SPEC_COR).ln() / (MLB_SPEC_SPEED / CROSS_LOW_SPEED).ln()
-}
+pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.346;
 
 /// The law of a built-in ball.
 pub fn preset_law(preset: BallPreset) -> BallLaw {
     match preset {
-        BallPreset::Mlb => BallLaw {
-            kind: BallLawKind::SpeedDependent,
-            cor: MLB_SPEC_COR,
-            reference_speed: Some(MLB_SPEC_SPEED),
-            cor_exponent: Some(mlb_cor_exponent()),
-            loading: Some(Loading::Power),
-            // Nathan's (2000) loading, k₁ 6.53e7 N/m^1.84 and α 1.84: no ball-alone force or
-            // stiffness measurement could be read here, so this is the stated assumption.
-            ..BallLaw::default()
-        },
+        BallPreset::Mlb => {
+            let (at_rest, power) = mlb_cor_curve();
+            BallLaw {
+                kind: BallLawKind::SpeedDependent,
+                cor: MLB_SPEC_COR,
+                reference_speed: Some(MLB_SPEC_SPEED),
+                cor_at_rest: Some(at_rest),
+                cor_power: Some(power),
+                loading: Some(Loading::Power),
+                k1: mlb_k1(),
+                alpha: MLB_ALPHA,
+                ..BallLaw::default()
+            }
+        }
     }
 }
 
@@ -69,9 +119,11 @@ pub fn cor_at_speed(law: &BallLaw, v: f64) -> f64 {
     match law.kind {
         BallLawKind::SpeedDependent => {
             let reference = law.reference_speed.unwrap_or(DEFAULT_REFERENCE_SPEED);
-            let e = match law.cor_exponent {
-                Some(gamma) => law.cor * (v.max(0.0) / reference).powf(-gamma),
-                None => {
+            let x = v.max(0.0) / reference;
+            let e = match (law.cor_exponent, law.cor_at_rest.zip(law.cor_power)) {
+                (Some(gamma), _) => law.cor * x.powf(-gamma),
+                (None, Some((at_rest, q))) => at_rest - (at_rest - law.cor) * x.powf(q),
+                (None, None) => {
                     let slope = law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE);
                     law.cor + slope * (v - reference)
                 }

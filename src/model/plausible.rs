@@ -37,6 +37,14 @@ pub const RANGES: &[Range] = &[
         get: |s| s.bat.length,
     },
     Range {
+        path: "bat.radius",
+        min: 0.01,
+        max: 0.1,
+        unit: "m",
+        reason: "the cylinder stands for a bat's barrel (radii of 2.5-3.5 cm); a flat target is bat.preset wall",
+        get: |s| s.bat.radius,
+    },
+    Range {
         path: "bat.material.density",
         min: 100.0,
         max: 10000.0,
@@ -219,6 +227,22 @@ pub const RANGES: &[Range] = &[
         unit: "1",
         reason: "the mlb ball's 0.049 takes the COR from 0.64 at 1 m/s to 0.546 at 25.9 m/s; 0.2 would halve it from 1 to 32 m/s",
         get: |s| s.ball.law.cor_exponent,
+    },
+    Range {
+        path: "ball.law.cor_at_rest",
+        min: 0.3,
+        max: 0.9,
+        unit: "1",
+        reason: "a baseball dropped on a hard floor rebounds with a COR of about 0.64",
+        get: |s| s.ball.law.cor_at_rest,
+    },
+    Range {
+        path: "ball.law.cor_power",
+        min: 0.1,
+        max: 2.0,
+        unit: "1",
+        reason: "the mlb ball's COR falls from its value at rest about as the square root of the speed (0.53)",
+        get: |s| s.ball.law.cor_power,
     },
     Range {
         path: "swing.omega",

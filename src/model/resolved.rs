@@ -5,14 +5,14 @@
 
 use crate::model::ball::{DEFAULT_COR_SLOPE, DEFAULT_REFERENCE_SPEED};
 use crate::model::bat::section::BatGeometry;
-use crate::model::spec::{BallLawKind, BatPreset, CollisionSpec};
+use crate::model::spec::{BallLawKind, CollisionSpec};
 use serde_json::{json, Value};
 
 /// The spec as a JSON tree, preset and default values filled in where the model defines
 /// them. Fields that do not apply stay as they are (`null`: a solid bat's shell).
 pub fn resolved_tree(spec: &CollisionSpec) -> Value {
     let mut tree = serde_json::to_value(spec).unwrap_or(Value::Null);
-    if spec.bat.preset != BatPreset::Wall {
+    if !spec.bat.preset.is_rigid_target() {
         if let (Ok(g), Some(bat)) = (BatGeometry::resolve(&spec.bat), tree.get_mut("bat")) {
             bat["length"] = json!(g.length);
             let m = &mut bat["material"];
@@ -36,7 +36,8 @@ pub fn resolved_tree(spec: &CollisionSpec) -> Value {
                 .law
                 .reference_speed
                 .unwrap_or(DEFAULT_REFERENCE_SPEED));
-            if spec.ball.law.cor_exponent.is_none() {
+            let curve = spec.ball.law.cor_exponent.or(spec.ball.law.cor_at_rest);
+            if curve.is_none() {
                 law["cor_slope"] = json!(spec.ball.law.cor_slope.unwrap_or(DEFAULT_COR_SLOPE));
             }
         }
@@ -94,7 +95,7 @@ mod tests {
             Some(json!(WOOD_DENSITY))
         );
         assert_eq!(resolved_value(&t, "bat.shell.thickness"), None);
-        spec.bat.preset = BatPreset::Aluminum;
+        spec.bat.preset = crate::model::spec::BatPreset::Aluminum;
         let t = resolved_tree(&spec);
         assert_eq!(
             resolved_value(&t, "bat.material.density"),

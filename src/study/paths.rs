@@ -304,6 +304,12 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
     ),
     ("bat.length", "m", "bat length", "bat length"),
     (
+        "bat.radius",
+        "m",
+        "cylinder radius",
+        "radius of the rigid cylinder (bat.preset cylinder)",
+    ),
+    (
         "bat.shell.thickness",
         "m",
         "shell",
@@ -420,6 +426,18 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
         "COR exponent",
         "exponent of the ball's COR curve e(v) = cor (v / reference_speed)^-exponent",
     ),
+    (
+        "ball.law.cor_at_rest",
+        "1",
+        "COR at rest",
+        "the ball's COR as the speed goes to 0, of e(v) = cor_at_rest - (cor_at_rest - cor) (v / reference_speed)^cor_power",
+    ),
+    (
+        "ball.law.cor_power",
+        "1",
+        "COR power",
+        "power of the speed in e(v) = cor_at_rest - (cor_at_rest - cor) (v / reference_speed)^cor_power",
+    ),
     ("ball.preset", "", "ball", "built-in calibrated ball"),
     (
         "ball.law.loading",
@@ -486,13 +504,14 @@ mod tests {
 
     #[test]
     fn public_paths_are_known() {
-        // issue 4: the public spellings of study files
+        // the public spellings of study files
         for p in [
             "bat.material.density",
             "bat.material.youngs_modulus",
             "bat.preset",
             "bat.handle.radius_scale",
             "bat.length",
+            "bat.radius",
             "bat.shell.thickness",
             "bat.shell.from",
             "bat.ends.barrel",

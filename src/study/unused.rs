@@ -61,9 +61,10 @@ fn batter(t: &Value) -> bool {
     get_path(t, "batter").is_some_and(|b| !b.is_null())
 }
 
-/// Whether the target is a bat (not the rigid wall, which has no geometry or material).
+/// Whether the target is a bat (not the rigid wall or cylinder, which have no geometry or
+/// material).
 fn a_bat(t: &Value) -> bool {
-    text(t, "bat.preset", "r161") != "wall"
+    !matches!(text(t, "bat.preset", "r161"), "wall" | "cylinder")
 }
 
 /// A bat field the wall ignores.
@@ -72,7 +73,7 @@ macro_rules! bat_field {
         Rule {
             field: $field,
             used_when:
-                "with a bat (bat.preset other than wall: a wall has no geometry or material)",
+                "with a bat (bat.preset other than wall or cylinder: a rigid target has no geometry or material)",
             uses: a_bat,
         }
     };
@@ -93,6 +94,11 @@ pub const RULES: &[Rule] = &[
     bat_field!("bat.profile"),
     bat_field!("bat.handle"),
     bat_field!("bat.ends"),
+    Rule {
+        field: "bat.radius",
+        used_when: "with bat.preset cylinder (a bat's radius comes from its profile)",
+        uses: |t| text(t, "bat.preset", "r161") == "cylinder",
+    },
     Rule {
         field: "ball.law.stiffness",
         used_when: "by the wave model with ball.law.kind linear_hysteresis or elastic, or speed_dependent with loading linear",
@@ -129,6 +135,16 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         field: "ball.law.cor_exponent",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
+        field: "ball.law.cor_at_rest",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
+        field: "ball.law.cor_power",
         used_when: "by ball.law.kind speed_dependent",
         uses: speed_dependent,
     },

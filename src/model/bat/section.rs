@@ -352,9 +352,9 @@ struct PresetMaterial {
 impl PresetMaterial {
     fn of(preset: BatPreset) -> Result<Self, ModelError> {
         let (density, youngs_modulus, shell, fill_density) = match preset {
-            BatPreset::Wall => {
+            BatPreset::Wall | BatPreset::Cylinder => {
                 return Err(ModelError::Unsupported(
-                    "bat geometry of a wall (it is a rigid target, not a bat)",
+                    "bat geometry of a rigid target (bat.preset wall or cylinder: not a bat)",
                 ))
             }
             BatPreset::R161 => (WOOD_DENSITY, WOOD_YOUNGS_MODULUS, None, 0.0),

@@ -1,24 +1,25 @@
-//! What the ball hits: a prepared bat, or a rigid wall (the ball-certification target,
-//! `bat.preset: wall`). Prepared once per distinct bat, shared read-only by every point.
+//! What the ball hits: a prepared bat, or a rigid target (the ball-certification wall,
+//! `bat.preset: wall`, or the cylinder of the ball's dynamic-stiffness test). Prepared once per distinct bat, shared read-only by every point.
 
 use crate::model::bat::{prepare_bat, PreparedBat};
 use crate::model::error::ModelError;
 use crate::model::outcome::BatProperties;
-use crate::model::spec::{BatPreset, BatSpec, NumericsSpec};
+use crate::model::spec::{BatSpec, NumericsSpec};
 
 /// A prepared target.
 #[derive(Debug, Clone)]
 pub enum Target {
     /// A bat: geometry, beam, modes, properties.
     Bat(Box<PreparedBat>),
-    /// A rigid, immovable wall.
+    /// A rigid, immovable target: the wall, or the cylinder (whose curvature the ball's
+    /// law does not see).
     Wall,
 }
 
 impl Target {
     /// Prepare the target a bat spec names (a wall needs no preparation).
     pub fn prepare(bat: &BatSpec, numerics: &NumericsSpec) -> Result<Target, ModelError> {
-        if bat.preset == BatPreset::Wall {
+        if bat.preset.is_rigid_target() {
             return Ok(Target::Wall);
         }
         prepare_bat(bat, numerics).map(|b| Target::Bat(Box::new(b)))

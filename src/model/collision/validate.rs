@@ -22,7 +22,8 @@ fn check(path: &str, v: f64, ok: bool, allowed: &str) -> Result<(), ModelError> 
 /// Check a collision spec: positive quantities, 0 < cor ≤ 1, shell thinner than the radius
 /// wherever it applies, impact inside the bat, hoop in a sane range, numerics sane.
 pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
-    let wall = spec.bat.preset == crate::model::spec::BatPreset::Wall;
+    let wall = spec.bat.preset.is_rigid_target();
+    check_cylinder(&spec.bat)?;
     // A wall has no geometry: nothing to hit off the bat, no length to bound the approach.
     let geometry = if wall {
         None
@@ -59,6 +60,19 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     }
     check_numerics(&spec.numerics)?;
     check_step_budget(spec, length)
+}
+
+/// `bat.radius` is the cylinder's, and only the cylinder's.
+fn check_cylinder(bat: &crate::model::spec::BatSpec) -> Result<(), ModelError> {
+    let cylinder = bat.preset == crate::model::spec::BatPreset::Cylinder;
+    match (cylinder, bat.radius) {
+        (true, Some(r)) => check("bat.radius", r, r > 0.0, "a radius > 0 m"),
+        (true, None) => Err(ModelError::Unsupported(
+            "bat.preset: cylinder without bat.radius (the cylinder's radius, m)",
+        )),
+        (false, Some(r)) => check("bat.radius", r, false, "unset: only bat.preset cylinder has a radius of its own (a bat's comes from its profile)"),
+        (false, None) => Ok(()),
+    }
 }
 
 /// The ball and its force law.
@@ -124,12 +138,39 @@ fn check_ball(ball: &crate::model::spec::BallSpec) -> Result<(), ModelError> {
             allowed,
         )?;
     }
+    check_rest_curve(law)?;
     check(
         "ball.law.alpha",
         law.alpha,
         law.alpha > 0.0,
         "a finite number > 0",
     )?;
+    Ok(())
+}
+
+/// `cor_at_rest` and `cor_power`: given together, alone among the COR's forms, the curve
+/// falling from its value at rest through `cor` (so `cor_at_rest` ≥ `cor`).
+fn check_rest_curve(law: &crate::model::spec::BallLaw) -> Result<(), ModelError> {
+    let other_form = law.cor_slope.is_some() || law.cor_exponent.is_some();
+    let alone =
+        "unset when ball.law.cor_slope or ball.law.cor_exponent is given (the COR has one form)";
+    let pair = "given together with the other of ball.law.cor_at_rest and ball.law.cor_power";
+    if let Some(e0) = law.cor_at_rest {
+        let (ok, allowed) = match (other_form, law.cor_power.is_some()) {
+            (true, _) => (false, alone),
+            (false, false) => (false, pair),
+            (false, true) => (e0 >= law.cor && e0 <= 1.0, "a COR in [ball.law.cor, 1]"),
+        };
+        check("ball.law.cor_at_rest", e0, ok, allowed)?;
+    }
+    if let Some(q) = law.cor_power {
+        let (ok, allowed) = match (other_form, law.cor_at_rest.is_some()) {
+            (true, _) => (false, alone),
+            (false, false) => (false, pair),
+            (false, true) => (q > 0.0 && q <= 4.0, "a finite number in (0, 4]"),
+        };
+        check("ball.law.cor_power", q, ok, allowed)?;
+    }
     Ok(())
 }
 
@@ -201,7 +242,7 @@ fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
     };
     if wall {
         return Err(ModelError::Unsupported(
-            "a batter with bat.preset: wall (a wall is not swung)",
+            "a batter with a rigid target (bat.preset wall or cylinder: it is not swung)",
         ));
     }
     if let Some(e) = crate::model::collision::batter::swing_conflict(spec) {

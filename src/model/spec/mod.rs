@@ -95,6 +95,19 @@ pub enum BatPreset {
     /// e(v) v, so exit speed / approach speed is the wall COR. Bat fields other than
     /// `preset` do not apply; `impact.z` and `swing` are ignored.
     Wall,
+    /// A rigid, immovable cylinder of radius `bat.radius` with its axis across the ball's
+    /// path: the target of the ball's cylindrical COR and dynamic-stiffness test (ASTM
+    /// F2845), shaped like a bat's barrel. As for `wall`, the other bat fields, `impact.z`
+    /// and `swing` do not apply. The ball's law takes no account of the target's
+    /// curvature (docs/physics.md, "The calibrated ball", says why one law serves both).
+    Cylinder,
+}
+
+impl BatPreset {
+    /// A rigid, immovable target (the wall or the cylinder), not a bat.
+    pub fn is_rigid_target(self) -> bool {
+        matches!(self, BatPreset::Wall | BatPreset::Cylinder)
+    }
 }
 
 /// The bat. Unset fields take the preset's values.
@@ -107,6 +120,9 @@ pub struct BatSpec {
     /// Outer-radius profile replacing the preset's (knots or a CSV file).
     #[serde(default)]
     pub profile: Option<ProfileSpec>,
+    /// `bat.preset: cylinder`: the cylinder's radius, m (required there, refused elsewhere).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
     /// Overall length in m. Longer than the profile: the barrel is extended at its end
     /// radius (the paper's 110 cm bat). Shorter: an error. Default: the profile's length.
     #[serde(default)]
@@ -449,6 +465,15 @@ pub struct BallLaw {
     /// as measured balls' does. Exclusive with `cor_slope`. Default none (the line).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cor_exponent: Option<f64>,
+    /// `speed_dependent`: the COR as v → 0 of a curve that falls from it as a power of the
+    /// speed, e(v) = cor_at_rest − (cor_at_rest − cor) (v / reference_speed)^cor_power: flat
+    /// at low speed, falling faster at high speed, as measured balls' does. Set with
+    /// `cor_power`; exclusive with `cor_slope` and `cor_exponent`. Default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cor_at_rest: Option<f64>,
+    /// `speed_dependent`: the power of that curve (> 0). Default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cor_power: Option<f64>,
     /// Coefficient of friction between ball and bat (oblique impacts and spin). Default:
     /// docs/physics.md, "Oblique impacts".
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -475,6 +500,8 @@ struct BallLawFields {
     cor_slope: Option<f64>,
     loading: Option<Loading>,
     cor_exponent: Option<f64>,
+    cor_at_rest: Option<f64>,
+    cor_power: Option<f64>,
     friction: Option<f64>,
     tangential_ratio: Option<f64>,
 }
@@ -491,10 +518,17 @@ impl BallLawFields {
             reference_speed: self.reference_speed.or(base.reference_speed),
             cor_slope: self.cor_slope.or(base.cor_slope),
             loading: self.loading.or(base.loading),
-            // a study that gives a slope asks for the line, whatever the preset's curve
+            // a study that gives a slope asks for the line, one that gives an exponent for
+            // the power, whatever the preset's curve
             cor_exponent: self
                 .cor_exponent
                 .or(base.cor_exponent.filter(|_| self.cor_slope.is_none())),
+            cor_at_rest: self.cor_at_rest.or(base
+                .cor_at_rest
+                .filter(|_| self.cor_slope.is_none() && self.cor_exponent.is_none())),
+            cor_power: self.cor_power.or(base
+                .cor_power
+                .filter(|_| self.cor_slope.is_none() && self.cor_exponent.is_none())),
             friction: self.friction.or(base.friction),
             tangential_ratio: self.tangential_ratio.or(base.tangential_ratio),
         }
@@ -552,6 +586,8 @@ impl Default for BallLaw {
             cor_slope: None,
             loading: None,
             cor_exponent: None,
+            cor_at_rest: None,
+            cor_power: None,
             friction: None,
             tangential_ratio: None,
         }
