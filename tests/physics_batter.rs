@@ -8,12 +8,12 @@
 //! - the corked bat's break-even: Nathan, Smith, Faber & Russell, Am. J. Phys. 79, 575
 //!   (2011), abstract: "there is no advantage to corking a bat if the goal is for the
 //!   batted ball speed to be as large as possible": the lighter bat's faster swing about
-//!   cancels its lower collision efficiency. Band, set beforehand (issue 35): with
-//!   n = 0.25–0.29 the drilled and corked bat's best batted-ball speed is within 1 mph of the
-//!   solid bat's. batstudy disagrees, slightly, and the test holds that verdict: the corked
-//!   bat is 1.0–2.0 mph slower, because the bore lowers the MOI about the knob by 7.8 %,
-//!   which buys only 2.1–2.4 % of swing speed (1.5–1.7 mph at 70 mph), less than the
-//!   collision-efficiency loss costs. The "3 mph faster swing" often quoted with the paper's
+//!   cancels its lower collision efficiency. The test asserts the source's sign (no
+//!   advantage). Its band, set beforehand, is that with n = 0.25–0.29 the drilled and corked
+//!   bat's best batted-ball speed is within 1 mph of the solid bat's; batstudy's lies just
+//!   outside it (about 1–2 mph slower: the bore lowers the MOI about the knob by 7.8 %,
+//!   which buys only 2.1–2.4 % of swing speed, less than the collision-efficiency loss
+//!   costs), a disagreement stated in docs/results.md and not pinned here. The "3 mph faster swing" often quoted with the paper's
 //!   q = 0.214 → 0.193 is HowStuffWorks' illustration, not a measurement (docs/results.md).
 
 use batstudy::model::spec::*;
@@ -124,11 +124,9 @@ fn corking_gives_no_batted_ball_speed_with_a_measured_swing_exponent() {
             difference < 0.0,
             "n {n}: corked minus solid {difference:+.2} mph"
         );
-        // the ±1 mph band: outside it by less than a mile an hour (the verdict held)
-        assert!(
-            (-2.0..-1.0).contains(&difference),
-            "n {n}: corked minus solid {difference:+.2} mph (the verdict changed)"
-        );
+        // the source's ±1 mph band is not asserted: the model lies just outside it (a stated
+        // disagreement), and pinning its own number would test the code against itself
+        eprintln!("n {n}: corked minus solid {difference:+.2} mph (the source: within ±1 mph)");
     }
     // without the batter's answer (n = 0) the corked bat is simply worse
     let fixed = batter(&reference, 0.0);
