@@ -29,6 +29,7 @@ import numpy as np
 import xarray as xr
 
 from . import _html
+from ._files import ResultsFileError, reading
 from ._open import dim_labels, history_grid_index, open_results, text_of
 
 IMPACT = "impact_z"
@@ -228,7 +229,10 @@ def report(path: Union[str, os.PathLike], output: Union[str, os.PathLike, None] 
     """Write the explorer of the results file `path`, one HTML file (default: next to it,
     ``RESULTS.html``), and return its path. Needs Plotly (``pip install 'batstudy[plot]'``)."""
     out = Path(path).with_suffix(".html") if output is None else Path(output)
-    out.write_text(page(collect(open_results(path))), encoding="utf-8")
+    tree = open_results(path)
+    with reading(os.fspath(path)):  # values are read here, as the page takes them
+        data = collect(tree)
+    out.write_text(page(data), encoding="utf-8")
     return out
 
 
@@ -240,6 +244,9 @@ def main(argv=None, prog: str = "batstudy report") -> int:
     args = ap.parse_args(argv)
     try:
         out = report(args.results, args.output)
+    except ResultsFileError as err:  # names the file
+        print(f"{prog}: {err}", file=sys.stderr)
+        return 2
     except (OSError, ValueError) as err:
         print(f"{prog}: {args.results}: {err}", file=sys.stderr)
         return 2
