@@ -7,7 +7,9 @@
   :func:`plan` and :func:`validate` check a study without running it.
 - :func:`open_results` (also ``batstudy.open``) opens a results file as an
   :class:`xarray.DataTree`, with the grid as named dimensions, resolved parameter values
-  and case labels as coordinates, and the stored histories only (see :func:`histories`).
+  and case labels as coordinates, and the stored histories only (see :func:`histories`);
+  a file that is not a complete batstudy results file (damaged, or another program's HDF5)
+  raises :class:`ResultsFileError`.
 - :func:`ball_rig` gives what a ball certification reports (COR, peak force, contact time,
   dynamic stiffness) from a study of balls fired at ``bat.preset: wall``.
 - :func:`longest_carry` says where a study's ball flies farthest: the impact position and,
@@ -30,6 +32,7 @@ from importlib.util import find_spec as _find_spec
 
 from ._ball_rig import ball_rig
 from ._carry import longest_carry
+from ._files import ResultsFileError
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
 from ._report import report
 from ._sensitivity import sobol_indices
@@ -49,6 +52,7 @@ __all__ = [
     "optimize",
     "StudyError",
     "RunError",
+    "ResultsFileError",
     "__version__",
 ]
 

@@ -14,6 +14,7 @@ import xarray as xr
 from xarray.backends import BackendArray
 from xarray.core import indexing
 
+from ._files import check_structure, reading, require_results
 from ._modal import ModalReader
 
 GROUPS = ("summary", "sweet_spot", "bat", "errors")
@@ -91,7 +92,7 @@ class _SparseHistoryArray(_HistoryRows):
     def _read(self, key: tuple) -> np.ndarray:
         rows, scalar = self._rows(key)
         tail_key = tuple(key[1:])
-        with self._lock, h5py.File(self.path, "r") as f:
+        with self._lock, reading(self.path), h5py.File(self.path, "r") as f:
             ds = f["history"][self.name]
             parts = [ds[tuple(int(i) for i in self.positions[r]) + tail_key] for r in rows]
         if not parts:
@@ -113,7 +114,7 @@ class _ModalDisplacementArray(_HistoryRows):
 
     def _read(self, key: tuple) -> np.ndarray:
         rows, scalar = self._rows(key)
-        with self._lock, h5py.File(self.path, "r") as f:
+        with self._lock, reading(self.path), h5py.File(self.path, "r") as f:
             reader = ModalReader(f)
             parts = [reader.displacement(tuple(int(i) for i in self.positions[r]), self.z)[key[1:]]
                      for r in rows]  # fmt: skip
@@ -133,7 +134,9 @@ def _tail_dims(ds: h5py.Dataset, rank: int) -> tuple:
     return tuple(names)
 
 
-def _sparse_history(path: str, summary: xr.Dataset, z: Any = None) -> xr.Dataset | None:
+def _history_parts(path: str, summary: xr.Dataset) -> tuple | None:
+    """What the sparse view of ``/history`` needs from the file: the stored positions, time,
+    z, each variable's (dims, shape, dtype, attributes) and the extra coordinates."""
     with h5py.File(path, "r") as f:
         if "history" not in f:
             return None
@@ -155,6 +158,11 @@ def _sparse_history(path: str, summary: xr.Dataset, z: Any = None) -> xr.Dataset
         meta = {k: (_tail_dims(g[k], rank), g[k].shape[rank:], g[k].dtype, dict(g[k].attrs))
                 for k in names}  # fmt: skip
         extra = {k: g[k][...] for k in ("bat_mode", "shape_point") if k in g}
+    return dims, positions, time, zs, meta, extra
+
+
+def _sparse_history(path: str, summary: xr.Dataset, parts: tuple, z: Any = None) -> xr.Dataset:
+    dims, positions, time, zs, meta, extra = parts
     modal = "modal_coordinate" in meta
     if z is not None and not modal:
         raise ValueError("z= needs the displacement's modal form (history.displacement: modal); "
@@ -223,19 +231,25 @@ def open_results(path: Union[str, os.PathLike], z: Any = None) -> xr.DataTree:
 
     The root carries the file's attributes (study name and text, counts, version). Every
     numeric variable has a CF ``units`` attribute, every variable a ``long_name``.
+
+    Raises :class:`~batstudy.ResultsFileError` naming the file for one that is not a
+    complete batstudy results file: not HDF5, damaged (checked before HDF5 reads it, which
+    could hang on it), or another program's HDF5.
     """
     path = os.fspath(path)
+    check_structure(path)
     nodes: dict[str, xr.Dataset] = {}
-    with h5py.File(path, "r") as f:
-        root_attrs = {k: _plain(v) for k, v in f.attrs.items()}
-        present = [g for g in GROUPS if g in f]
-    nodes["/"] = xr.Dataset(attrs=root_attrs)
-    for g in present:
-        nodes[f"/{g}"] = xr.open_dataset(path, group=g, engine="h5netcdf")
-    if "summary" in present:
-        hist = _sparse_history(path, nodes["/summary"], z)
-        if hist is not None:
-            nodes["/history"] = hist
+    with reading(path):
+        with h5py.File(path, "r") as f:
+            require_results(path, f)
+            root_attrs = {k: _plain(v) for k, v in f.attrs.items()}
+            present = [g for g in GROUPS if g in f]
+        nodes["/"] = xr.Dataset(attrs=root_attrs)
+        for g in present:
+            nodes[f"/{g}"] = xr.open_dataset(path, group=g, engine="h5netcdf")
+        parts = _history_parts(path, nodes["/summary"])
+    if parts is not None:
+        nodes["/history"] = _sparse_history(path, nodes["/summary"], parts, z)
     return xr.DataTree.from_dict(nodes)
 
 

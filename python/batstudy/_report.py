@@ -11,7 +11,8 @@ The page shows, for any batstudy results file:
 
 Plotly's JavaScript (from the `plotly` package: ``pip install 'batstudy[plot]'``) is inlined,
 and so are the data, read through :func:`batstudy.open_results`: the summary's exit speeds,
-the sweet spots and the stored histories. Every string of the file reaches the page through
+the sweet spots (the file's numbers) and the stored histories (to what a plot shows:
+:data:`DIGITS`, :data:`MAX_SAMPLES`), so that the page grows with the file as the file does. Every string of the file reaches the page through
 one escaping function per context (``batstudy._html``).
 """
 
@@ -29,16 +30,37 @@ import numpy as np
 import xarray as xr
 
 from . import _html
+from ._files import ResultsFileError, reading
 from ._open import dim_labels, history_grid_index, open_results, text_of
 
 IMPACT = "impact_z"
 MAX_DISPLACEMENT_HISTORIES = 8  # bending animations embedded (each time × z values)
 MAX_FRAMES = 80  # time samples of an animation
+MAX_SAMPLES = 1000  # time samples of a force history: about a plot's width in pixels
+# A history's values to this many significant digits of its largest: a step of at most
+# 1/1 000 of the plot's range, under half a pixel on the page's plots. With no more digits
+# than that, a history costs the page about what it costs the file (deflated).
+DIGITS = 4
 
 
 def _numbers(a) -> list:
     """Floats for JSON: NaN → null; full precision (repr round-trips)."""
     return [None if not math.isfinite(x) else float(x) for x in np.asarray(a, dtype=float).ravel()]
+
+
+def _rounded(a, peak: float | None = None, digits: int = DIGITS) -> list:
+    """Floats for JSON rounded to `digits` significant digits of `peak` (default: the largest
+    magnitude of `a`), in their shortest form (whole numbers without ``.0``); NaN → null."""
+    a = np.asarray(a, dtype=float).ravel()
+    finite = np.isfinite(a)
+    if peak is None:
+        peak = float(np.max(np.abs(a[finite]))) if finite.any() else 0.0
+    if not peak:
+        return [0 if f else None for f in finite.tolist()]
+    places = digits - 1 - math.floor(math.log10(peak))
+    values = np.round(np.where(finite, a, 0.0), places) + 0.0  # + 0.0: no -0.0
+    kind = int if places <= 0 else float
+    return [kind(v) if f else None for v, f in zip(values.tolist(), finite.tolist())]
 
 
 def collect(tree: xr.DataTree) -> dict:
@@ -66,6 +88,7 @@ def collect(tree: xr.DataTree) -> dict:
         data["sweet"] = {k: _numbers(sweet[k].transpose(*order).values)
                          for k in ("position", "exit_speed", "width") if k in sweet}  # fmt: skip
     data["histories"] = histories(tree, dims, controls)
+    data["time_ms"] = history_time(tree)
     return data
 
 
@@ -77,16 +100,25 @@ def histories(tree: xr.DataTree, dims: list[str], controls: list[dict]) -> list[
     where = history_grid_index(tree)
     labels = {c["name"]: c["labels"] for c in controls}
     t_ms, force, impact_z = h["time"].values * 1e3, h["force"].values, h[IMPACT].values
+    step = max(1, math.ceil(len(t_ms) / MAX_SAMPLES))
     out = []
     for row in range(h.sizes["history"]):
         index = [int(where[d][row]) for d in dims]
         label = ", ".join(f"{d}={impact_z[row]:g}" if d == IMPACT else f"{d}={labels[d][i]}"
                           for d, i in zip(dims, index))  # fmt: skip
-        entry = {"label": label, "index": index, "time_ms": _numbers(t_ms), "force": _numbers(force[row])}
+        entry = {"label": label, "index": index, "force": _rounded(force[row, ::step])}
         if "displacement" in h and row < MAX_DISPLACEMENT_HISTORIES:
             entry["bending"] = bending(h["displacement"].isel(history=row).values, h["z"].values, t_ms)
         out.append(entry)
     return out
+
+
+def history_time(tree: xr.DataTree) -> list:
+    """The force histories' time axis (ms), shared by all of them, as many samples as each."""
+    if "history" not in tree.children or "time" not in tree["history"].coords:
+        return []
+    t_ms = tree["history"]["time"].values * 1e3
+    return _rounded(t_ms[:: max(1, math.ceil(len(t_ms) / MAX_SAMPLES))], digits=6)
 
 
 def bending(displacement: np.ndarray, z: np.ndarray, t_ms: np.ndarray) -> dict:
@@ -94,8 +126,10 @@ def bending(displacement: np.ndarray, z: np.ndarray, t_ms: np.ndarray) -> dict:
     covers."""
     step = max(1, math.ceil(displacement.shape[0] / MAX_FRAMES))
     keep = np.isfinite(displacement).any(axis=0)
-    return {"z": _numbers(z[keep]), "time_ms": _numbers(t_ms[::step]),
-            "mm": [_numbers(row[keep] * 1e3) for row in displacement[::step]]}  # fmt: skip
+    mm = displacement[::step][:, keep] * 1e3
+    peak = float(np.nanmax(np.abs(mm))) if np.isfinite(mm).any() else 0.0
+    return {"z": _rounded(z[keep], digits=6), "time_ms": _rounded(t_ms[::step], digits=6),
+            "mm": [_rounded(row, peak) for row in mm]}  # fmt: skip
 
 
 PAGE = """<!DOCTYPE html>
@@ -180,7 +214,7 @@ hs.forEach((h, i) => { const o = document.createElement("option"); o.value = i; 
 function drawHistory() {
   if (!hs.length) { document.getElementById("force").textContent = "This study recorded no force history."; return; }
   const h = hs[+hsel.value];
-  Plotly.react("force", [{ x: h.time_ms, y: h.force.map(f => f === null ? null : f / 1000), mode: "lines", name: "force" }],
+  Plotly.react("force", [{ x: DATA.time_ms, y: h.force.map(f => f === null ? null : f / 1000), mode: "lines", name: "force" }],
     { xaxis: { title: { text: "time from first contact (ms)" } }, yaxis: { title: { text: "contact force (kN)" } }, margin: { t: 20 } });
   const slider = document.getElementById("frame");
   if (h.bending) { slider.max = h.bending.time_ms.length - 1; slider.value = 0; }
@@ -228,7 +262,10 @@ def report(path: Union[str, os.PathLike], output: Union[str, os.PathLike, None] 
     """Write the explorer of the results file `path`, one HTML file (default: next to it,
     ``RESULTS.html``), and return its path. Needs Plotly (``pip install 'batstudy[plot]'``)."""
     out = Path(path).with_suffix(".html") if output is None else Path(output)
-    out.write_text(page(collect(open_results(path))), encoding="utf-8")
+    tree = open_results(path)
+    with reading(os.fspath(path)):  # values are read here, as the page takes them
+        data = collect(tree)
+    out.write_text(page(data), encoding="utf-8")
     return out
 
 
@@ -240,6 +277,9 @@ def main(argv=None, prog: str = "batstudy report") -> int:
     args = ap.parse_args(argv)
     try:
         out = report(args.results, args.output)
+    except ResultsFileError as err:  # names the file
+        print(f"{prog}: {err}", file=sys.stderr)
+        return 2
     except (OSError, ValueError) as err:
         print(f"{prog}: {args.results}: {err}", file=sys.stderr)
         return 2

@@ -4,14 +4,23 @@
 use super::error::{H5Ctx, StoreError};
 use super::header::JournalHeader;
 use super::layout as l;
-use super::read::{open_checked, str_attr};
+use super::read::{open_checked, shown, str_attr};
 use hdf5::types::VarLenUnicode;
 use std::fmt::Write as _;
 use std::path::Path;
 
 /// A human-readable description of a results file: study, layout version, dims, counts by
-/// status, sweet spots.
+/// status, sweet spots. A file HDF5 cannot read is a damaged one.
 pub fn inspect(path: &Path) -> Result<String, StoreError> {
+    describe(path).map_err(|e| match e {
+        StoreError::Hdf5 { path, what, source } => {
+            super::check::damaged(&path, format!("HDF5 cannot {what} ({source})"))
+        }
+        e => e,
+    })
+}
+
+fn describe(path: &Path) -> Result<String, StoreError> {
     let (f, header, version) = open_checked(path)?;
     let mut s = String::new();
     let name = str_attr(&f, "study_name", path)?;
@@ -159,7 +168,7 @@ fn dim_labels(g: &hdf5::Group, dim: &str, size: usize) -> Vec<String> {
     let text = |name: &str| -> Option<Vec<String>> {
         let ds = g.dataset(name).ok()?;
         if let Ok(v) = ds.read_raw::<VarLenUnicode>() {
-            return Some(v.iter().map(|x| x.as_str().to_string()).collect());
+            return Some(v.iter().map(shown).collect());
         }
         let v = ds.read_raw::<f64>().ok()?;
         Some(v.iter().map(|x| format!("{x}")).collect())
@@ -189,7 +198,7 @@ fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
     let labels: Vec<String> = bg
         .dataset(l::BAT_DIM.name)
         .and_then(|d| d.read_raw::<VarLenUnicode>())
-        .map(|v| v.iter().map(|x| x.as_str().to_string()).collect())
+        .map(|v| v.iter().map(shown).collect())
         .unwrap_or_default();
     let (mass, zcm, moi6, bbcor) = (
         f64s("mass"),

@@ -15,7 +15,7 @@
 //! identifies a study's journal and file), [`record`] (a journal record's payload: summaries and history chunks), [`journal`] (the append-only record file),
 //! [`dimscale`] (HDF5 dimension scales and helpers), [`chunks`] (chunks compressed in
 //! parallel), [`modal`] (the displacement's modal form cut into chunks), [`encode`] (points as journal records, made on the workers), [`gather`] (points handed over one by one gathered into their groups), [`options`] (what the caller passes and gets back), [`paths`] (the files next
-//! to an output), [`read`] (reading back), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
+//! to an output), [`read`] (reading back), [`check`] (a file's structure checked before HDF5 reads it), [`inspect`] (a file described for a person), [`build`] (journal → HDF5),
 //! [`by_reference`] (histories journalled by their place in the file), [`session`] (an open
 //! output), [`writeback`] (the final file sent to the disk as it is
 //! written), [`merge`](mod@merge) (shards → one file), [`lock`] (one
@@ -23,6 +23,7 @@
 
 pub mod build;
 pub mod by_reference;
+pub mod check;
 pub mod chunks;
 pub mod dimscale;
 pub mod direct;

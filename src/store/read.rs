@@ -44,7 +44,23 @@ pub(super) fn str_attr(f: &hdf5::Location, name: &str, path: &Path) -> Result<St
     let v: VarLenUnicode = a
         .read_scalar()
         .map_err(|_| bad(path, format!("root attribute {name} is not a string")))?;
-    Ok(v.as_str().to_string())
+    text(&v).ok_or_else(|| {
+        bad(
+            path,
+            format!("root attribute {name} is not UTF-8 (damaged)"),
+        )
+    })
+}
+
+/// A string of the file, if it is UTF-8 (HDF5 hands over a damaged one's bytes as they are,
+/// and `VarLenUnicode::as_str` would take them for UTF-8 unchecked).
+pub(super) fn text(v: &VarLenUnicode) -> Option<String> {
+    std::str::from_utf8(v.as_bytes()).ok().map(str::to_string)
+}
+
+/// A string of the file to show: a byte that is not UTF-8 shows as U+FFFD.
+pub(super) fn shown(v: &VarLenUnicode) -> String {
+    String::from_utf8_lossy(v.as_bytes()).into_owned()
 }
 
 /// Whether `path` is a batstudy results file of any layout version (an HDF5 file with the
@@ -66,6 +82,7 @@ pub(super) fn open_checked(path: &Path) -> Result<(hdf5::File, JournalHeader, u3
             std::io::Error::from(std::io::ErrorKind::NotFound),
         ));
     }
+    super::check::check_structure(path)?;
     let f = hdf5::File::open(path).map_err(|e| bad(path, format!("HDF5 cannot open it ({e})")))?;
     let version: i64 = f
         .attr("layout_version")
@@ -326,7 +343,7 @@ fn error_messages(
     Ok(eidx
         .iter()
         .zip(emsg)
-        .map(|(i, m)| (*i as usize, m.as_str().to_string()))
+        .map(|(i, m)| (*i as usize, shown(&m)))
         .collect())
 }
 

@@ -11,6 +11,7 @@ Needs /usr/bin/chromium (scripts/test.sh installs Debian's chromium)."""
 import json
 import os
 import shutil
+import subprocess
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -152,3 +153,42 @@ def test_each_escape_gives_back_the_value_in_its_context():
     code = _html.script_code('s = "</script>" + "<!--" + "</SCRIPT>";')
     assert "</script" not in code.lower() and "<!--" not in code
     assert code == 's = "<\\/script>" + "<\\!--" + "<\\/SCRIPT>";'
+
+
+FORCE_STUDY = """name: forces
+model: wave
+base: {bat: {preset: r161}, ball: {speed: 40}}
+grid:
+  impact.z: {range: [0.50, 0.80, 0.01]}
+  swing.omega: [0, -10, -20, -30, -40, -50, -60]
+history: {fields: [force], interval: 1.0e-5, duration: 3.0e-3}
+"""
+
+
+def test_the_page_is_proportionate_to_the_file(tmp_path):
+    """A study that stores little but force histories (217 of them) is the page's worst case:
+    the page holds every history, to 4 significant digits of its peak, in at most twice the
+    file's bytes besides Plotly's JavaScript (4.8 MB, the same in every page)."""
+    bin_ = os.environ.get("BATSTUDY_BIN")
+    if not bin_:
+        pytest.skip("BATSTUDY_BIN not set (scripts/test.sh sets it)")
+    from batstudy import _report
+
+    (tmp_path / "forces.yaml").write_text(FORCE_STUDY)
+    results = tmp_path / "forces.h5"
+    r = subprocess.run([bin_, "run", str(tmp_path / "forces.yaml"), "-o", str(results), "--quiet"],
+                       capture_output=True, text=True)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    page = batstudy.report(results)
+    data_bytes = page.stat().st_size - len(_report.plotly_js().encode())
+    assert data_bytes <= 2 * results.stat().st_size, (data_bytes, results.stat().st_size)
+    text = page.read_text(encoding="utf-8")
+    start = text.index("const DATA = ") + len("const DATA = ")
+    shown = json.loads(text[start : text.index(";\n", start)])
+    stored = batstudy.histories(results)
+    force = stored["force"].values
+    assert len(shown["histories"]) == len(force) == 217
+    for h, f in zip(shown["histories"], force):  # every value, to 4 digits of the peak
+        step = 10.0 ** (np.floor(np.log10(np.abs(f).max())) - 3)
+        np.testing.assert_allclose(np.array(h["force"], dtype=float), f, rtol=0, atol=step / 2)
+    np.testing.assert_allclose(shown["time_ms"], stored["time"].values * 1e3)
