@@ -348,7 +348,14 @@ fn optimize_study(
     };
     let (result, interrupted) = drive(py, progress, "batstudy-optimize", move |stop, counter| {
         let done = cli::optimize::optimize_study(loaded, &args, &stop, Some(counter));
-        done.map(|d| (d.exit_code(), d.no_answer(), cli::optimize::report_text(&d, &args), d))
+        done.map(|d| {
+            (
+                d.exit_code(),
+                d.no_answer(),
+                cli::optimize::report_text(&d, &args),
+                d,
+            )
+        })
     })?;
     Ok(match result {
         Err(f) => (f.code, f.message, None, String::new(), false),
