@@ -186,18 +186,29 @@ def run(
     output (exit status 2), :class:`RunError` when the run itself fails (3).
     """
     path, text = _study_source(study)
-    bar = _progress_bar(progress)
+    again = f"{path!r}" if path is not None else "<the same study>"
+    result, code, _message, report = _command(
+        lambda bar: _native.run_study(
+            path, text, None if output is None else os.fspath(output), jobs, resume, force, bar, _shard(shard)
+        ),
+        _progress_bar(progress),
+        f"batstudy.run({again}, output={{output!r}}, resume=True)",
+    )
+    if code == EXIT_POINTS_FAILED:
+        warnings.warn(report.strip(), RuntimeWarning, stacklevel=2)
+    elif progress and report:
+        print(report.strip(), file=sys.stderr)
+    return result
+
+
+def _command(call: Callable[[Any], tuple], bar: Any, resume_call: str) -> tuple:
+    """Run a native command (`call(bar)` → its exit code, message, output, report and
+    whether it was interrupted) with its progress bar, as the CLI's exit codes say: a bad
+    study raises StudyError, a failed run RunError, an interrupted one KeyboardInterrupt
+    naming `resume_call` (with ``{output!r}`` for the output). Returns (output path, exit
+    code, message, report) of a command that finished."""
     try:
-        code, message, out, report, interrupted = _native.run_study(
-            path,
-            text,
-            None if output is None else os.fspath(output),
-            jobs,
-            resume,
-            force,
-            bar,
-            _shard(shard),
-        )
+        code, message, out, report, interrupted = call(bar)
     finally:
         if bar is not None:
             bar.close()  # type: ignore[attr-defined]
@@ -205,17 +216,10 @@ def run(
         raise StudyError(message)
     if out is None:
         raise RunError(message, code)
-    result = pathlib.Path(out)
     if interrupted:
-        again = f"{path!r}" if path is not None else "<the same study>"
-        raise KeyboardInterrupt(
-            f"{report.strip()}\n(in Python: batstudy.run({again}, output={os.fspath(result)!r}, resume=True))"
-        )
-    if code == EXIT_POINTS_FAILED:
-        warnings.warn(report.strip(), RuntimeWarning, stacklevel=2)
-    elif progress and report:
-        print(report.strip(), file=sys.stderr)
-    return result
+        again = resume_call.replace("{output!r}", repr(os.fspath(out)))
+        raise KeyboardInterrupt(f"{report.strip()}\n(in Python: {again})")
+    return pathlib.Path(out), code, message, report
 
 
 def merge(

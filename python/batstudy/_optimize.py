@@ -4,20 +4,11 @@
 from __future__ import annotations
 
 import os
-import pathlib
 import sys
 import warnings
 from typing import Optional, Union
 
-from ._api import (
-    EXIT_BAD_INPUT,
-    EXIT_POINTS_FAILED,
-    RunError,
-    StudyError,
-    StudyLike,
-    _progress_bar,
-    _study_source,
-)
+from ._api import EXIT_POINTS_FAILED, StudyLike, _command, _progress_bar, _study_source
 
 
 def optimize(
@@ -52,29 +43,13 @@ def optimize(
     from . import _native
 
     path, text = _study_source(study)
-    bar = _progress_bar(progress, unit="candidates", desc="searching")
-    try:
-        code, message, out, report, interrupted = _native.optimize_study(
-            path,
-            text,
-            None if output is None else os.fspath(output),
-            jobs,
-            resume,
-            force,
-            bar,
-        )
-    finally:
-        if bar is not None:
-            bar.close()  # type: ignore[attr-defined]
-    if code == EXIT_BAD_INPUT:
-        raise StudyError(message)
-    if out is None:
-        raise RunError(message, code)
-    result = pathlib.Path(out)
-    if interrupted:
-        raise KeyboardInterrupt(
-            f"{report.strip()}\n(in Python: batstudy.optimize(..., output={os.fspath(result)!r}, resume=True))"
-        )
+    result, code, message, report = _command(
+        lambda bar: _native.optimize_study(
+            path, text, None if output is None else os.fspath(output), jobs, resume, force, bar
+        ),
+        _progress_bar(progress, unit="candidates", desc="searching"),
+        "batstudy.optimize(..., output={output!r}, resume=True)",
+    )
     if code == EXIT_POINTS_FAILED:
         warnings.warn("\n".join(x for x in (message, report.strip()) if x), RuntimeWarning, stacklevel=2)
     elif not quiet and report:
