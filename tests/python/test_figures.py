@@ -15,6 +15,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import h5py
 import numpy as np
 import pytest
 import xarray as xr
@@ -94,11 +95,16 @@ def test_missing_data_is_skipped(tmp_path, capsys):
     z = np.linspace(0.5, 0.8, 7)
     omega = np.array([0.0, -20.0, -40.0])
     speed = 20 + 10 * np.exp(-(((z[None, :] - 0.7) / 0.1) ** 2)) - 0.1 * omega[:, None]
-    ds = xr.Dataset({"exit_speed": (("swing_omega", "impact_z"), speed, {"units": "m/s"})},
+    status = np.zeros(speed.shape, dtype=np.int8)  # every point ran
+    ds = xr.Dataset({"exit_speed": (("swing_omega", "impact_z"), speed, {"units": "m/s"}),
+                     "status": (("swing_omega", "impact_z"), status)},
                     coords={"swing_omega": ("swing_omega", omega, {"units": "rad/s"}),
                             "impact_z": ("impact_z", z, {"units": "m"})})  # fmt: skip
     path = tmp_path / "grid.h5"
     ds.to_netcdf(path, engine="h5netcdf", group="summary")
+    # what marks a file as batstudy's (another program's HDF5 file is refused)
+    with h5py.File(path, "r+") as f:
+        f.attrs["layout_version"] = np.int64(4)
     out = tmp_path / "out"
     assert plot.main([str(path), "-o", str(out)]) == 0
     text = capsys.readouterr().out
