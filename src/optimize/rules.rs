@@ -40,11 +40,12 @@ pub struct Limit {
 impl Limit {
     /// A label, e.g. `bat.bbcor <= 0.5`.
     pub fn label(&self) -> String {
-        match (self.min, self.max) {
-            (Some(a), Some(b)) => format!("{a} <= {} <= {b}", self.quantity.name()),
-            (Some(a), None) => format!("{} >= {a}", self.quantity.name()),
-            (None, Some(b)) => format!("{} <= {b}", self.quantity.name()),
-            (None, None) => self.quantity.name().to_string(),
+        let name = self.quantity.name();
+        match (self.min.map(bound_text), self.max.map(bound_text)) {
+            (Some(a), Some(b)) => format!("{a} <= {name} <= {b}"),
+            (Some(a), None) => format!("{name} >= {a}"),
+            (None, Some(b)) => format!("{name} <= {b}"),
+            (None, None) => name.to_string(),
         }
     }
 
@@ -80,6 +81,18 @@ fn bat_limit(q: BatQuantity, min: Option<f64>, max: Option<f64>, source: &str) -
             Aggregate::Min
         },
         source: source.to_string(),
+    }
+}
+
+/// A bound as a label shows it: to 9 decimals, trailing zeros dropped, so that a bound in
+/// inches converted to metres (2.625 in = 0.066675 m) reads as its value, not as the float
+/// noise of the conversion (0.06667499999999999).
+fn bound_text(x: f64) -> String {
+    let s = format!("{x:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    match s {
+        "-0" => "0".into(),
+        _ => s.into(),
     }
 }
 
@@ -148,6 +161,18 @@ pub fn protocol_bbcor(spec: &CollisionSpec, target: &Target) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn labels_show_bounds_without_conversion_noise() {
+        let limits = super::rule_limits(crate::study::optimize_block::RuleSet::NcaaBbcor, None);
+        let labels: Vec<String> = limits.iter().map(|l| l.label()).collect();
+        assert!(
+            labels.iter().any(|l| l.ends_with("<= 0.066675")),
+            "{labels:?}"
+        );
+        assert!(labels.iter().any(|l| l.ends_with("<= 0.5")), "{labels:?}");
+        assert!(labels.iter().any(|l| l.ends_with(">= -3")), "{labels:?}");
+    }
+
     use super::*;
 
     #[test]
