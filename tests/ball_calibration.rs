@@ -155,6 +155,20 @@ fn the_loop_returns_the_curve_at_every_speed() {
     }
 }
 
+/// Verification: `cor_shift` moves the wall COR the full loading–unloading loop returns by
+/// exactly the shift at every speed (the unloading branch is rebuilt from the shifted COR),
+/// so a sample over it draws balls off the curve by what it says.
+#[test]
+fn a_shifted_ball_comes_back_off_the_curve_by_its_shift() {
+    let mut law = preset_law(BallPreset::Mlb);
+    law.cor_shift = Some(-0.005);
+    for v in [1.0, 25.9, 49.2, 60.8] {
+        let shifted = wall_rebound_speed(&ContactLaw::new(&law, v), BALL_MASS, v) / v;
+        let moved = shifted - wall_cor(v);
+        assert!((moved + 0.005).abs() < 2e-4, "{v} m/s: moved by {moved}");
+    }
+}
+
 #[test]
 fn the_held_out_student_data_fall_as_the_curve_predicts() {
     // Woo et al.'s 28 shots, fitted with one exponent γ (e ∝ v^−γ) and a level per ball by least

@@ -34,6 +34,10 @@ pub const CROSS_LOW_SPEED: f64 = 1.0;
 pub const CYLINDER_SPEED: f64 = 120.0 * 0.44704;
 pub const CYLINDER_COR: f64 = 0.4920;
 pub const CYLINDER_DYNAMIC_STIFFNESS: f64 = 2.236e6;
+/// The spread of the cylinder test's balls about their mean COR (the sample SD over the 36
+/// balls, the three lots included; the lots' means differ by up to 0.006): what one ball,
+/// or one lot, may be off the `mlb` curve (`ball.law.cor_shift`).
+pub const MLB_COR_SD: f64 = 0.0050;
 /// The loading's exponent α of the `mlb` ball: Nathan's (2000), shaped to Adair's
 /// force–time curves (one speed's dynamic stiffness cannot pin it).
 pub const MLB_ALPHA: f64 = 1.84;
@@ -128,7 +132,7 @@ pub fn cor_at_speed(law: &BallLaw, v: f64) -> f64 {
                     law.cor + slope * (v - reference)
                 }
             };
-            e.clamp(COR_RANGE.0, COR_RANGE.1)
+            (e + law.cor_shift.unwrap_or(0.0)).clamp(COR_RANGE.0, COR_RANGE.1)
         }
         _ => law.cor,
     }

@@ -237,6 +237,14 @@ pub const RANGES: &[Range] = &[
         get: |s| s.ball.law.cor_at_rest,
     },
     Range {
+        path: "ball.law.cor_shift",
+        min: -0.1,
+        max: 0.1,
+        unit: "1",
+        reason: "game balls on the same cylinder spread by 0.005 (SD) about their mean COR; the rule book's window is 0.064 wide",
+        get: |s| s.ball.law.cor_shift,
+    },
+    Range {
         path: "ball.law.cor_power",
         min: 0.1,
         max: 2.0,

@@ -433,6 +433,12 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
         "the ball's COR as the speed goes to 0, of e(v) = cor_at_rest - (cor_at_rest - cor) (v / reference_speed)^cor_power",
     ),
     (
+        "ball.law.cor_shift",
+        "1",
+        "COR shift",
+        "shift added to the ball's COR at every speed (one ball or lot off the curve)",
+    ),
+    (
         "ball.law.cor_power",
         "1",
         "COR power",

@@ -149,6 +149,11 @@ pub const RULES: &[Rule] = &[
         uses: speed_dependent,
     },
     Rule {
+        field: "ball.law.cor_shift",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
         field: "ball.law.loading",
         used_when: "by the wave model with ball.law.kind speed_dependent",
         uses: |t| wave(t) && speed_dependent(t),

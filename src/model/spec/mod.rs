@@ -474,6 +474,11 @@ pub struct BallLaw {
     /// `speed_dependent`: the power of that curve (> 0). Default none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cor_power: Option<f64>,
+    /// `speed_dependent`: a shift added to the COR at every speed: one ball (or lot) livelier
+    /// or deader than the curve's, the whole curve moved in parallel. Default 0. The `mlb`
+    /// ball's measured ball-to-ball SD is `ball::MLB_COR_SD` (0.005).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cor_shift: Option<f64>,
     /// Coefficient of friction between ball and bat (oblique impacts and spin). Default:
     /// docs/physics.md, "Oblique impacts".
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -502,6 +507,7 @@ struct BallLawFields {
     cor_exponent: Option<f64>,
     cor_at_rest: Option<f64>,
     cor_power: Option<f64>,
+    cor_shift: Option<f64>,
     friction: Option<f64>,
     tangential_ratio: Option<f64>,
 }
@@ -529,6 +535,7 @@ impl BallLawFields {
             cor_power: self.cor_power.or(base
                 .cor_power
                 .filter(|_| self.cor_slope.is_none() && self.cor_exponent.is_none())),
+            cor_shift: self.cor_shift.or(base.cor_shift),
             friction: self.friction.or(base.friction),
             tangential_ratio: self.tangential_ratio.or(base.tangential_ratio),
         }
@@ -588,6 +595,7 @@ impl Default for BallLaw {
             cor_exponent: None,
             cor_at_rest: None,
             cor_power: None,
+            cor_shift: None,
             friction: None,
             tangential_ratio: None,
         }
