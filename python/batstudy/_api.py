@@ -150,12 +150,16 @@ def _plain(value: Any) -> Any:
     raise TypeError(f"a study holds numbers, text, lists and mappings, not {type(value).__name__}: {value!r}")
 
 
-def _shard(shard: Optional[Tuple[int, int]]) -> Optional[Tuple[int, int]]:
+def _shard(shard: Optional[Sequence[int]]) -> Optional[Tuple[int, int]]:
+    """`(i, n)` as the native module takes it, from any pair of whole numbers (a tuple, a
+    list such as a scheduler's `[task, tasks]`, NumPy integers)."""
     if shard is None:
         return None
-    if not (isinstance(shard, tuple) and len(shard) == 2 and all(isinstance(x, int) for x in shard)):
+    pair = tuple(shard) if isinstance(shard, (tuple, list, np.ndarray)) else ()
+    whole = all(isinstance(x, (int, np.integer)) and not isinstance(x, bool) for x in pair)
+    if len(pair) != 2 or not whole:
         raise TypeError(f"shard must be a pair of whole numbers (i, n) with 1 <= i <= n, not {shard!r}")
-    return shard
+    return int(pair[0]), int(pair[1])
 
 
 def run(

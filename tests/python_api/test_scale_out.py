@@ -41,9 +41,10 @@ def test_run_takes_a_path_yaml_text_or_a_dict_and_shards_merge_to_the_whole(tmp_
     study_file.write_text(STUDY_YAML)
     whole = batstudy.run(study_file, output=tmp_path / "whole.h5", progress=False)
     from_text = batstudy.run(STUDY_YAML, output=tmp_path / "text.h5", progress=False)
+    # any pair of whole numbers: a tuple, a list (a scheduler's [task, tasks]), NumPy's
     shards = [
-        batstudy.run(STUDY, output=tmp_path / f"part{i}.h5", shard=(i, 3), progress=False)
-        for i in (1, 2, 3)
+        batstudy.run(STUDY, output=tmp_path / f"part{i}.h5", shard=pair, progress=False)
+        for i, pair in ((1, (1, 3)), (2, [2, 3]), (3, np.array([3, 3])))
     ]
     merged = batstudy.merge(tmp_path / "merged.h5", shards)
     for other in (from_text, merged):
@@ -52,8 +53,9 @@ def test_run_takes_a_path_yaml_text_or_a_dict_and_shards_merge_to_the_whole(tmp_
     with pytest.raises(batstudy.StudyError, match="lack"):
         batstudy.merge(tmp_path / "partial.h5", shards[:2])
     assert not (tmp_path / "partial.h5").exists()
-    with pytest.raises(TypeError):
-        batstudy.run(STUDY, shard=(0,), progress=False)
+    for bad in ((0,), (1.5, 3), (True, 2), "1/3"):
+        with pytest.raises(TypeError):
+            batstudy.run(STUDY, shard=bad, progress=False)
     with pytest.raises(batstudy.StudyError, match="shard"):
         batstudy.run(STUDY, output=tmp_path / "x.h5", shard=(4, 3), progress=False)
 
