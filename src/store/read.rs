@@ -361,6 +361,7 @@ fn history_arrays(
         return Ok(None);
     };
     let rank = header.dims.len();
+    let study: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
     let hg = f.group(l::GROUP_HISTORY).ctx(path, "open group history")?;
     let mut v = Vec::new();
     for name in names {
@@ -371,7 +372,6 @@ fn history_arrays(
         let ds = hg
             .dataset(name)
             .ctx(path, &format!("open history/{name}"))?;
-        let study: Vec<usize> = header.dims.iter().map(|d| d.1).collect();
         if ds.shape().get(..rank) != Some(&study[..]) {
             return Err(bad(
                 path,

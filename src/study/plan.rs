@@ -2,6 +2,7 @@
 //! builds one point on demand (memory does not grow with the number of points).
 
 use super::checks::{check_spec, Violation};
+use super::source::Seg;
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::results::{Coord, CoordValues, Dim, PointId, ResultShape};
 use sha2::{Digest, Sha256};
@@ -135,22 +136,26 @@ fn hash_str(s: &str) -> PointId {
     u64::from_be_bytes(d[..8].try_into().unwrap())
 }
 
-/// The dotted path and value of the first number in `v` that is not finite.
-fn first_non_finite(v: &Value, path: String) -> Option<(String, f64)> {
-    let join = |k: &str| match path.is_empty() {
-        true => k.to_string(),
-        false => format!("{path}.{k}"),
+/// The first number in `v` that is not finite, with `at` left as its path (`at` as given
+/// when there is none).
+pub(crate) fn first_non_finite(v: &Value, at: &mut Vec<Seg>) -> Option<f64> {
+    let inside = |seg: Seg, x: &Value, at: &mut Vec<Seg>| {
+        at.push(seg);
+        let found = first_non_finite(x, at);
+        if found.is_none() {
+            at.pop();
+        }
+        found
     };
     match v {
-        Value::Number(n) => n.as_f64().filter(|x| !x.is_finite()).map(|x| (path, x)),
-        Value::Sequence(items) => items
-            .iter()
-            .enumerate()
-            .find_map(|(i, x)| first_non_finite(x, format!("{path}[{i}]"))),
+        Value::Number(n) => n.as_f64().filter(|x| !x.is_finite()),
+        Value::Sequence(items) => {
+            (items.iter().enumerate()).find_map(|(i, x)| inside(Seg::Index(i), x, at))
+        }
         Value::Mapping(m) => m
             .iter()
-            .find_map(|(k, x)| first_non_finite(x, join(&value_text(k)))),
-        Value::Tagged(t) => first_non_finite(&t.value, path),
+            .find_map(|(k, x)| inside(Seg::Key(value_text(k)), x, at)),
+        Value::Tagged(t) => first_non_finite(&t.value, at),
         _ => None,
     }
 }
@@ -274,10 +279,11 @@ impl Plan {
         // `null` means "the preset's value": a drawn or searched value of inf would run
         // silently at the preset's. The study text is checked on load; this holds for
         // every value a block, a sample or a search puts in.
-        if let Some((path, x)) = first_non_finite(v, String::new()) {
+        let mut at = Vec::new();
+        if let Some(x) = first_non_finite(v, &mut at) {
             return Err(ResolveError::Shape {
                 value: Some(x.to_string()),
-                path,
+                path: super::source::seg_path(&at),
                 message: "not a finite number (NaN and infinities are refused)".into(),
             });
         }

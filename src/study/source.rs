@@ -184,6 +184,22 @@ pub fn keys(k: &[&str]) -> Vec<Seg> {
 }
 
 /// `["bat", "material"]` from `"bat.material"` (empty string: no segments).
+/// `grid.impact.z[2]` for a path of segments.
+pub fn seg_path(at: &[Seg]) -> String {
+    let mut s = String::new();
+    for seg in at {
+        match seg {
+            Seg::Key(k) if s.is_empty() => s.push_str(k),
+            Seg::Key(k) => {
+                s.push('.');
+                s.push_str(k);
+            }
+            Seg::Index(i) => s.push_str(&format!("[{i}]")),
+        }
+    }
+    s
+}
+
 pub fn dotted(path: &str) -> Vec<Seg> {
     if path.is_empty() {
         return Vec::new();

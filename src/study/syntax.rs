@@ -5,8 +5,8 @@ use super::error::allowed_from_serde;
 use super::error::{did_you_mean, StudyError};
 use super::locate::Ctx;
 use super::paths::{children, known_paths, set_path, PathKind};
-use super::plan::{path_string, value_text};
-use super::source::{dotted, keys, Seg};
+use super::plan::{first_non_finite, path_string, value_text};
+use super::source::{dotted, keys, seg_path, Seg};
 use super::types::StudyFile;
 use yaml_serde::{Mapping, Value};
 
@@ -37,50 +37,14 @@ pub(super) const HISTORY_KEYS: &[&str] = &[
 
 /// Refuse a NaN or an infinite number anywhere in the document, at its position.
 pub(super) fn check_finite(cx: &Ctx, v: &Value, at: &mut Vec<Seg>) -> Result<(), StudyError> {
-    match v {
-        Value::Number(n) => match n.as_f64() {
-            Some(x) if !x.is_finite() => Err(cx
-                .err(at, "not a finite number")
-                .field(seg_path(at))
-                .value(value_text(v))
-                .allowed("a finite number (NaN and infinities are refused anywhere in a study)")),
-            _ => Ok(()),
-        },
-        Value::Sequence(items) => {
-            for (i, x) in items.iter().enumerate() {
-                at.push(Seg::Index(i));
-                check_finite(cx, x, at)?;
-                at.pop();
-            }
-            Ok(())
-        }
-        Value::Mapping(m) => {
-            for (k, x) in m {
-                at.push(Seg::Key(value_text(k)));
-                check_finite(cx, x, at)?;
-                at.pop();
-            }
-            Ok(())
-        }
-        Value::Tagged(t) => check_finite(cx, &t.value, at),
-        _ => Ok(()),
+    match first_non_finite(v, at) {
+        Some(x) => Err(cx
+            .err(at, "not a finite number")
+            .field(seg_path(at))
+            .value(value_text(&Value::from(x)))
+            .allowed("a finite number (NaN and infinities are refused anywhere in a study)")),
+        None => Ok(()),
     }
-}
-
-/// `grid.impact.z[2]` for a path of segments.
-pub(super) fn seg_path(at: &[Seg]) -> String {
-    let mut s = String::new();
-    for seg in at {
-        match seg {
-            Seg::Key(k) if s.is_empty() => s.push_str(k),
-            Seg::Key(k) => {
-                s.push('.');
-                s.push_str(k);
-            }
-            Seg::Index(i) => s.push_str(&format!("[{i}]")),
-        }
-    }
-    s
 }
 
 pub(super) fn yaml_segs(p: &serde_path_to_error::Path) -> Vec<Seg> {
