@@ -1,5 +1,5 @@
 //! History chunks journalled by where they are in the results file: each history written
-//! once (issue 37).
+//! once.
 //!
 //! A fresh run's placer (`store::placer`) writes each point's history chunks into
 //! `OUT.h5.partial` as soon as every point before it is stored. The journal used to hold a

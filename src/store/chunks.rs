@@ -1,7 +1,7 @@
 //! Summary chunks compressed on every core and written whole (`H5Dwrite_chunk`): the bytes
 //! HDF5's shuffle + deflate filters would store, made in parallel instead of by the library
-//! one chunk at a time on the writer thread (issue 7: deflate was most of the time it took to
-//! finish a run, and that time is serial). Any zlib stream is what the deflate filter reads;
+//! one chunk at a time on the writer thread (deflate is most of the time it takes to finish
+//! a run, and that time is serial). Any zlib stream is what the deflate filter reads;
 //! libdeflate makes one about twice as fast as zlib.
 
 use super::fixed_deflate;
@@ -73,7 +73,7 @@ pub fn filtered<T: ChunkValue>(
 /// [`filtered`] for values that fill their chunk (a history: one chunk per point); level 0:
 /// the raw values of a dataset without filters. Shuffled
 /// straight from the values: the same bytes with one copy less. Runs on the workers
-/// (`store::encode`, issue 22).
+/// (`store::encode`).
 pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
     if level == 0 {
         return le_bytes(values); // no filters: the values as they are
@@ -90,8 +90,7 @@ pub fn filtered_whole<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
 /// shuffled, each byte plane in deflate blocks with its own Huffman codes ([`run_huffman`]);
 /// level 0: the raw values. Each place is shuffled straight into its part of the planes.
 /// One code and one block header serve the group's points where a chunk of each point's
-/// own needed one each (issue 37: `benches/chunk_groups.rs` measured the saving before
-/// this was built).
+/// own needs one each (`benches/chunk_groups.rs` measures the saving).
 pub fn filtered_group<T: ChunkValue>(
     places: &[Option<&[f64]>],
     per: usize,
@@ -186,7 +185,7 @@ pub fn filtered_group_coordinates(
 }
 
 /// [`filtered_whole`] for values whose bytes are mostly runs of zeros between planes that
-/// repeat little (the modal coordinates kept to the precision they need, issue 37): each
+/// repeat little (the modal coordinates kept to the precision they need): each
 /// byte plane a deflate block with its own Huffman codes ([`run_huffman`]). The stored
 /// form of a whole, zero-padded block of coordinates, which [`filtered_coordinates`] makes
 /// without the padding (tested against this).
@@ -204,9 +203,8 @@ fn filtered_runs<T: ChunkValue>(values: &[T], level: u8) -> Vec<u8> {
 /// The stored chunk of a block of modal coordinates: modes `rows` of `q` (row-major
 /// [time][`modes`], `n_samples` rows), mode-major ([mode][time]), then zero rows up to
 /// `block` modes, shuffled and deflated as `filtered_runs` would the whole block; the same
-/// bytes, made without the zero rows and without the mode-major copy (issue 37: the
-/// transposed copy, and shuffling and scanning the zero rows, were a third of encoding a
-/// block).
+/// bytes, made without the zero rows and without the mode-major copy (the transposed copy,
+/// and shuffling and scanning the zero rows, would be a third of encoding a block).
 pub fn filtered_coordinates(
     q: &[f64],
     modes: usize,
@@ -232,7 +230,7 @@ const PLANE_MIN_VALUES: usize = 1024;
 
 /// Shuffled bytes (`size` planes of equal length) as one zlib stream, which is what the
 /// deflate filter reads. The planes that hold the low-order bytes of measured or computed
-/// floats are noise: deflate spends most of its time on them and saves nothing (issue 22: on
+/// floats are noise: deflate spends most of its time on them and saves nothing (on
 /// a displacement chunk of 17 000 f32, libdeflate takes 50 µs on each of planes 0 and 1 and
 /// they come out at 99.8 % of their size). So the leading planes that look like uniform bytes go in as
 /// stored blocks and only the rest is deflated; deflate allows mixing block types in one
@@ -270,9 +268,9 @@ fn deflate_planes(shuffled: &[u8], size: usize, level: u8) -> Vec<u8> {
 
 /// A small chunk (under [`PLANE_MIN_VALUES`] values; a history's scalar series): its
 /// leading planes of noise stored and the rest in one block with the fixed codes, without
-/// libdeflate's set-up of several µs per call (`fixed_deflate`). Issue 37: the fixed codes
-/// found nothing to shorten in the noise planes (the low bytes of a series of f32) and
-/// coded each of their bytes in 8 or 9 bits; stored they are copied, in 8.
+/// libdeflate's set-up of several µs per call (`fixed_deflate`). The fixed codes find
+/// nothing to shorten in the noise planes (the low bytes of a series of f32) and code each
+/// of their bytes in 8 or 9 bits; stored they are copied, in 8.
 fn deflate_small(shuffled: &[u8], n: usize, size: usize, level: u8) -> Vec<u8> {
     let segments = match size > 1 {
         true => leading_noise(shuffled, n, SMALL_UNIFORM_PERCENT),
@@ -404,7 +402,7 @@ fn looks_uniform(plane: &[u8], percent: u128) -> bool {
     let mut counts = [0u32; 256];
     if plane.len() < PLANE_MIN_VALUES {
         // a small chunk's plane (a few hundred bytes, four to seven of them a series): one
-        // table, where zeroing four was most of the count (issue 37)
+        // table, where zeroing four would be most of the count
         plane.iter().for_each(|&b| counts[usize::from(b)] += 1);
     } else {
         let mut tables = [[0u32; 256]; 4];
@@ -423,8 +421,8 @@ thread_local! {
 }
 
 /// `bytes` as a zlib stream (what HDF5's deflate filter stores), by libdeflate: whole
-/// buffers only, about twice as fast as zlib at the same level for the same size (issue 7:
-/// deflate was most of finishing a small study's file).
+/// buffers only, about twice as fast as zlib at the same level for the same size (deflate
+/// is most of finishing a small study's file).
 fn deflate_zlib(bytes: &[u8], level: u8) -> Vec<u8> {
     with_compressor(level, |comp| {
         let mut out = vec![0u8; comp.zlib_compress_bound(bytes.len())];
@@ -490,8 +488,8 @@ pub fn end_of_allocation(file: hid_t) -> Option<u64> {
 ///
 /// `eoa` is the end of allocation before the write, when the caller knows it (None: asked
 /// of the file), and is left at the end after it: a point's chunks written one after the
-/// other ask the file once each, not twice (issue 37: the queries were a seventh of placing
-/// a modal history).
+/// other ask the file once each, not twice (asked twice, the queries are a seventh of
+/// placing a modal history).
 pub fn write_chunk_at_end(
     ds: &Dataset,
     file: hid_t,
@@ -565,7 +563,8 @@ mod tests {
         }
     }
 
-    // The workers' history chunks are the bytes the finish made before issue 22.
+    // The workers' history chunks (`filtered_whole`) are the same bytes as the general
+    // chunk filter (`filtered`) makes of the same values.
     #[test]
     fn whole_chunks_are_filtered_as_before() {
         let v: Vec<f32> = (0..1000).map(|i| (i as f32 * 0.37).sin()).collect();
@@ -665,7 +664,7 @@ mod tests {
         assert_eq!(&back[n..], &noisy[..]);
     }
 
-    // A block of modal coordinates (issue 37): 21 rows of noisy f64 and 11 zero rows,
+    // A block of modal coordinates: 21 rows of noisy f64 and 11 zero rows,
     // mode-major. Each noise plane goes in stored without its zeros, which take a few bytes;
     // HDF5's own filter reads the chunk back, and so do chunks with zeros in every plane, in
     // the last plane only, and a whole block of zeros.
@@ -736,7 +735,7 @@ mod tests {
     // Small chunks go out with fixed Huffman codes (`store::fixed_deflate`); HDF5's
     // deflate filter (zlib's inflate, RFC 1950/1951) reads them back: a force history that
     // ends in zeros, a constant, noise (stored), a force whose low planes are noise during
-    // the contact (those planes stored, the rest with the fixed codes, issue 37), an f64
+    // the contact (those planes stored, the rest with the fixed codes), an f64
     // series of that kind, and a few f64 summaries.
     #[test]
     fn small_chunks_read_back_through_hdf5() {

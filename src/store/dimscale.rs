@@ -38,7 +38,7 @@ pub fn set_scale(ds: &Dataset, name: &str) -> hdf5::Result<()> {
 
 /// Dimension scales attached in one go. `H5DSattach_scale` rewrites a variable's
 /// `DIMENSION_LIST` and its scale's whole `REFERENCE_LIST` on every call (a third of the
-/// file skeleton's cost, issue 7); this collects the links and writes each attribute once,
+/// file skeleton's cost); this collects the links and writes each attribute once,
 /// with the types and layout the H5DS API uses, so every reader (h5py, netCDF, xarray) sees
 /// the same scales.
 #[derive(Default)]
@@ -228,8 +228,8 @@ pub fn vlstr(s: &str) -> VarLenUnicode {
 /// The ids every string attribute is made with: a variable-length UTF-8 string type, a
 /// scalar dataspace and a creation list for UTF-8 names (what hdf5-metno's
 /// `new_attr::<VarLenUnicode>()` builds for each attribute). Made once per process, never
-/// closed: building them per attribute, through the wrapper's checks, was about a third of
-/// the file skeleton's instructions (issue 7; the skeleton has about 140 string attributes).
+/// closed: building them per attribute, through the wrapper's checks, would be about a third
+/// of the file skeleton's instructions (the skeleton has about 140 string attributes).
 struct StrAttrIds {
     string: hid_t,
     scalar: hid_t,

@@ -2,8 +2,8 @@
 //! each stored history variable converted to the stored precision, shuffled and deflated,
 //! exactly the chunk the results file will hold (the modal coordinates: one chunk per block
 //! of modes, as many as the point's modes need); then the checksum. The writer thread only
-//! appends the bytes (issue 22: serialising, checksumming and compressing histories on the
-//! one writer thread capped a history study at about 2 cores' worth of points).
+//! appends the bytes (serialising, checksumming and compressing histories on the one writer
+//! thread would cap a history study at about 2 cores' worth of points).
 
 use super::chunks;
 use super::error::StoreError;
@@ -262,8 +262,8 @@ impl RecordEncoder {
                 })?);
             }
         }
-        // the record's room made once: grown chunk by chunk, a history's 16 KB were copied
-        // about twice over (issue 37)
+        // the record's room made once: grown chunk by chunk, a history's 16 KB would be
+        // copied about twice over
         let chunk_bytes: usize = chunks.iter().map(|c| c.len() + 4).sum();
         let mut framed =
             Vec::with_capacity(journal::REC_PREFIX + journal::OK_SUMMARY_LEN + chunk_bytes);

@@ -62,7 +62,7 @@ impl StoreError {
 pub(crate) trait H5Ctx<T> {
     fn ctx(self, path: &Path, what: &str) -> Result<T, StoreError>;
     /// [`Self::ctx`] with the action made only on failure (a chunk written per history
-    /// variable named its dataset for every write, issue 37).
+    /// variable would otherwise name its dataset for every write).
     fn ctx_with(self, path: &Path, what: impl FnOnce() -> String) -> Result<T, StoreError>;
 }
 

@@ -2,14 +2,14 @@
 //!
 //! Why: a history's scalar series (force, compression, …) is one chunk of a few hundred
 //! values per point. libdeflate spends about 6.5 µs on such a chunk whatever its size (it
-//! clears its hash table and builds dynamic Huffman codes for every call), which was a fifth
-//! of the CPU time of a study that records the scalar histories (issue 22). For inputs this
+//! clears its hash table and builds dynamic Huffman codes for every call), which is a fifth
+//! of the CPU time of a study that records the scalar histories. For inputs this
 //! small the fixed codes (RFC 1951 §3.2.6) cost little against dynamic ones, whose table
 //! would take a good part of the block, and they need no table at all: one pass finds the
 //! runs of equal bytes (the zeros after separation, a constant speed, the slowly changing
 //! high bytes of a moving bat), and the symbols go straight out. A hash search for repeats
-//! at any distance found nothing more in these chunks (issue 37: scalar histories and
-//! summaries the same size within 0.2 %) for 4 % of a scalar-history study's CPU. Tests
+//! at any distance finds nothing more in these chunks (scalar histories and summaries the
+//! same size within 0.2 %) for 4 % of a scalar-history study's CPU. Tests
 //! inflate its output with two decoders of their own (libdeflate's, and zlib's inside
 //! HDF5's filter in `store::chunks`).
 //!
@@ -38,8 +38,8 @@ pub fn push_stored_block(out: &mut Vec<u8>, block: &[u8], last: bool) {
 /// A run of `len` (≥ 1) zero bytes as a non-final block with the fixed codes (a literal,
 /// then copies at distance 1), then an empty non-final stored block, which brings the
 /// stream back to a byte boundary: about 2 bytes per 2 KB of zeros, and 5 more. `out` must
-/// end on a byte boundary (after a stored block or the zlib header). Issue 37: the zero rows
-/// that pad a block of modal coordinates end each of its byte planes.
+/// end on a byte boundary (after a stored block or the zlib header). The zero rows that pad
+/// a block of modal coordinates end each of its byte planes.
 pub fn push_zero_run(out: &mut Vec<u8>, len: usize) {
     let mut w = BitWriter::new(std::mem::take(out));
     put_run_block(&mut w, 0, len);
@@ -93,7 +93,7 @@ const LENGTH_EXTRA: [u8; 29] = [
 ];
 /// The length code of a copy of `length` (3..=258) bytes: (its index 0..=28 among the
 /// codes 257..=285, the number of extra bits, their value). A table: a plane's runs look
-/// each copy up twice, to count it and to write it (issue 37).
+/// each copy up twice, to count it and to write it.
 pub(super) fn length_symbol(length: usize) -> (u32, u32, u32) {
     let (l, bits, extra) = LENGTH_SYMBOLS[length];
     (u32::from(l), u32::from(bits), u32::from(extra))
@@ -185,7 +185,7 @@ impl BitWriter {
     /// byte b is `table[b]`: as many at a time as fit in a word with the 7 bits a byte
     /// boundary can leave pending, each group followed by one 8-byte store of the pending
     /// bits into room made beforehand, advanced by the whole bytes. Appending 4 bytes every
-    /// 32 bits took twice as long (issue 37); three literals a store whatever the code left
+    /// 32 bits takes twice as long; three literals a store whatever the code left
     /// the short codes of a plane of exponents (7 bits) a store for every three.
     pub(super) fn put_literals(&mut self, bytes: &[u8], table: &[(u32, u32); 256], longest: u32) {
         match longest {
@@ -295,9 +295,8 @@ pub(super) fn put_copy(w: &mut BitWriter, length: usize) {
     w.put(bits, count);
 }
 
-/// [`put_copy`]'s field for every length (0 to 2: none): where a copy's codes were looked
-/// up by two binary searches and written in four pieces (issue 37: a tenth of encoding a
-/// scalar series).
+/// [`put_copy`]'s field for every length (0 to 2: none): one look-up, where two binary
+/// searches and a write in four pieces would be a tenth of encoding a scalar series.
 const COPIES: [(u32, u32); MAX_MATCH + 1] = {
     let mut t = [(0u32, 0u32); MAX_MATCH + 1];
     let mut length = MIN_MATCH;
@@ -346,8 +345,8 @@ pub fn put_fixed_runs(out: Vec<u8>, bytes: &[u8]) -> Vec<u8> {
     let mut w = BitWriter::new(out);
     w.block_header(true, FIXED);
     // the bytes between runs go out together (`put_literals`); a run is looked for only
-    // where four bytes are equal, one comparison of a word (issue 37: counting the run at
-    // every byte was an eighth of encoding a scalar series). The runs are those found
+    // where four bytes are equal, one comparison of a word (counting the run at every byte
+    // would be an eighth of encoding a scalar series). The runs are those found
     // counting from every run's start: a run of four or more starts where its first four
     // bytes are equal, and none starts inside a shorter one.
     let (n, mut i, mut literals) = (bytes.len(), 0, 0);

@@ -25,8 +25,8 @@
 //!
 //! Format 2 (`BATSJRN2`) is format 3 without chunks in the file, and is read as it is.
 //! Format 1 (`BATSJRN1`: histories as raw f64, FNV-1a checksums) is recognised and refused
-//! with a message saying to start over with `--force` (issue 22: its histories would have to
-//! be compressed again at the end, the very cost format 2 moved to the workers).
+//! with a message saying to start over with `--force` (its histories would have to be
+//! compressed again at the end, the very cost format 2 moves to the workers).
 
 use super::error::StoreError;
 pub use super::header::JournalHeader;
@@ -56,7 +56,7 @@ const DIRECT_RECORD: usize = 16 << 10;
 const MAX_PAYLOAD: u64 = u32::MAX as u64;
 
 /// CRC-32 (libdeflate's, several GB/s): the journal's checksum. Format 1's byte-at-a-time
-/// FNV-1a ran at about 1 GB/s and was a fifth of a history study's writer time (issue 22).
+/// FNV-1a runs at about 1 GB/s and would be a fifth of a history study's writer time.
 pub fn checksum(bytes: &[u8]) -> u32 {
     libdeflater::crc32(bytes)
 }
@@ -449,7 +449,7 @@ impl JournalWriter {
     /// Create a new journal (the file must not exist) and write its header. The header
     /// becomes durable with the first [`Self::sync`], like the records: until then a power
     /// loss would lose the records anyway, and a killed process loses nothing handed to the
-    /// OS (issue 7: two fsyncs off every run's critical path).
+    /// OS (two fsyncs off every run's critical path).
     ///
     /// The header is written under a temporary name and renamed into place, so a journal never
     /// exists without its whole header: a run killed while it creates its journal leaves none
@@ -463,7 +463,7 @@ impl JournalWriter {
             ));
         }
         let temp = unfinished_path(path);
-        // a stale one from a killed run: removed, never followed (issue 31)
+        // a stale one from a killed run: removed, never followed
         match std::fs::remove_file(&temp) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
                 return Err(StoreError::io(&temp, "remove a stale journal", e))
@@ -478,7 +478,7 @@ impl JournalWriter {
         let b = header_bytes(header);
         if let Err(e) = file.write_all(&b) {
             // a journal without its header could never be resumed: leave none behind
-            // (issue 31: a full disk left a 0-byte journal that only --force got past)
+            // (a 0-byte journal left by a full disk could only be got past with --force)
             drop(file);
             let _ = std::fs::remove_file(&temp);
             return Err(StoreError::io(path, "write the journal header", e));
@@ -516,7 +516,7 @@ impl JournalWriter {
 
     /// What a scan of this journal would find once it is flushed: the header it was created
     /// (or scanned) with and every record appended. The writer knows its own extent, so
-    /// finishing a run need not read the journal twice (issue 7).
+    /// finishing a run need not read the journal twice.
     pub fn extent(&self, header: JournalHeader) -> Scan {
         Scan {
             header,
@@ -530,7 +530,7 @@ impl JournalWriter {
     /// them on the workers). A small one is buffered; a large one (a history record) is
     /// handed to the OS at once with what is buffered, from the caller's memory: copying it
     /// into the buffer first, and from there into the page cache once the buffer had long
-    /// left the CPU's caches, was three quarters of the writer thread's copying (issue 22).
+    /// left the CPU's caches, would be three quarters of the writer thread's copying.
     pub fn append(&mut self, framed: &[u8]) -> Result<(), StoreError> {
         debug_assert!(is_framed(framed));
         if framed.len() >= DIRECT_RECORD {

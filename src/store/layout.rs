@@ -640,7 +640,7 @@ pub fn stores_modal(h: &HistoryRequest) -> bool {
 /// The precision variable `k` is stored in: the request's, but f64 for the modal form, whose
 /// variables the model has already rounded to what the request's precision calls for
 /// (`model::collision::modal_precision`): the low modes' terms cancel, so they need more
-/// than an f32's 24 bits, the high modes' far fewer (issue 37, docs/layout.md).
+/// than an f32's 24 bits, the high modes' far fewer (docs/layout.md).
 pub fn history_precision(h: &HistoryRequest, k: usize) -> HistoryPrecision {
     match is_modal(k) {
         true => HistoryPrecision::F64,
@@ -838,8 +838,7 @@ pub const BAT_SPEC: VarDef = v(
     "the bat's resolved parameters as canonical JSON",
 );
 
-/// Points whose modal histories share a chunk, along the study's last dim (issue 37: one
-/// Huffman code, one block header and one `H5Dwrite_chunk` serve the group's points;
+/// Points whose modal histories share a chunk, along the study's last dim (one Huffman code, one block header and one `H5Dwrite_chunk` serve the group's points;
 /// `benches/chunk_groups.rs`).
 pub const MODAL_HISTORY_GROUP: usize = 8;
 
@@ -862,11 +861,12 @@ pub fn history_groups_of(history: Option<&HistoryRequest>, shape: &ResultShape) 
 /// Target number of elements in one summary chunk.
 pub const SUMMARY_CHUNK_ELEMS: usize = 65536;
 /// Deflate level of the summary variables. Compressing them is most of finishing a small
-/// study's file (issue 7); on the shuffled f64 summaries of the benchmark's study libdeflate's
+/// study's file; on the shuffled f64 summaries of the benchmark's study libdeflate's
 /// level 1 takes two thirds of the time of level 4 for a file 0.3 % larger.
 pub const DEFLATE_LEVEL: u8 = 1;
 /// Deflate level of the history variables. Histories dominate the cost of finishing a file
-/// (issue 7's benchmark); on shuffled f32 histories level 1 compresses 1.5× faster than 4
+/// (`batstudy bench`'s history study); on shuffled f32 histories level 1 compresses 1.5×
+/// faster than 4
 /// for a file 0.6 % larger.
 pub const HISTORY_DEFLATE_LEVEL: u8 = 1;
 
@@ -874,7 +874,7 @@ pub const HISTORY_DEFLATE_LEVEL: u8 = 1;
 /// the shuffle and deflate filters (`history.compression: none`). On the bat's displacement,
 /// y(z, t) in f32, level 1 saves about a quarter of the bytes (68 000 → 52 800 for 200
 /// samples × 85 z, shuffled, libdeflate) at 170 MB/s: 60 % of a history point's time on the
-/// worker (issue 22).
+/// worker.
 pub fn history_deflate_level(h: &HistoryRequest) -> u8 {
     match h.compression {
         HistoryCompression::Deflate => HISTORY_DEFLATE_LEVEL,

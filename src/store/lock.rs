@@ -10,8 +10,8 @@
 //! refusal message. It is removed when the lock is released; a taker that finds the path
 //! replaced while it waited checks again, so removing it is safe.
 //!
-//! A symbolic link planted at `OUT.h5.lock` is never followed (`O_NOFOLLOW`; issue 31: its
-//! target was truncated). Where the file system does not support `flock` (Lustre mounted
+//! A symbolic link planted at `OUT.h5.lock` is never followed (`O_NOFOLLOW`: its target
+//! would be truncated). Where the file system does not support `flock` (Lustre mounted
 //! without `flock`, some NFS: `ENOLCK`, `ENOSYS`, `EOPNOTSUPP`), the run goes on without the
 //! lock, as Cargo and HDF5 do there, and the lock says so ([`OutputLock::warning`]).
 
@@ -232,7 +232,7 @@ mod tests {
         drop(third);
     }
 
-    // issue 31: a symlink planted at OUT.h5.lock was followed and its target truncated
+    // a symlink planted at OUT.h5.lock is refused, not followed, and its target kept whole
     #[test]
     fn a_symlink_at_the_lock_is_refused_and_its_target_kept() {
         let dir = tempfile::tempdir().unwrap();
@@ -245,7 +245,7 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
     }
 
-    // issue 32: where the file system has no flock (ENOLCK on NFS, ENOSYS on Lustre without
+    // where the file system has no flock (ENOLCK on NFS, ENOSYS on Lustre without
     // `-o flock`), the run goes on with a warning instead of failing outright; a held lock
     // (EWOULDBLOCK) is still a refusal and other errors still fail
     #[test]

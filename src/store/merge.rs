@@ -60,8 +60,8 @@ fn discard(out: &Path) {
 pub type PointIdOf<'a> = dyn Fn(usize) -> u64 + Sync + 'a;
 
 /// The checks of [`merge`], without writing anything: every shard of this study and layout
-/// version, every point present exactly once and with its own point id (issue 31: a shard
-/// whose ids were altered merged with exit 0).
+/// version, every point present exactly once and with its own point id (a shard whose ids
+/// were altered is refused, not merged).
 pub fn merge_check(
     out: &Path,
     info: &StudyInfo,
@@ -70,7 +70,7 @@ pub fn merge_check(
 ) -> Result<(), StoreError> {
     let want = JournalHeader::of(info);
     let n = info.shape.n_points();
-    // one bit per point (issue 7); the earlier owner of a duplicate is looked up only then
+    // one bit per point; the earlier owner of a duplicate is looked up only then
     let mut seen = PointSet::new(n);
     let mut declared = Vec::new();
     for (k, p) in shards.iter().enumerate() {

@@ -1,4 +1,4 @@
-//! The displacement's modal form in the store (issue 37): the extents of its dims (the most
+//! The displacement's modal form in the store: the extents of its dims (the most
 //! modes and shape points of the study's bats), a history's coordinates cut into blocks of
 //! [`layout::MODE_BLOCK`] modes, and a bat's mode shapes cut the same way for
 //! `/bat/mode_shape`. A block is mode-major ([mode][time], [mode][shape point]) and ends in

@@ -1,4 +1,4 @@
-//! The record of a design search (issue 36): `OUT.h5.optimize` while it runs (a journal
+//! The record of a design search: `OUT.h5.optimize` while it runs (a journal
 //! of one JSON line per evaluated candidate, each line synced before the search goes on;
 //! a torn last line is dropped on resume), and the group `/optimize` of the results file
 //! (docs/layout.md): one row per candidate, the best feasible design as attributes.

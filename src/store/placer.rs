@@ -1,4 +1,4 @@
-//! Histories placed in the final file while the run goes on (issue 22).
+//! Histories placed in the final file while the run goes on.
 //!
 //! The final file holds the history chunks in flat-index order, so that it is the same
 //! whatever the thread count. Writing them all at the end put one serial pass over every

@@ -110,7 +110,7 @@ pub fn read_results(path: &Path) -> Result<ReadBack, StoreError> {
 }
 
 /// Points read at once from a file's summary arrays (a slab of about 10 MiB of values), so that
-/// reading back a file of any size holds a bounded amount of it (issue 7).
+/// reading back a file of any size holds a bounded amount of it.
 const READ_SLAB_POINTS: usize = 1 << 16;
 
 /// Hyperslabs `(start, count, first flat index)` that cover a row-major array of `shape` in
@@ -471,7 +471,7 @@ pub fn present_points(path: &Path) -> Result<PointSet, StoreError> {
 /// The (flat index, point id) of every stored point (ok or failed) of a results file, a
 /// slab at a time in flat order, with the study's number of points. A file without its
 /// `status` or `point_id` arrays, or with arrays of another shape, is not a results file
-/// (exit status 2 for a merge, not a failure of the run: issue 31).
+/// (exit status 2 for a merge: bad input, not a failure of the run).
 pub fn for_each_present_slab(
     path: &Path,
     mut visit: impl FnMut(usize, &[(usize, u64)]) -> Result<(), StoreError>,
@@ -517,7 +517,7 @@ mod tests {
     use super::flat_slabs;
 
     // The slabs must tile the array exactly once, in flat order, each within the target:
-    // guards the resume-from-file and merge reads (issue 7), which rely on both.
+    // guards the resume-from-file and merge reads, which rely on both.
     #[test]
     fn flat_slabs_tile_the_array_in_order() {
         for (shape, target) in [

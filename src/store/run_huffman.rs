@@ -2,8 +2,8 @@
 //! little: one deflate block per byte plane, with Huffman codes of its own (RFC 1951
 //! §3.2.7), each run a literal then copies at distance 1, every other byte a literal.
 //!
-//! Why: the modal coordinates kept to the precision they need (issue 37,
-//! `model::collision::modal_precision`) are f64 whose low bytes are zero, value by value:
+//! Why: the modal coordinates kept to the precision they need
+//! (`model::collision::modal_precision`) are f64 whose low bytes are zero, value by value:
 //! shuffled, a block of them is long runs of zeros between planes of near-noise and of
 //! slowly varying exponents, where a mode's sign and exponent byte repeats until its
 //! coordinate changes sign. libdeflate's fastest level spent 140 µs on such a 51 KB block
@@ -22,7 +22,7 @@ use super::fixed_deflate::{
 /// and its extra bits, and the distance code (about 15 bits); eight literals of a byte
 /// frequent enough to repeat cost more. In the planes of signs and exponents of modal
 /// coordinates, a mode's byte repeats from one sign change to the next: with runs of any
-/// byte (not only zeros) such a plane takes 0.4 KB instead of 1.1 KB (issue 37).
+/// byte (not only zeros) such a plane takes 0.4 KB instead of 1.1 KB.
 const MIN_RUN: usize = 8;
 /// A stored plane (`put_stored_runs`) breaks its stored blocks only for runs this long: a
 /// run between two stored blocks costs two block headers, about 7 bytes. The zeros that end
@@ -46,7 +46,7 @@ pub fn zlib_planes(shuffled: &[u8], plane_len: usize) -> Vec<u8> {
 /// (`shuffled`: planes of `plane_len` bytes): the stream the whole planes would give, byte
 /// for byte. A block of modal coordinates ends in zero rows (the modes past the last one
 /// that moved, `store::modal`), a third of its bytes on the bench's studies: neither
-/// shuffled, nor scanned, nor summed this way (issue 37).
+/// shuffled, nor scanned, nor summed this way.
 pub fn zlib_padded_planes(shuffled: &[u8], plane_len: usize, zeros: usize) -> Vec<u8> {
     if zeros > 0 && zeros < STORED_MIN_RUN {
         // too short to be a run of every kind of plane: the planes as they are, zeros included
@@ -92,8 +92,8 @@ struct Run {
 
 /// The runs of at least [`MIN_RUN`] equal bytes in `bytes` followed by `zeros` more zero
 /// bytes (none, or at least [`STORED_MIN_RUN`]), 64 bytes at a time: the bytes equal to the
-/// one before them as a bit mask, whose changes are found by counting bits (issue 37: a
-/// branch on every 8-byte word mispredicted where runs and other bytes alternate), and a
+/// one before them as a bit mask, whose changes are found by counting bits (a branch on
+/// every 8-byte word would mispredict where runs and other bytes alternate), and a
 /// block without a run in it passed whole, the run it may end with carried on.
 fn equal_runs(bytes: &[u8], zeros: usize) -> Vec<Run> {
     let mut runs = Vec::new();
@@ -319,7 +319,7 @@ const STORED_PERCENT: u128 = 400;
 /// every machine.
 pub(super) fn collides_within(counts: &[u32], n: usize, percent: u128) -> bool {
     // Σ c(c − 1) < (Σ c)²: in 64 bits when Σ c < 2³², a sum the compiler vectorises
-    // (issue 37: in 128 bits it was a twelfth of encoding a scalar series)
+    // (in 128 bits it would be a twelfth of encoding a scalar series)
     let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
     let pairs: u128 = match total < 1 << 32 {
         true => counts
@@ -543,9 +543,9 @@ const BUCKETS: usize = 256;
 
 /// `packed` (frequency << 16 | symbol, the symbols ascending) sorted as integers: placed by
 /// frequency into buckets in the order given (so that equal frequencies stay by symbol),
-/// the frequencies of [`BUCKETS`] − 1 and over compared in the last (issue 37: a
-/// comparison sort was a third of the time a plane's code took; most of a plane's
-/// frequencies are small).
+/// the frequencies of [`BUCKETS`] − 1 and over compared in the last (a comparison sort
+/// would be a third of the time a plane's code takes; most of a plane's frequencies are
+/// small).
 fn sort_by_frequency(packed: &mut [u64]) {
     let bucket = |p: u64| (p >> 16).min(BUCKETS as u64 - 1) as usize;
     let mut start = [0u16; BUCKETS];
@@ -573,11 +573,11 @@ fn huffman_depths(used: &[u64], mut each: impl FnMut(usize)) {
     // Two queues: the leaves (sorted) and the merged nodes (made in ascending order); the
     // nodes' weights and parents only. On the stack, and the lighter of the two heads taken
     // without a branch (a leaf on a tie): an exhausted queue's head weighs more than any
-    // node, so that which queue gives the next node is a select, where a branch mispredicted
-    // half the time (issue 37: 1.2 of the 2.3 µs a code took). Both children of a node are
-    // chosen from the two heads of each queue, read at once: the second choice does not
-    // wait on reading what the first left (the merges were a chain of dependent reads, half
-    // of a plane's code).
+    // node, so that which queue gives the next node is a select, where a branch would
+    // mispredict half the time (1.2 of the 2.3 µs a code takes with the branch). Both
+    // children of a node are chosen from the two heads of each queue, read at once: the
+    // second choice does not wait on reading what the first left (one after the other, the
+    // merges are a chain of dependent reads, half of a plane's code).
     let n = used.len();
     let mut leaves = [u64::MAX; SYMBOLS + 2];
     leaves[..n]

@@ -119,8 +119,8 @@ impl Drop for BegunFile {
 
 /// Begin the final file of output `path` for a study of this shape: the groups, coordinates
 /// and empty variables that do not depend on the bats. A run does this while it prepares
-/// its bats, when a one-bat study leaves cores idle (issue 7: the file's fixed cost, off the
-/// critical path). Replaces a stale `OUT.h5.partial`; touches nothing else.
+/// its bats, when a one-bat study leaves cores idle (the file's fixed cost, off the critical
+/// path). Replaces a stale `OUT.h5.partial`; touches nothing else.
 pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> {
     set_aside_partial(path)?;
     let partial = partial_path(path);
@@ -133,8 +133,8 @@ pub fn begin(path: &Path, shape: &ResultShape) -> Result<BegunFile, StoreError> 
 
 /// Whether `--resume` of output `path` can go on for the study of this sha256: its journal
 /// (or, without one, its finished file) is readable and of the same study and layout. A
-/// run checks this before it touches anything (issue 31: a refused resume had already
-/// replaced `OUT.h5.partial`). Nothing to resume is not an error.
+/// run checks this before it touches anything (a refused resume must not have replaced
+/// `OUT.h5.partial`). Nothing to resume is not an error.
 pub fn check_resumable(path: &Path, study_sha256: &str) -> Result<(), StoreError> {
     let jpath = journal_path(path);
     let journal = jpath.exists() && !journal::ends_in_header(&jpath)?;
@@ -394,7 +394,7 @@ impl Session {
     }
 
     /// The encoder of this output's records, for the workers: [`Self::write_encoded`] then
-    /// only appends (issue 22).
+    /// only appends.
     pub fn encoder(&self) -> RecordEncoder {
         self.encoder.clone()
     }
@@ -653,7 +653,7 @@ impl Session {
         self.write_gathered()?;
         // To the OS, not fsync'd: the journal is removed only after the finished file is
         // fsync'd and renamed into place, and a power loss before that loses at most what an
-        // unfinished run would (issue 7: one fsync less on every run's critical path).
+        // unfinished run would (one fsync less on every run's critical path).
         self.flush_journal()?;
         let Some(mut j) = self.journal.take() else {
             return Err(self.reject("the session is already finished".into()));
@@ -693,8 +693,8 @@ impl Session {
             .map_err(|e| StoreError::io(&self.path, "rename the finished file into place", e))?;
         journal::sync_parent_dir(&self.path);
         // Not synced: the finished file is durable now, and a journal that comes back after
-        // a power loss only makes `--resume` rebuild the same file from it (issue 7: one
-        // directory sync less at the end of every run).
+        // a power loss only makes `--resume` rebuild the same file from it (one directory
+        // sync less at the end of every run).
         remove_if_exists(&self.journal_path)?;
         Ok(summary)
     }

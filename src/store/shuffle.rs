@@ -1,8 +1,8 @@
 //! HDF5's shuffle filter, made fast: byte j of each of a chunk's n values goes to j·n + its
 //! index, so that each byte plane (the values' exponents, their high and low mantissa
 //! bytes) is one run that deflate sees whole. Eight values at a time, their bytes an 8 × 8
-//! matrix transposed in registers (issue 37: byte by byte, the stores were a third of
-//! encoding a block of modal coordinates); straight from the modal coordinates as the
+//! matrix transposed in registers (byte by byte, the stores would be a third of encoding a
+//! block of modal coordinates); straight from the modal coordinates as the
 //! integrator records them, without the mode-major copy; into a buffer each thread keeps.
 //! `store::chunks` deflates what this shuffles.
 
@@ -69,8 +69,8 @@ pub(super) fn le_bytes<T: ChunkValue>(values: &[T]) -> Vec<u8> {
 /// its zero rows, into `out`, made from `q` as it is: eight samples of a mode gathered, their
 /// bytes transposed, each row stored at once. Eight samples at a time of every mode: the
 /// eight rows of `q` they come from are read once while they are in the cache (a mode at a
-/// time read the whole history once per mode: 9.6 µs against 6.0 for a bench history of
-/// 21 modes, issue 37).
+/// time reads the whole history once per mode: 9.6 µs against 6.0 for a bench history of
+/// 21 modes).
 pub(super) fn shuffle_modes_into(
     q: &[f64],
     modes: usize,
@@ -133,8 +133,8 @@ pub(super) fn fill_at<T: ChunkValue>(value: T, count: usize, out: &mut [u8], pla
 
 /// HDF5's shuffle of `values` (byte j of value i at j·n + i) into `out`, eight values at a time: the
 /// eight values' bytes as an 8 × 8 byte matrix, transposed in registers, each row then
-/// stored at once (issue 37: byte by byte, the stores were a third of encoding a block of
-/// modal coordinates; gathering each row by shifts was still a quarter of it). Public for
+/// stored at once (byte by byte, the stores would be a third of encoding a block of modal
+/// coordinates; gathering each row by shifts, a quarter of it). Public for
 /// `benches/chunk_groups.rs`, which shuffles chunks of a layout the store does not write.
 pub fn shuffle_values_into<T: ChunkValue>(values: &[T], out: &mut [u8]) {
     let len = values.len();
@@ -170,7 +170,7 @@ fn shuffle_values<T: ChunkValue>(values: &[T]) -> Vec<u8> {
 
 thread_local! {
     /// Each thread's buffer for the shuffled bytes of the chunk it encodes: allocated and
-    /// zeroed once, where a buffer a chunk cost a tenth of a block's encoding (issue 37).
+    /// zeroed once, where a buffer a chunk would cost a tenth of a block's encoding.
     static SCRATCH: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
 }
 
@@ -188,8 +188,8 @@ pub(super) fn with_scratch<R>(len: usize, f: impl FnOnce(&mut [u8]) -> R) -> R {
 /// The transpose of an 8 × 8 byte matrix whose row k is word k (byte j at bits 8j): word j
 /// of the result holds byte j of every row, row k's at bits 8k. On x86-64, whose SSE2 is
 /// always there, three rounds of byte, 16-bit and 32-bit interleaves of rows taken two to
-/// a register (issue 37: the swaps in general-purpose registers below were most of
-/// shuffling a block of modal coordinates).
+/// a register (the swaps in general-purpose registers below, the other targets' transpose,
+/// take most of shuffling a block of modal coordinates on x86-64).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn transpose_bytes(w: [u64; 8]) -> [u64; 8] {

@@ -1,4 +1,4 @@
-//! The final file's bytes sent to the disk while the run goes on (issue 37).
+//! The final file's bytes sent to the disk while the run goes on.
 //!
 //! The placer writes each history into `OUT.h5.partial` as the run goes on
 //! (`store::placer`), but the kernel keeps those pages dirty until `Session::finish`

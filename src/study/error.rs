@@ -118,7 +118,7 @@ pub(crate) fn allowed_from_serde(msg: &str) -> Option<String> {
     if msg.starts_with("missing field") {
         return Some("this field is required".into());
     }
-    // serde's untagged enums say only that no form matched: name the forms (issue 31)
+    // serde's untagged enums say only that no form matched: name the forms
     if let Some(kind) = msg.strip_prefix("data did not match any variant of untagged enum ") {
         return Some(
             match kind.trim() {

@@ -393,8 +393,8 @@ fn dim_name_at(d: &PlanDim, file: &StudyFile) -> Vec<Seg> {
 
 /// Dimension and coordinate names become variable names in the results file: each is a
 /// plain name (letters, digits, `_`, `-`, `.`, not starting with `.`), used once, and none
-/// is a name the file gives its own variables (issue 31: `exit_speed`, `status`, `a/b` or
-/// an empty name validated, then failed the run after every point was computed).
+/// is a name the file gives its own variables (`exit_speed`, `status`, `a/b` or an empty
+/// name would pass validation, then fail the run after every point was computed).
 fn check_stored_names(
     cx: &Ctx,
     file: &StudyFile,
@@ -610,7 +610,7 @@ fn check_every_point(
     Ok(())
 }
 
-/// The displacement's modal form is the modal integrator's state (issue 37): a point that
+/// The displacement's modal form is the modal integrator's state: a point that
 /// records it with the Verlet integrator is refused, naming the point.
 fn check_displacement_form(
     cx: &Ctx,

@@ -1,5 +1,6 @@
-//! The memory a point's time histories take, bounded before anything runs (issue 31: a
-//! request too big for memory validated, then aborted `run` and killed a Python kernel).
+//! The memory a point's time histories take, bounded before anything runs (unbounded, a
+//! request too big for memory would pass validation, then abort `run` and kill a Python
+//! kernel).
 
 use super::checks::bat_length;
 use super::error::StudyError;

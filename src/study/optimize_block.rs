@@ -1,4 +1,4 @@
-//! The `optimize` block as written (issue 36): design variables, an objective over the
+//! The `optimize` block as written: design variables, an objective over the
 //! study's other dimensions, constraints and the built-in rule sets. `batstudy optimize`
 //! (`crate::optimize`) runs it; these are only the file's types and their schema.
 

@@ -233,7 +233,7 @@ impl Plan {
     }
 
     /// The resolved collision at this multi-index over another base: an optimiser's
-    /// candidate design with the study's dimensions (issue 36).
+    /// candidate design with the study's dimensions.
     pub fn resolve_over(
         &self,
         base: &Value,

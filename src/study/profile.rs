@@ -20,8 +20,8 @@ pub fn parse_profile_csv(text: &str) -> Result<Vec<[f64; 2]>, String> {
         .next()
         .ok_or("empty profile file (a header line is required)")?;
     let cols: Vec<String> = header.split(',').map(|c| c.trim().to_lowercase()).collect();
-    // Messages never quote the file's text: a study may name any file (issue 31: the first
-    // line of /etc/shadow was printed), so they say where, not what.
+    // Messages never quote the file's text: a study may name any file (/etc/shadow, whose
+    // first line a quoting message would print), so they say where, not what.
     let slices = match cols.iter().map(String::as_str).collect::<Vec<_>>()[..] {
         ["z", "radius"] => false,
         ["slice_end_cm", "diameter_mm"] => true,
@@ -166,8 +166,8 @@ mod tests {
         assert!(parse_profile_csv("x,y\n0,1\n1,2\n").is_err());
     }
 
-    // issue 31: a study may name any file; its text never reaches the message, and what is
-    // not a small regular file is refused before it is read (a FIFO hung, /dev/zero ate the
+    // a study may name any file; its text never reaches the message, and what is not a
+    // small regular file is refused before it is read (a FIFO would hang, /dev/zero eat the
     // memory)
     #[test]
     fn messages_never_quote_the_file_and_odd_files_are_refused() {

@@ -497,7 +497,7 @@ pub fn schema_json() -> String {
 mod tests {
     use super::*;
 
-    // issue 4: "stop included when it lies on the grid, computed without accumulating rounding"
+    // the stop is included when it lies on the grid, computed without accumulating rounding
     #[test]
     fn range_endpoints_exact() {
         let v = range(0.40, 0.84, 0.01).unwrap();

@@ -63,7 +63,7 @@ pub fn fill(
     let shape: Vec<usize> = info.shape.dims.iter().map(|d| d.size).collect();
     let chunk = summary_chunk(&info.shape.dims);
     // ---- /history first: its chunks follow those placed while the run went on, so that the
-    // file's layout is the same however far the placer got (issue 22)
+    // file's layout is the same however far the placer got
     if info.history.is_some() {
         write_histories(&mut sk, info, journal, scan, out, histories)?;
     }

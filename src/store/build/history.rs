@@ -262,7 +262,7 @@ impl Into<'_> {
 /// [`create_history`]: the chunks the workers made (`store::encode`), as they are, in
 /// flat-index order after those `store::placer` wrote during the run. Nothing is compressed
 /// here, and the file's layout does not depend on the order in which points finished nor on
-/// how far the placer got, so a study's file is the same whatever the thread count (issue 22).
+/// how far the placer got, so a study's file is the same whatever the thread count.
 /// Memory: one record, and 32 bytes per point with histories (where its record is).
 pub(super) fn write_histories(
     sk: &mut Skeleton,

@@ -126,8 +126,8 @@ impl<'a> Piece<'a> {
 }
 
 /// Compress `pieces` on all cores and write them in their order, each as soon as every
-/// piece before it is written: the writes overlap the compression (issue 7: compressing all,
-/// then writing all, left one core idle for a third of a small study's finish), and the file
+/// piece before it is written: the writes overlap the compression (compressing all, then
+/// writing all, leaves one core idle for a third of a small study's finish), and the file
 /// is laid out in the same order whatever the threads. Whoever finishes the next piece
 /// writes it and the finished ones after it; a thread that finishes a later piece leaves it
 /// queued and moves on.

@@ -1,4 +1,4 @@
-//! `/bat/shape_z` and `/bat/mode_shape`, for the displacement's modal form (issue 37): every
+//! `/bat/shape_z` and `/bat/mode_shape`, for the displacement's modal form: every
 //! bat's shape points, written with `/bat`, and its mode shapes, a block of modes at a time,
 //! written just before the first stored history that steps them. Histories are written in
 //! flat-index order (during the run and at the finish), so the blocks are too, whatever the

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 /// The results file with everything that does not depend on the points' results: root
 /// attributes, groups, coordinates and dimension scales, every variable (empty), `/bat`. The
 /// store creates it in two steps off the critical path, so that finishing a run only fills
-/// in the data (issue 7: most of a small study's HDF5 time was this fixed part): the
+/// in the data (most of a small study's HDF5 time is this fixed part): the
 /// shape's part ([`begin_skeleton`]) while the bats are prepared, the rest
 /// ([`complete_skeleton`]) on the writer thread while the workers compute.
 pub struct Skeleton {
@@ -82,20 +82,20 @@ pub fn create_skeleton(
 
 /// The part of the skeleton that depends on the study's shape alone: `/summary`,
 /// `/sweet_spot` and `/errors`, with their coordinates and empty variables. It can be made
-/// before the bats are prepared (issue 7: while a one-bat study prepares its bat, a core is
-/// idle); [`complete_skeleton`] adds the rest.
+/// before the bats are prepared (while a one-bat study prepares its bat, a core is idle);
+/// [`complete_skeleton`] adds the rest.
 pub fn begin_skeleton(study_shape: &ResultShape, out: &Path) -> Result<Skeleton, StoreError> {
     // No chunk cache: every chunk is written whole and already filtered (H5Dwrite_chunk),
     // never read back, and HDF5 allocates and zeroes each dataset's cache when it is created
-    // (issue 22: a third of a 45-point curve's page faults, 67 datasets).
+    // (those caches would be a third of a 45-point curve's page faults, 67 datasets).
     // HDF5 1.10's object formats (readable by HDF5 1.10 and later): a chunked dataset of
     // fixed size indexes its chunks in a fixed array, where 1.8's B-tree made every chunk
-    // written an insertion (issue 37: a modal history study 4.5 % faster, the writer thread
-    // a tenth lighter; a 45-point summary study unchanged).
+    // written an insertion (with 1.10's, a modal history study runs 4.5 % faster, the writer
+    // thread a tenth lighter; a 45-point summary study unchanged).
     // Every allocation at the end of the file, none from freed space or from blocks set
     // aside for small objects (`FileSpaceStrategy::None`): a history chunk written alone then
     // lies where the file ended before it, which the journal records instead of its bytes
-    // (issue 37, `store::by_reference`). The results are written once and never freed, so
+    // (`store::by_reference`). The results are written once and never freed, so
     // the file is as large as with HDF5's default (the modal bench study: 29.54 MB either way).
     // Whatever is at `out` (a stale `.partial`, or a symbolic link planted there) is removed,
     // not followed, and the file is created exclusively (O_EXCL: no link is followed).

@@ -17,8 +17,9 @@ pub(super) fn block_sweet_spots(
     let nz = count[iz];
     let stride: usize = count[iz + 1..].iter().product();
     let outer = m / nz;
-    // A study may list impact_z in any order (a descending range is documented; issue 31:
-    // it gave no sweet spot at all): the finders read each curve in ascending z.
+    // A study may list impact_z in any order (a descending range is documented, and read
+    // as it is listed would give no sweet spot at all): the finders read each curve in
+    // ascending z.
     let mut order: Vec<usize> = (0..nz).collect();
     order.sort_by(|&a, &b| z[a].total_cmp(&z[b]));
     let z: Vec<f64> = order.iter().map(|&q| z[q]).collect();

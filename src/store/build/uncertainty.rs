@@ -1,4 +1,4 @@
-//! `/uncertainty` (issue 36): what a `sample` dimension's scatter does to the answers —
+//! `/uncertainty`: what a `sample` dimension's scatter does to the answers —
 //! percentiles, mean and standard deviation over the sample of the exit speed and BBCOR of
 //! every point, of the sweet spot's position and exit speed, and of the bat's BBCOR (its
 //! maximum along `impact_z`, parabola-refined) with the probability that it exceeds the

@@ -93,8 +93,8 @@ impl Tally {
 }
 
 /// The summary of a study that fits one build window, gathered from the records as the run
-/// writes them, so that `fill` need not read the journal back (issue 7: on a small study
-/// that read was a fifth of finishing the file). Only for a session that saw every record
+/// writes them, so that `fill` need not read the journal back (on a small study that read
+/// is a fifth of finishing the file). Only for a session that saw every record
 /// it stores: a resumed one reads its journal as before.
 pub struct Gathered {
     blocks: BlockGrid,

@@ -1,5 +1,5 @@
 /*
- * An HDF5 file driver for the results file being written (issue 37): HDF5's default
+ * An HDF5 file driver for the results file being written: HDF5's default
  * driver (sec2: POSIX pread and pwrite), except that the file's growth goes to the disk
  * around the kernel's page cache.
  *
@@ -57,8 +57,7 @@
  * block writer made it, whoever waited for a block waited for the sync too: the writer
  * thread sending what it gathered before the journal names it, HDF5 reading or rewriting
  * metadata. On a 9 000-point modal history study the writer thread waited 203 ms for
- * blocks with the syncs on the block writer, 136 ms without (medians of five runs;
- * issue 37). */
+ * blocks with the syncs on the block writer, 136 ms without (medians of five runs). */
 #define SYNC_BYTES (4 * BLOCK_BYTES)
 
 typedef struct {

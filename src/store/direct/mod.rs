@@ -1,4 +1,4 @@
-//! The results file written around the page cache (issue 37).
+//! The results file written around the page cache.
 //!
 //! A results file grows at its end (`FileSpaceStrategy::None`, `build::skeleton`), one
 //! history chunk after another: 16 KB a point for a modal history study. Through the page
