@@ -1,5 +1,5 @@
 //! A set of flat point indices as one bit per point: the driver's and the store's only
-//! per-point state (issue 7: 10 million points cost 1.2 MiB, where a hash set of ids cost
+//! per-point state (10 million points cost 1.2 MiB, where a hash set of ids would cost
 //! about 100 B each).
 
 /// Flat indices `0..len` present or not.

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 /// The names the results file gives its own variables beside a study's coordinates (in
 /// `/summary`, `/sweet_spot`, `/history`; `history` is the Python reader's dimension of
-/// stored histories): a study's dimension or coordinate may not take one (issue 31).
+/// stored histories): a study's dimension or coordinate may not take one.
 /// `store::layout`'s tests keep this list complete.
 pub const RESERVED_NAMES: &[&str] = &[
     "exit_speed",
@@ -72,7 +72,7 @@ pub const RESERVED_NAMES: &[&str] = &[
     "history",
 ];
 
-/// The names `/uncertainty` (issue 36) gives its variables beside the study's coordinates:
+/// The names `/uncertainty` gives its variables beside the study's coordinates:
 /// reserved too ([`is_reserved`]); `store::build::uncertainty` writes them.
 pub const UNCERTAINTY_NAMES: &[&str] = &[
     "percentile",
@@ -344,7 +344,7 @@ mod tests {
         assert!((0..7).all(|i| one.start(i) == i && one.end(i) == i + 1));
     }
 
-    // `/uncertainty`'s names are reserved (issue 36), and the listing a refusal prints holds
+    // `/uncertainty`'s names are reserved, and the listing a refusal prints holds
     // every reserved name once.
     #[test]
     fn uncertainty_names_are_reserved_and_listed_once() {

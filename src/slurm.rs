@@ -1,4 +1,4 @@
-//! `batstudy slurm`: Slurm job scripts for a study split into shards (issue 8).
+//! `batstudy slurm`: Slurm job scripts for a study split into shards.
 //!
 //! Three files in one folder: `array.sbatch` (a job array, one task per shard, each running
 //! `batstudy run STUDY --shard $SLURM_ARRAY_TASK_ID/N --resume` on its task's cores),
@@ -8,7 +8,7 @@
 //! `submit.sh` is idempotent: after a time-out, a cancellation or a failed task, running it
 //! again submits only the unfinished shards (`batstudy slurm --resubmit DIR` runs it).
 //!
-//! Safe by construction (issue 31): every value that comes from the study, the command line
+//! Safe by construction: every value that comes from the study, the command line
 //! or the file system reaches a script once, as the right-hand side of a shell assignment
 //! quoted by [`sh_quote`], and is used afterwards only as `"$VAR"`. No value is written
 //! inside another quoting context (an `echo "…"`, a comment) or anywhere bash would parse
@@ -301,7 +301,7 @@ printf 'submitted merge job %s (after the array); results: %s\n' "$merge_id" "$O
 mod tests {
     use super::*;
 
-    // issue 8: option values that sbatch accepts
+    // option values that sbatch accepts
     #[test]
     fn time_and_mem_formats() {
         for t in ["10", "00:10:00", "1-00:00:00", "2-12", "5:00", "UNLIMITED"] {
@@ -321,7 +321,7 @@ mod tests {
         assert_eq!(sh_quote("/a/b.h5"), "/a/b.h5");
     }
 
-    // issue 31: what bash reads back from a quoted word is the word, whatever it holds
+    // what bash reads back from a quoted word is the word, whatever it holds
     #[test]
     fn quoted_words_read_back_literally() {
         for w in [

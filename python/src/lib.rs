@@ -37,7 +37,8 @@ const SPEC_LINE_OFFSET: usize = 2;
 
 /// The lines of YAML text, split at every line break YAML knows (`\r\n`, `\r`, `\n`, and
 /// YAML 1.1's NEL, LS and PS), so that every line of the spec is indented under its block
-/// key (issue 31: a bare `\r` let top-level keys such as `allow_implausible` escape `base:`).
+/// key (a bare `\r` would otherwise let top-level keys such as `allow_implausible` escape
+/// `base:`).
 fn yaml_lines(text: &str) -> impl Iterator<Item = &str> {
     text.split("\r\n")
         .flat_map(|l| l.split(['\r', '\n', '\u{85}', '\u{2028}', '\u{2029}']))

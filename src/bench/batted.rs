@@ -1,6 +1,6 @@
 //! The batted ball's cost: the same undercut study (oblique impacts, a swinging bat in the
 //! lab) run with and without its `flight` block, through the driver and the real store on the
-//! most threads; the flight's share is their time ratio (issue 35: at most 2).
+//! most threads; the flight's share is their time ratio (the target: at most 2).
 
 use super::cases::{load_study, Sizes};
 use super::measure::err;

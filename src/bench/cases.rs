@@ -86,13 +86,13 @@ pub fn load_study(text: &str, name: &str) -> Result<Study, String> {
 }
 
 /// The history block of the history study: every field but the hoop's, the bat's
-/// displacement on a grid 1 cm apart (`displacement: grid`, the form before issue 37).
+/// displacement on a grid 1 cm apart (`displacement: grid`, the form that is not the default).
 pub const HISTORY_BLOCK: &str =
     "history:\n  fields: [force, compression, ball_velocity, displacement, rigid_motion]\n  \
                 interval: 1.0e-5\n  duration: 2.0e-3\n  z_step: 0.01\n  displacement: grid\n";
 
 /// The same histories with the displacement in modal form (`displacement: modal`, the
-/// default since issue 37): the coordinates of the modes stepped, the bat load, the static
+/// default): the coordinates of the modes stepped, the bat load, the static
 /// shape; y(z, t) follows from them at any z.
 pub const MODAL_HISTORY_BLOCK: &str =
     "history:\n  fields: [force, compression, ball_velocity, displacement, rigid_motion]\n  \

@@ -2,7 +2,7 @@
 //! with on the history study (the points/s it absorbs, records computed and encoded
 //! beforehand, over the points/s one worker computes and encodes them, as in a run), and
 //! how many workers' results the disk can make durable; with the displacement on its grid,
-//! and in modal form (`modal_*`, issue 37).
+//! and in modal form (`modal_*`).
 
 use super::cases::{curve_study_text, load_study, HISTORY_BLOCK, MODAL_HISTORY_BLOCK};
 use super::measure::err;
@@ -36,8 +36,8 @@ pub struct WriterHeadroom {
     pub headroom: f64,
     /// Bytes of the finished file per point (the histories, nearly all of it).
     pub file_bytes_per_point: f64,
-    /// Bytes of the journal per point just before the finish (issue 37: the histories the
-    /// writer placed in the file as they came are journalled by their place there).
+    /// Bytes of the journal per point just before the finish (the histories the writer
+    /// placed in the file as they came are journalled by their place there, not their bytes).
     pub journal_bytes_per_point: f64,
     /// The disk under the bench's directory: bytes/s of a sequential write made durable
     /// (`fdatasync`), pseudo-random bytes so that no layer can skip them.

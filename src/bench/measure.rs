@@ -29,7 +29,7 @@ pub(super) fn cpu_clock_seconds(clock: libc::clockid_t) -> f64 {
 /// CPU seconds this thread has run (ns resolution). On a shared machine a thread waits for a
 /// core part of the wall time; its CPU time does not. A clock call, not a /proc read: the
 /// store's calls are timed one by one, and reading /proc for each cost ~15 µs, more than a
-/// journal write (issue 7: it inflated the measured store share).
+/// journal write, and would inflate the measured store share.
 pub fn thread_cpu_seconds() -> f64 {
     cpu_clock_seconds(libc::CLOCK_THREAD_CPUTIME_ID)
 }

@@ -16,7 +16,7 @@
 //!   computes and encodes: the workers it keeps up with; and the disk's durable write rate
 //!   (`fdatasync`) over the bytes one worker produces: the workers any store on this disk
 //!   keeps up with;
-//! - `optimize`: design candidates per second of a 6-variable profile search (issue 36);
+//! - `optimize`: design candidates per second of a 6-variable profile search;
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before
 //!   each run) of the scaling studies on the most threads and of a large summary-only study.
 //!

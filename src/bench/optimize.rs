@@ -1,4 +1,4 @@
-//! `optimize` (issue 36): how many design candidates per second this machine evaluates on
+//! `optimize`: how many design candidates per second this machine evaluates on
 //! a 6-variable profile search (the wood barrel of `studies/design_wood.yaml`, cut to a
 //! fixed number of candidates), on every core, as `batstudy optimize` runs it.
 

@@ -22,7 +22,7 @@ pub struct BenchReport {
     pub memory: MemoryBench,
     /// The batted ball's flight: an undercut study with and without it.
     pub batted: Batted,
-    /// Design candidates per second of a profile search (issue 36).
+    /// Design candidates per second of a profile search.
     pub optimize: super::optimize::OptimizeBench,
 }
 

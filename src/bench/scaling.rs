@@ -74,7 +74,7 @@ pub struct Scaling {
     /// summary study's.
     pub history_scalar_points_per_second: f64,
     pub history_scalar_vs_summary_per_core: f64,
-    /// The history study with the displacement in modal form (issue 37) on every core: its
+    /// The history study with the displacement in modal form on every core: its
     /// points/s, efficiency, points/s per core over the summary study's, file size, and the
     /// points/s and ratio with its histories recorded but not stored.
     pub history_modal_points_per_second: f64,

@@ -36,8 +36,8 @@ pub(super) fn check_output_of(
         })
 }
 
-/// `--force` replaces only batstudy's own results files (issue 31: it replaced any file).
-/// Nothing at the path, or a results file of any study, may be replaced.
+/// `--force` replaces only batstudy's own results files, never another file a user mistyped
+/// the path of. Nothing at the path, or a results file of any study, may be replaced.
 pub(super) fn check_replaceable(output: &Path) -> Result<(), (String, String)> {
     if std::fs::symlink_metadata(output).is_err() {
         return Ok(());
@@ -67,8 +67,8 @@ pub(super) fn load_checked(path: &Path, max_points: usize) -> Result<Study, Stud
     study::load(path, &LoadOptions { max_points }).and_then(crate::optimize::checked)
 }
 
-/// Most worker threads a run may start (issue 31: `-j 100000` spawned threads until the
-/// process ran out of resources). Far above any node's cores.
+/// Most worker threads a run may start (without a bound, `-j 100000` would spawn threads
+/// until the process ran out of resources). Far above any node's cores.
 pub(super) const MAX_JOBS: usize = 4096;
 pub(super) use crate::run::MAX_SHARDS;
 

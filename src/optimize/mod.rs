@@ -1,4 +1,4 @@
-//! `batstudy optimize` (issue 36): search a study's design space within its rules.
+//! `batstudy optimize`: search a study's design space within its rules.
 //!
 //! - `design`: the `optimize` block checked (located errors) and made usable: variables,
 //!   how a design becomes a candidate's base parameters, objective, limits;

@@ -27,8 +27,9 @@ impl Simulator for ModelSimulator {
         let mut properties = target.properties();
         if let Some(prepared) = target.bat() {
             // The BBCOR scan's collisions on every core of the pool (bats are prepared in
-            // it): they were most of preparing a bat, and a one-bat study left cores idle
-            // (issue 22). Each value is computed alone: the same whatever the threads.
+            // it): they are most of preparing a bat, and one after the other a one-bat study
+            // would leave cores idle. Each value is computed alone: the same whatever the
+            // threads.
             let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
                 z.par_iter().map(|&z| f(z)).collect()
             };

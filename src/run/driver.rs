@@ -171,7 +171,7 @@ pub fn prepare_bats<S: Simulator>(
 
 /// [`prepare_bats`] with `side` run on a thread of its own meanwhile, for work that does not
 /// need the bats: a study with fewer bats than cores leaves cores idle while they are
-/// prepared (issue 7: the store begins the results file there).
+/// prepared (the store begins the results file there).
 pub fn prepare_bats_alongside<S: Simulator, T: Send>(
     sim: &S,
     plan: &Plan,
@@ -264,7 +264,7 @@ pub fn run_plan<S: Simulator, K: Sink>(
     }
     let skip = skip_set(&sink, plan.n_points(), range.clone());
     // Asked before the workers start, like the skip set: encoding is the costly part of
-    // storing a point, and runs on the worker that computed it (issue 22).
+    // storing a point, and runs on the worker that computed it.
     let encoder = sink.encoder();
     let groups = sink.groups();
     let sink = Mutex::new(sink);
@@ -314,8 +314,8 @@ pub fn run_plan<S: Simulator, K: Sink>(
 }
 
 /// The points to skip, asked of the sink once, before any worker starts: the workers then
-/// never wait for the sink's lock, which the writer holds while it writes (issue 7: the
-/// final file's skeleton, made on the writer's first record, stalled every worker).
+/// never wait for the sink's lock, which the writer holds while it writes (the final file's
+/// skeleton, made on the writer's first record, would otherwise stall every worker).
 fn skip_set<K: Sink>(sink: &K, n: usize, range: std::ops::Range<usize>) -> PointSet {
     let mut skip = PointSet::new(n);
     for i in range.filter(|&i| sink.is_done(i)) {
@@ -378,7 +378,7 @@ fn write_records<K: Sink>(
         progress.done(rec.points.len());
     }
     // Every record is in: finish here, as soon as the last worker lets go of the channel,
-    // not after the main thread has woken and joined this one (issue 7: each wake-up between
+    // not after the main thread has woken and joined this one (each wake-up between
     // threads is on the critical path of a small study). In the run's pool, whose threads
     // have just finished their last points: the final file's parallel parts (deflate) start
     // on threads that are awake.
@@ -410,7 +410,7 @@ impl<S: Simulator, E: Encode> Dispatch<'_, S, E> {
     /// Points are handed out in index order, a group at a time (`Sink::groups`: one point,
     /// unless the sink stores groups whole), to whichever worker is free: records then reach
     /// the writer nearly in order, and it places their histories in the final file as the
-    /// run goes on (`store::placer`, issue 22). (Rayon's splitting of the range gave each
+    /// run goes on (`store::placer`). (Rayon's splitting of the range would give each
     /// worker its own far-apart part.)
     fn run(
         &self,

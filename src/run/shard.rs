@@ -1,4 +1,4 @@
-//! `--shard I/N`: the I-th (1-based) of N disjoint subsets of a study's points (issue 8).
+//! `--shard I/N`: the I-th (1-based) of N disjoint subsets of a study's points.
 //!
 //! Each shard is one contiguous block of flat indices, cut so that every shard carries about
 //! the same *estimated* cost: point `i` goes to shard `⌊N·(C_i + c_i/2)/C⌋ + 1`, where `c_i`
@@ -29,7 +29,7 @@ pub struct Shard {
     pub count: usize,
 }
 
-/// Most shards a study may be split into (issue 31: a huge N was a panic).
+/// Most shards a study may be split into (a bound, so that a huge N is an error, not a panic).
 pub const MAX_SHARDS: usize = 1_000_000;
 
 impl FromStr for Shard {
@@ -253,7 +253,7 @@ mod tests {
             .plan
     }
 
-    // issue 37: where the histories of a group of points share a chunk (the modal form),
+    // where the histories of a group of points share a chunk (the modal form),
     // every shard begins and ends on a group's start, so no chunk is split between shards,
     // and the shards still partition the study
     #[test]
@@ -276,7 +276,7 @@ mod tests {
         }
     }
 
-    // issue 8: disjoint, deterministic, balanced by estimated cost
+    // disjoint, deterministic, balanced by estimated cost
     #[test]
     fn shards_partition_by_cost() {
         let p = plan(

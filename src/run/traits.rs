@@ -32,8 +32,8 @@ pub trait Simulator: Sync {
 }
 
 /// Prepares finished points for a sink on the worker that computed them: the part of
-/// storing a point that can run in parallel (issue 22: the store serialises and compresses
-/// histories here, so its one writer thread only appends bytes).
+/// storing a point that can run in parallel (the store serialises and compresses histories
+/// here, so its one writer thread only appends bytes).
 pub trait Encode: Sync {
     /// What the sink's writer takes.
     type Record: Send;

@@ -2,7 +2,7 @@
 //! are put in node order: the lumped beam's stiffness is pentadiagonal (Euler–Bernoulli) or
 //! has a band of 3 when each node's deflection and rotation sit side by side (Timoshenko).
 //!
-//! Three steps, none O(n³) (issue 22: nalgebra's dense solver was the largest part of
+//! Three steps, none O(n³) (nalgebra's dense solver, measured, is the largest part of
 //! preparing a bat, 2.9 ms of a 45-point curve's 15 ms for 169 segments, and O(n³) for fine
 //! beams):
 //! 1. the band reduced to tridiagonal form by Givens rotations whose fill-in is chased down

@@ -1,4 +1,4 @@
-//! The bat's displacement basis for the modal form of its histories (issue 37): its shape
+//! The bat's displacement basis for the modal form of its histories: its shape
 //! points (the knob end, every node, the barrel end) and the mode shapes there, scaled to be
 //! dimensionless. The model's displacement is linear between nodes and extrapolated over the
 //! half segment at each end (`Beam::interpolation`), so a displacement known at the shape

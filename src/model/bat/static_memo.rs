@@ -4,7 +4,7 @@
 //! integrator does not step (`collision::wave::modal::record::install_modal`). It depends
 //! only on the bat, the number of modes stepped and the contact point (node and weight),
 //! and costs a pass over nearly all the bat's mode shapes: about 200 KB read, a fortieth of
-//! a history point on the bench (issue 37). A study varies much more than the impact point
+//! a history point on the bench. A study varies much more than the impact point
 //! (a grid of swing speeds at each of its positions), so most of its points ask again for a
 //! shape computed before. The memo gives that shape back: the same bits, since it is the
 //! same computation on the same inputs, whichever thread or point asked first.

@@ -19,8 +19,9 @@ pub(crate) struct Sample {
     pub displacement: Vec<f64>,
     /// Or the modal coordinates and the force on the bat, from which the recorder's
     /// [`Projector`] computes the displacement of each emitted sample only: half the
-    /// states, and no interpolation of every z (issue 22: the displacement was a fifth of
-    /// a history point's time); or which it records as they are (the modal form, issue 37).
+    /// states, and no interpolation of every z (interpolating the displacement at every z
+    /// of every state took a fifth of a history point's time); or which it records as they
+    /// are (the modal form).
     pub modal: Vec<f64>,
     pub modal_force: f64,
 }
@@ -37,7 +38,7 @@ pub(crate) struct Recorder<'r> {
     /// slot and time) and the one being recorded, in the other slot. Filled in place, their
     /// buffers kept from state to state: a history records hundreds of states, and building
     /// and moving a sample for each made recording a modal history 39 µs a point where
-    /// filling them in place takes 28 (issue 37).
+    /// filling them in place takes 28.
     states: [Sample; 2],
     latest: Option<(usize, f64)>,
     history: History,
@@ -58,7 +59,7 @@ impl<'r> Recorder<'r> {
     /// A recorder with every requested series reserved at its final length (grown by
     /// doubling, the displacement was copied about twice over). The memory is reserved
     /// fallibly: a request the machine cannot hold is an error of the point, not an abort
-    /// of the process (issue 31; the study layer bounds a point's history beforehand).
+    /// of the process (the study layer bounds a point's history beforehand).
     pub fn new(request: &'r HistoryRequest) -> Result<Self, ModelError> {
         let has = |f: HistoryField| request.fields.contains(&f);
         let room = |f: HistoryField, per_sample: usize| -> Result<Vec<f64>, ModelError> {
@@ -168,11 +169,11 @@ impl<'r> Recorder<'r> {
 
     /// Whether the state at step time `t` (steps of length `h`) is needed: a sample time falls
     /// in this step or in the next one (the state is then the start of the interpolation).
-    /// States not needed are never computed (issue 7: sampling every step cost more than the
+    /// States not needed are never computed (sampling every step costs more than the
     /// collision); the emitted samples are the same, since a sample only ever interpolates
     /// between the two steps around it. The margin of 10⁻⁶ h keeps the step before a sample
-    /// time that falls on a step; a window of 1.5 h recorded a quarter more states than
-    /// needed (issue 37).
+    /// time that falls on a step; a window of 1.5 h records a quarter more states than
+    /// needed.
     pub fn wants(&self, t: f64, h: f64) -> bool {
         !self.done() && self.sample_time(self.next) <= t + h * (1.0 + 1e-6)
     }

@@ -1,4 +1,4 @@
-//! The modal form's stored precision (issue 37). With `history.precision: f32`, the grid
+//! The modal form's stored precision. With `history.precision: f32`, the grid
 //! form keeps y(z, t) to f32 rounding; the modal form keeps its coordinates, bat load and
 //! static shape to the precision that gives y(z, t) to the same rounding, and no finer.
 //!
@@ -69,8 +69,8 @@ impl ModalRounding {
         let zero = vec![0.0; n];
         let mut largest = 0.0_f64;
         // four samples at a time, the three probes' sums of each side by side, every sum in
-        // the order of its modes: twelve independent chains where three waited on each
-        // addition (issue 37), each sum the same as one at a time
+        // the order of its modes: twelve independent chains where three would wait on each
+        // addition, each sum the same as one at a time
         for (g, four) in m.coordinate.chunks(4 * n).enumerate() {
             let row = |r: usize| &four.get(r * n..(r + 1) * n).unwrap_or(&zero)[..n];
             let q = [row(0), row(1), row(2), row(3)];
@@ -163,7 +163,7 @@ fn step_for(share: f64, weight: f64) -> f64 {
 const ROUND_TO_INTEGER: f64 = 6_755_399_441_055_744.0;
 
 /// A power-of-two step and its reciprocal, computed once: a division for every value
-/// rounded was most of the rounding's time (issue 37).
+/// rounded would be most of the rounding's time.
 #[derive(Debug, Clone, Copy)]
 struct Step {
     size: f64,

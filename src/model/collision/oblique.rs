@@ -1,4 +1,4 @@
-//! Oblique impacts and spin (issue 35): the ball meets the bat off its axis, or spinning.
+//! Oblique impacts and spin: the ball meets the bat off its axis, or spinning.
 //!
 //! The collision is solved in the plane across the bat at the impact point, spanned by the
 //! ball's incoming path ŷ (the beam's bending direction, as in the head-on model) and x̂,

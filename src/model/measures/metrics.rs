@@ -110,7 +110,7 @@ pub fn bat_metrics(
 
 /// Runs a scan's collisions: `f` at each position, the values in the positions' order. Each
 /// value depends on its position alone, so a caller may run them in any order or in
-/// parallel (the runner does: the BBCOR scan was most of preparing a bat, issue 22).
+/// parallel (the runner does: the BBCOR scan is most of preparing a bat).
 pub type ScanMap<'a> = dyn Fn(&[f64], &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> + Sync + 'a;
 
 /// The scan's collisions one after the other.

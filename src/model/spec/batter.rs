@@ -1,5 +1,5 @@
 //! The batter and the batted ball's flight: the parts of a study that go beyond one
-//! collision (issue 35). Field names are public interface; units SI.
+//! collision. Field names are public interface; units SI.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};

@@ -1,5 +1,5 @@
 //! Displacements from modal coordinates: y_i = Σ_j q_j ψ_j(z_i) for every requested z at
-//! once, the inner loop of a history's displacement samples (issue 22).
+//! once, the inner loop of a history's displacement samples.
 //!
 //! Each y_i is summed in the order of j, one add after one multiply, as a plain loop would:
 //! the lanes of a vector register hold different z, never parts of one sum, so the width of

@@ -89,10 +89,10 @@ pub(super) fn coast(
 /// with no force left: each one at its own time from the free motion, the modes advanced
 /// exactly (`ModalStep` without forces: damped or not, any time span) and the ball flying on
 /// at its speed. Stepping by h only to draw a line between the two steps around each sample
-/// made coasting most of a long history's time (issue 37: a 10 ms history of the base case
-/// stepped 2 300 times by 3.4 µs after the collision, recording two states for most of its
-/// 790 samples there); the samples are now the free motion's own, where a line between two
-/// steps misses a mode of frequency ω by up to (ωh)²/8 of its amplitude.
+/// makes coasting most of a long history's time (a 10 ms history of the base case steps
+/// 2 300 times by 3.4 µs after the collision, recording two states for most of its 790
+/// samples there); the samples are the free motion's own, where a line between two steps
+/// misses a mode of frequency ω by up to (ωh)²/8 of its amplitude.
 fn coast_free(
     c: &Collision,
     s: &Setup,

@@ -149,8 +149,8 @@ pub(super) fn record_now(
 }
 
 /// Σ x_j q_j over the shorter of the two, in four interleaved partial sums: a history
-/// samples two of these for every state it keeps, and one running sum made each wait on
-/// the addition before it (issue 37: a twentieth of a modal history point's time).
+/// samples two of these for every state it keeps, and one running sum would make each wait
+/// on the addition before it (a twentieth of a modal history point's time).
 fn dot(x: &[f64], q: &[f64]) -> f64 {
     let n = x.len().min(q.len());
     let (x, q) = (&x[..n], &q[..n]);
