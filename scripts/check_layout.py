@@ -630,7 +630,7 @@ class Checker:
             elif stores_history:
                 self.bad("/history", "group missing although the store header lists "
                                      f"{header['history'][0]}")
-            # issue 36: a `sample` study's statistics, a design search's record
+            # a `sample` study's statistics, a design search's record
             for extra in ("uncertainty", "optimize"):
                 if extra in f:
                     self.group_generic(f[extra])

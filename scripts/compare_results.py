@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compare two batstudy results files bit for bit (issue 8: merged shards == single run).
+"""Compare two batstudy results files bit for bit (merged shards == single run).
 
 Every dataset of every group (data and coordinate variables) must have the same dtype, shape
 and bytes (NaN payloads included; variable-length strings compared as text), and the same

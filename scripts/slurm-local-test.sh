@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 8: run a study as a Slurm job array on a real (one-node, loopback-only) Slurm and
+# Run a study as a Slurm job array on a real (one-node, loopback-only) Slurm and
 # check the merged file against a single-process run, bit for bit.
 #
 # - installs Debian's slurmctld, slurmd and munge if missing (apt-get; idempotent; needs root
@@ -159,7 +159,7 @@ if command -v ss >/dev/null; then
     '$4 ~ ":"a"$" || $4 ~ ":"b"$" {print "slurm-local-test: listening " $4}'
 fi
 
-# ---- the array and the merge, with one task that cannot finish (issue 32): a folder where
+# ---- the array and the merge, with one task that cannot finish: a folder where
 # shard 3's lock file goes makes its run fail (exit 3); the merge must run after the array
 # anyway (afterany) and refuse the incomplete set; `batstudy slurm --resubmit` must then
 # submit shard 3 alone, and the merge again.
@@ -195,7 +195,7 @@ ms=$(wait_ended "$MERGE_JOB_ID")
 grep -q "shards 3" "$work/jobs/logs/merge.out" && grep -q -- "--resubmit" "$work/jobs/logs/merge.out" ||
   fail "the merge did not name the unfinished shard and the command: $(cat "$work/jobs/logs/merge.out")"
 [ ! -e "$work/merged.h5" ] || fail "an incomplete set was merged"
-say "first round: shard 3 failed, the merge ran after the array and refused ($(($(date +%s) - t0)) s)"
+say "first submission: shard 3 failed, the merge ran after the array and refused ($(($(date +%s) - t0)) s)"
 
 rmdir "$work/jobs/smoke.shard-3-of-4.h5.lock"
 "$bin" slurm --resubmit "$work/jobs" >"$work/log/submit-2.out" || fail "slurm --resubmit failed: $(cat "$work/log/submit-2.out")"
@@ -206,7 +206,7 @@ ms=$(wait_ended "$MERGE_JOB_ID")
 [ "$ms" = "COMPLETED " ] || { tail -20 "$work/jobs/logs/"*.out; fail "the second merge ended '$ms'"; }
 as=$(wait_ended "$ARRAY_JOB_ID")
 [ "$as" = "COMPLETED " ] || fail "the resubmitted task ended $as"
-say "second round: shard 3 resubmitted alone, merged in $(($(date +%s) - t0)) s"
+say "resubmission: shard 3 resubmitted alone, merged in $(($(date +%s) - t0)) s"
 for i in 1 2 3 4; do
   [ -f "$work/jobs/smoke.shard-$i-of-4.h5" ] || fail "shard file $i missing"
 done

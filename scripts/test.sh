@@ -16,7 +16,7 @@ echo "== Smoke study (--jobs 2)"
 mkdir -p target/smoke
 ./target/debug/batstudy run studies/smoke.yaml -o target/smoke/smoke.h5 --jobs 2 --force --quiet
 
-# Issue 8: a real one-node Slurm on 127.0.0.1 runs a 4-shard array and the merge job; the
+# A real one-node Slurm on 127.0.0.1 runs a 4-shard array and the merge job; the
 # merged file must equal a single-process run bit for bit (~20-25 s, ~8 s of it installing the
 # Debian packages slurmctld, slurmd, munge; needs root). Runs when BATSTUDY_SLURM_TEST=1
 # or CI=true; BATSTUDY_SLURM_TEST=0 skips it.
@@ -40,7 +40,7 @@ echo "== Python tests"
 BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
   .venv/bin/python -m pytest -q tests/python
 
-# Issue 21: the wheel, built and installed in a fresh venv, and the API tests + notebook
+# The wheel, built and installed in a fresh venv, and the API tests + notebook
 # against it (BATSTUDY_WHEEL_TEST=0 skips it: ~3 min the first time, for the HDF5 build).
 if [ "${BATSTUDY_WHEEL_TEST:-1}" != 0 ]; then
   bash scripts/test_wheel.sh

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 21: the Python package as a user gets it. Builds the wheel with pip (maturin and cmake
+# The Python package as a user gets it. Builds the wheel with pip (maturin and cmake
 # come from PyPI into pip's isolated build env; HDF5 is compiled from source and linked into
 # the native module), installs it in a fresh venv that has never seen this repository's
 # sources, and runs the API tests and the quickstart notebook against the installed package.

@@ -1,4 +1,4 @@
-"""`batstudy.sobol_indices`: global sensitivity of a `sample` study's answers (issue 36).
+"""`batstudy.sobol_indices`: global sensitivity of a `sample` study's answers.
 
 A study's ``sample`` block stores every drawn value as a coordinate of the ``sample``
 dimension, so the inputs X and the outputs Y of a sensitivity analysis are both in the

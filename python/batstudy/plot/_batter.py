@@ -1,4 +1,4 @@
-"""The batter's figures (issue 35): one batter swinging different bats (``batter``), and
+"""The batter's figures: one batter swinging different bats (``batter``), and
 undercut hits over the offset of the ball below the bat's axis (``undercut``).
 
 ``batter`` needs a summary over ``batter_exponent``, ``impact_offset``, ``impact_z`` and a

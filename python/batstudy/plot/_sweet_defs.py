@@ -1,5 +1,5 @@
 """The figure ``sweet_spot_definitions``: each bat's profile with every sweet-spot
-definition marked (issue 10).
+definition marked.
 
 Per bat (from ``/bat``): centre of percussion for the pivot at the hands
 (``centre_of_percussion``, ``pivot_position``), barrel nodes of modes 1 and 2

@@ -1,4 +1,4 @@
-"""Figures of issue 36: what a `sample` study's scatter does to the answers
+"""Figures of uncertainty and design: what a `sample` study's scatter does to the answers
 (:func:`uncertainty`), and the record of a design search (:func:`search`)."""
 
 from __future__ import annotations
