@@ -74,7 +74,7 @@ fn bench_quick_reports_every_section_and_no_targets() {
     }
     assert!(sc.history_compute_points_per_second > 0.0);
     assert!(sc.history_modal_compute_points_per_second > 0.0);
-    // issue 37: the displacement in modal form takes fewer bytes than on its 85-z grid
+    // the displacement in modal form takes fewer bytes than on its 85-z grid
     assert!(sc.history_modal_file_bytes < sc.history_file_bytes);
     assert!(sc.history_uncompressed_file_bytes > sc.history_file_bytes);
     // the writer's headroom, and the disk's over the bytes a history point makes
@@ -89,9 +89,9 @@ fn bench_quick_reports_every_section_and_no_targets() {
     );
     assert!(wh.modal_file_bytes_per_point < wh.file_bytes_per_point);
     assert!(wh.modal_headroom > 0.0 && wh.modal_disk_headroom > 0.0);
-    // issue 37: each history written once. On one thread the records come in order and the
-    // writer places each as it comes, so the journal names where the histories are instead
-    // of holding them: a small part of the file's bytes (it held them all before).
+    // each history written once. On one thread the records come in order and the writer
+    // places each as it comes, so the journal names where the histories are instead of
+    // holding them: a small part of the file's bytes.
     for (journal, file) in [
         (wh.journal_bytes_per_point, wh.file_bytes_per_point),
         (
@@ -136,7 +136,7 @@ fn bench_quick_json_has_every_section_and_key() {
         "history_file_bytes",
         "history_scalar_points_per_second",
         "history_scalar_vs_summary_per_core",
-        // issue 37: the history study with the displacement in modal form
+        // the history study with the displacement in modal form
         "history_modal_points_per_second",
         "history_modal_efficiency",
         "history_modal_vs_summary_per_core",
@@ -203,8 +203,8 @@ fn thread_counts_are_sorted_and_checked() {
     assert_eq!((t[0], *t.last().unwrap()), (1, cores));
 }
 
-// "tests check the accuracy of every integrator" (issue 7): against a reference computed
-// here, not against pasted numbers
+// the accuracy of every integrator: against a reference computed here, not against pasted
+// numbers
 #[test]
 fn integrators_are_within_the_band_of_the_converged_reference() {
     let a = dev::integrator_accuracy().expect("the base case runs");
@@ -259,8 +259,8 @@ impl Sink for Count {
     }
 }
 
-// issue 7 (the 10-million-point plan of the benchmark runs the rigid model through the
-// driver): rigid points have NaN contact time/force/compression by design and must not fail
+// the 10-million-point plan of the benchmark runs the rigid model through the driver:
+// rigid points have NaN contact time/force/compression by design and must not fail
 #[test]
 fn rigid_points_pass_the_driver() {
     let study = batstudy::study::load_str(

@@ -1,5 +1,5 @@
 //! Bad study files: exit status 2, a message naming file, line, field, value and what is
-//! allowed, and nothing written (issue 4, "Bad input").
+//! allowed, and nothing written.
 
 use std::path::Path;
 use std::process::Command;
@@ -14,7 +14,7 @@ fn batstudy(args: &[&str]) -> std::process::Output {
 
 /// (file, substrings the message must contain: file:line, field, value, allowed)
 const CASES: &[(&str, &[&str])] = &[
-    // issue 31: what a hostile or careless study held, refused before anything is written
+    // what a hostile or careless study may hold, refused before anything is written
     (
         "history_too_big",
         &["history_too_big.yaml:5:1", "`history`", "MiB per point", "allowed: at most 256 MiB per point"],
@@ -233,7 +233,7 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: a readable CSV",
         ],
     ),
-    // issue 17: values that are not numbers, and values no bat has
+    // values that are not numbers, and values no bat has
     (
         "nan_density",
         &[
@@ -292,7 +292,7 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: 0.0005 to 0.05 m",
         ],
     ),
-    // issue 17: a point that never ends is refused before it runs
+    // a point that never ends is refused before it runs
     (
         "stiff_ball",
         &[
@@ -303,7 +303,7 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: at most 10000000 steps",
         ],
     ),
-    // issue 17: fields that the chosen kind or option ignores
+    // fields that the chosen kind or option ignores
     (
         "unused_law_field",
         &[
@@ -321,7 +321,7 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: leave it out (it is used only with bat.grip.kind: spring)",
         ],
     ),
-    // issue 17: studies that quietly do nothing
+    // studies that quietly do nothing
     (
         "history_only_off_grid",
         &[
@@ -332,7 +332,7 @@ const CASES: &[(&str, &[&str])] = &[
             "allowed: values `impact.z` takes in the study: 0.4, 0.41",
         ],
     ),
-    // issue 37: the displacement's modal form is the modal integrator's own state
+    // the displacement's modal form is the modal integrator's own state
     (
         "modal_history_with_verlet",
         &[
@@ -474,7 +474,7 @@ fn example_studies_validate() {
     );
 }
 
-// issue 4: the schema is generated from the Rust types, committed, and this fails when stale.
+// the schema is generated from the Rust types, committed, and this fails when stale.
 #[test]
 fn committed_schema_is_current() {
     let committed = std::fs::read_to_string(

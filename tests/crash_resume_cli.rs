@@ -1,7 +1,7 @@
 //! A real `batstudy run`, killed with SIGKILL at several moments, then completed with
-//! `--resume`, gives the same data as an uninterrupted run, bit for bit (issue 5, "Nothing
-//! lost"; the data compared are every stored point's outcome and histories). The histories
-//! hold the displacement in modal form (issue 37), so the bats' mode shapes, written with the
+//! `--resume`, gives the same data as an uninterrupted run, bit for bit (nothing lost; the
+//! data compared are every stored point's outcome and histories). The histories hold the
+//! displacement in modal form, so the bats' mode shapes, written with the
 //! first history that steps them, are compared too.
 
 mod common;
@@ -196,7 +196,7 @@ fn every_history_a_killed_run_journalled_is_found_intact() {
     }
 }
 
-/// Each history written once (issue 37): a run killed with SIGKILL leaves `OUT.h5.partial`,
+/// Each history written once: a run killed with SIGKILL leaves `OUT.h5.partial`,
 /// whose history chunks its journal names instead of holding them, so the journal is a small
 /// fraction of the histories; `--resume` reads them back and completes the same data as an
 /// uninterrupted run, and leaves nothing behind.

@@ -1,4 +1,4 @@
-//! The dimension scales batstudy attaches itself (`store::dimscale::Attacher`, issue 7) must
+//! The dimension scales batstudy attaches itself (`store::dimscale::Attacher`) must
 //! be what HDF5's own H5DS API reads: each variable's DIMENSION_LIST and each scale's
 //! REFERENCE_LIST agree. Checked with libhdf5_hl's `H5DSis_attached` (which reads both
 //! lists) and `H5DSget_num_scales`, the functions h5py and netCDF use.
@@ -54,8 +54,8 @@ fn attached_scales_read_back_through_h5ds() {
     assert_eq!(refs(&y), vec![3]);
 }
 
-// `attr_str` builds its attributes with raw HDF5 calls (issue 7: the wrapper's per-attribute
-// type and property-list building was a third of the skeleton's cost). It must store what
+// `attr_str` builds its attributes with raw HDF5 calls (the wrapper's per-attribute type
+// and property-list building would be a third of the skeleton's cost). It must store what
 // hdf5-metno's `new_attr::<VarLenUnicode>()` stores — a scalar, variable-length,
 // null-terminated UTF-8 string with a UTF-8 name — so that h5py, netCDF and xarray read the
 // same `str`. Reference: the HDF5 attribute and datatype APIs (H5Aget_type, H5Tis_variable_str,

@@ -1,9 +1,9 @@
-//! Issue 22: a history study's file is the same whatever the thread count. The workers
+//! A history study's file is the same whatever the thread count. The workers
 //! compress the history chunks and the finish writes them raw in flat-index order, so the
 //! runs with `--jobs 1` and `--jobs 2` give files of the same size whose history chunks sit
 //! at the same addresses with the same bytes; HDF5's own shuffle and deflate filters read
 //! them back. A journal of the old format is refused on `--resume` with a clear message.
-//! Both forms of the displacement (issue 37): on the grid, and modal (the coordinates in
+//! Both forms of the displacement: on the grid, and modal (the coordinates in
 //! blocks of modes, and `/bat`'s mode shapes written with the first history that steps them).
 
 mod common;

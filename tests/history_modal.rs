@@ -1,4 +1,4 @@
-//! Issue 37: the displacement's modal form (`history.displacement: modal`) describes the
+//! The displacement's modal form (`history.displacement: modal`) describes the
 //! same y(z, t) as the grid form computed by the same collision.
 //!
 //! - The reference is independent of the modal form's code: the grid form, projected while

@@ -1,5 +1,5 @@
-//! Issues 31 and 32: runs and merges given what a careless or hostile user, a shared folder
-//! or a cluster gives them, through the real binary. Each test failed before its fix.
+//! Runs and merges given what a careless or hostile user, a shared folder or a cluster gives
+//! them, through the real binary. Each test fails without the guard it checks.
 
 mod common;
 
@@ -276,9 +276,9 @@ fn huge_shard_counts_and_thread_counts_are_refused() {
     assert_eq!(code(&o), Some(2), "{}", stderr(&o));
 }
 
-// issue 32, item 4: Slurm's SIGTERM (time limit, scancel, pre-emption) skipped the graceful
-// stop; now it acts as the first Ctrl-C: the points in flight finish, everything done is
-// kept, exit 130, and --resume completes the same data as an uninterrupted run
+// Slurm's SIGTERM (time limit, scancel, pre-emption) makes the graceful stop: it acts as the
+// first Ctrl-C: the points in flight finish, everything done is kept, exit 130, and
+// --resume completes the same data as an uninterrupted run
 #[test]
 fn sigterm_stops_as_the_first_ctrl_c_and_the_run_resumes() {
     let study = "name: term

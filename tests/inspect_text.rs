@@ -1,4 +1,4 @@
-//! `batstudy inspect` (issue 21): sweet spots named by their coordinates and labels, not by
+//! `batstudy inspect`: sweet spots named by their coordinates and labels, not by
 //! an index; the bats' properties; a maximum at the edge of the sampled range flagged.
 
 mod common;
@@ -79,7 +79,7 @@ fn inspect_names_sweet_spots_by_coordinates_and_lists_the_bats() {
     );
 }
 
-// issue 31: `inspect` printed terminal escape sequences from the file's strings raw
+// `inspect` never prints terminal escape sequences from the file's strings raw
 #[test]
 fn inspect_prints_no_terminal_control_sequences() {
     let (_dir, out) = results_of(

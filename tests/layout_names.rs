@@ -17,7 +17,7 @@ fn parameter_coordinates_and_summary_variables_have_different_names() {
     }
 }
 
-// issue 31: every name the store gives a variable in a group that also holds the study's
+// every name the store gives a variable in a group that also holds the study's
 // coordinates is reserved, so that no dimension or coordinate of a study can take it
 #[test]
 fn every_stored_name_beside_the_coordinates_is_reserved() {
@@ -25,7 +25,7 @@ fn every_stored_name_beside_the_coordinates_is_reserved() {
     names.extend([l::RECONTACT, l::STATUS, l::POINT_ID, l::BAT_INDEX].map(|d| d.name));
     names.extend(SWEET_FLOATS.iter().map(|d| d.name));
     names.extend([SWEET_AT_EDGE, TIME, HIST_Z].map(|d| d.name));
-    // the displacement's modal form (issue 37): its dims in `/history`
+    // the displacement's modal form: its dims in `/history`
     names.extend([l::BAT_MODE_DIM, l::SHAPE_POINT_DIM].map(|d| d.name));
     names.extend(HISTORY_VARS.iter().map(|(d, _, _)| d.name));
     for n in names {

@@ -1,4 +1,4 @@
-//! Nothing a user does can corrupt a result (issue 17): a second process on a running
+//! Nothing a user does can corrupt a result: a second process on a running
 //! output is refused and changes nothing; a SIGKILLed holder blocks nobody; a point that
 //! runs out of steps fails alone; a reader that goes away ends a command quietly; a what-if
 //! study is recorded as such.

@@ -1,4 +1,4 @@
-//! Issue 36: the optimiser against a problem whose optimum is known in closed form, built
+//! The optimiser against a problem whose optimum is known in closed form, built
 //! from batstudy's own physics, and its constraints honoured at the reported optimum.
 //!
 //! Brody's rigid bat (mass M, moment of inertia I about its CM) swung at ω, a ball of mass

@@ -1,4 +1,4 @@
-//! Issue 36: a design search killed (`kill -9`) part way resumes with `--resume` and gives
+//! A design search killed (`kill -9`) part way resumes with `--resume` and gives
 //! the same record of the search and the same results as an uninterrupted one: every
 //! evaluated candidate is synced to `OUT.h5.optimize` before the search goes on, and the
 //! deterministic search replays them.

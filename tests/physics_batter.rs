@@ -1,4 +1,4 @@
-//! The batter (issue 35): a swing that answers to the bat's moment of inertia.
+//! The batter: a swing that answers to the bat's moment of inertia.
 //!
 //! References:
 //! - the swing law itself, Ω = Ω_ref (I_ref / I_pivot)^n with the bat turning about the

@@ -3,7 +3,7 @@
 //! References: the paper (sweet-spot wave model), Fig. 5a and Cross: a fixed barrel end
 //! raises the exit speed near that end compared with a free one; Fig. 4b and section 4.1:
 //! an impact at 60 cm is first felt 10 cm from the knob after about 0.4 ms; Nathan (2000):
-//! the handle responds 0.5–0.6 ms after an impact at 68 cm (docs/physics.md, issue 3).
+//! the handle responds 0.5–0.6 ms after an impact at 68 cm (docs/physics.md).
 
 mod common;
 

@@ -1,8 +1,8 @@
 //! Convergence of the exit speed with segment count and time step, for both integrators.
 //!
-//! Reference: issue 3 ("Numerics chosen automatically: defaults converged so that halving the
-//! segment length and the time step changes the exit speed by less than 0.1 %") and issue 7
-//! (the default integrator within 1e-4 of the converged value; integrators agree).
+//! Requirements: numerics chosen automatically, the defaults converged so that halving the
+//! segment length and the time step changes the exit speed by less than 0.1 %; the default
+//! integrator within 1e-4 of the converged value; the integrators agree.
 
 mod common;
 

@@ -1,4 +1,4 @@
-//! Oblique impacts and spin (issue 35) against references independent of the code:
+//! Oblique impacts and spin against references independent of the code:
 //!
 //! - the rigid-body oblique collision with Coulomb friction in closed form (Stronge's impact
 //!   mechanics as Sawicki, Hubbard & Stronge, Am. J. Phys. 71, 1152 (2003), and Cross &

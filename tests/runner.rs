@@ -1,5 +1,5 @@
-//! The driver with fake simulators and sinks (issue 4: failure isolation, bit-identical
-//! results whatever --jobs is; issue 5: resume skips done points).
+//! The driver with fake simulators and sinks: failure isolation, bit-identical results
+//! whatever --jobs is, resume skips done points.
 
 use batstudy::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use batstudy::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
@@ -144,7 +144,7 @@ fn failures_are_isolated_and_bats_prepared_once() {
     assert_eq!(sink.records[&(n - 1)].1, 1);
 }
 
-// issue 4: "Results are bit-identical whatever --jobs is (test it with 1 and 2)".
+// results are bit-identical whatever --jobs is (tested with 1 and 2).
 #[test]
 fn jobs_1_and_2_give_identical_records() {
     let (_, a, _) = run(
@@ -162,7 +162,7 @@ fn jobs_1_and_2_give_identical_records() {
     assert_eq!(a.records, b.records);
 }
 
-// issue 5: resume computes only the points that are not done.
+// resume computes only the points that are not done.
 #[test]
 fn resume_skips_done_points() {
     let (_, full, _) = run(
@@ -211,7 +211,7 @@ fn fail_fast_stops_early() {
     assert!(rep.ok + rep.failed < rep.total);
 }
 
-// issue 8: shards are disjoint and together give the single-process result.
+// shards are disjoint and together give the single-process result.
 #[test]
 fn shards_cover_the_study() {
     let (_, full, _) = run(

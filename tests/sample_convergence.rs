@@ -1,4 +1,4 @@
-//! Issue 36: the `sample` block's means and variances converge at the rates quasi-random
+//! The `sample` block's means and variances converge at the rates quasi-random
 //! points promise, on a problem whose distribution is known in closed form.
 //!
 //! Brody's rigid bat at rest, hit head-on at z by a ball of speed v and COR e (free bat):

@@ -1,4 +1,4 @@
-//! Issue 36: bad `sample` and `optimize` blocks are refused before anything runs or is
+//! Bad `sample` and `optimize` blocks are refused before anything runs or is
 //! written: exit status 2, file:line:column, the field, the value and what is allowed.
 
 use std::process::Command;

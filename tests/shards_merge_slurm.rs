@@ -1,4 +1,4 @@
-//! Issue 8: shards (`run --shard I/N`), `merge` and `slurm`, through the real binary.
+//! Shards (`run --shard I/N`), `merge` and `slurm`, through the real binary.
 
 use batstudy::run::{CostModel, Shard};
 use batstudy::store;
@@ -142,7 +142,7 @@ fn run_shards(dir: &Path, study: &str, n: usize) -> Vec<String> {
         .collect()
 }
 
-// issue 8: the split is a partition (every point exactly once), deterministic, and balanced
+// the split is a partition (every point exactly once), deterministic, and balanced
 // by estimated cost within the cost of one point.
 #[test]
 fn split_is_a_balanced_deterministic_partition() {
@@ -178,7 +178,7 @@ fn split_is_a_balanced_deterministic_partition() {
     assert!(r[0].end >= n / 2, "{r:?}");
 }
 
-// issue 8: `run --shard 1/3 … 3/3` then `merge` equals a single-process run bit for bit in
+// `run --shard 1/3 … 3/3` then `merge` equals a single-process run bit for bit in
 // every dataset; the shard files record study hash, shard and covered block; --resume works
 // per shard.
 #[test]
@@ -275,7 +275,7 @@ fn assert_refused(dir: &Path, args: &[&str], want: &str) {
     assert!(!store::journal_path(&dir.join("bad.h5")).exists());
 }
 
-// issue 8: merge refuses, with exit 2 and nothing written, shards of different studies,
+// merge refuses, with exit 2 and nothing written, shards of different studies,
 // missing points and points present twice.
 #[test]
 fn merge_refuses_bad_shard_sets() {
@@ -342,7 +342,7 @@ fn merge_refuses_bad_shard_sets() {
     assert_eq!(std::fs::read(dir.join("exists.h5")).unwrap(), b"x");
 }
 
-// issue 8: `batstudy slurm` writes an sbatch array (one task per shard), a merge job and a
+// `batstudy slurm` writes an sbatch array (one task per shard), a merge job and a
 // submit script that chains them, with absolute paths; all pass `bash -n`.
 #[test]
 fn slurm_scripts() {
@@ -400,7 +400,7 @@ fn slurm_scripts() {
     ] {
         assert!(array.contains(want), "array.sbatch lacks {want}:\n{array}");
     }
-    // every value reaches the scripts once, as a quoted assignment (issue 31)
+    // every value reaches the scripts once, as a quoted assignment
     assert!(
         array.contains(&format!("BATSTUDY=({})", bin.display())),
         "{array}"
@@ -416,7 +416,7 @@ fn slurm_scripts() {
     assert!(merge.contains(&format!("OUTPUT={}", out.display())));
     assert!(merge.contains("seq 1 \"$SHARDS\""));
     assert!(submit.contains("sbatch --parsable"));
-    // the merge runs however the array ended, and checks the set itself (issue 32)
+    // the merge runs however the array ended, and checks the set itself
     assert!(
         submit.contains("--dependency=afterany:\"$array_id\""),
         "{submit}"

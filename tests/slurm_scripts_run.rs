@@ -1,4 +1,4 @@
-//! The generated Slurm scripts, run (issues 31 and 32) with a stand-in `sbatch` that runs
+//! The generated Slurm scripts, run with a stand-in `sbatch` that runs
 //! each job at once on this machine: an array task per listed index, then the merge.
 //!
 //! - Shell metacharacters in every value that reaches a script (the study's path, its
@@ -129,8 +129,8 @@ fn injected(root: &Path) -> Vec<PathBuf> {
     found
 }
 
-// issue 31, item 1: `$(…)`, backticks and `";…;"` in the study's output, and quotes in the
-// study file's path, ran as commands when submit.sh and the array tasks ran.
+// `$(…)`, backticks and `";…;"` in the study's output, and quotes in the study file's
+// path, are data: nothing runs them as commands when submit.sh and the array tasks run.
 #[test]
 fn metacharacters_in_paths_run_nothing() {
     let c = Cluster::new();
@@ -162,8 +162,8 @@ fn metacharacters_in_paths_run_nothing() {
     assert_eq!(injected(&c.root), Vec::<PathBuf>::new(), "{}", c.jobs_log());
 }
 
-// issue 32, item 4: a task that never ran (time-out, scancel) left the merge pending forever
-// (afterok) and nothing resubmitted only the unfinished shards.
+// a task that never ran (time-out, scancel) must not leave the merge pending forever (so
+// afterany, not afterok), and `--resubmit` submits only the unfinished shards.
 #[test]
 fn merge_refuses_an_incomplete_set_and_resubmit_completes_it() {
     let c = Cluster::new();
@@ -213,7 +213,7 @@ fn merge_refuses_an_incomplete_set_and_resubmit_completes_it() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("already merged"));
 }
 
-// issue 32, item 1: the scripts run the command that started batstudy (the wheel gives its
+// the scripts run the command that started batstudy (the wheel gives its
 // own through `Invocation`); the binary's own path otherwise. A missing folder is refused.
 #[test]
 fn resubmit_needs_a_slurm_folder() {

@@ -445,7 +445,7 @@ fn torn_journal_resume_equals_uninterrupted() {
     assert_eq!(dump(&path), dump(&clean));
 }
 
-/// Each history written once (issue 37, `store::by_reference`): the points the placer wrote
+/// Each history written once (`store::by_reference`): the points the placer wrote
 /// as they arrived are journalled by where their chunks are in `OUT.h5.partial`, not with
 /// them, and a session that ends unfinished keeps that file. The resume reads every chunk
 /// back, checked against its CRC-32, and completes the same file as an uninterrupted run;
@@ -767,9 +767,9 @@ fn merge_shards_equals_single_run_and_refuses_bad_sets() {
     )
     .err()
     .unwrap();
-    // issue 8: merge refuses another study with its own error kind
+    // merge refuses another study with its own error kind
     assert!(matches!(e, StoreError::CannotMerge { .. }), "{e}");
-    // issue 31: a point whose id is not the study's is refused, before anything is written
+    // a point whose id is not the study's is refused, before anything is written
     let altered = |i: usize| ids(i) + u64::from(i == 13);
     let e = store::merge(&bad, &info, &shards, &opts(false, false), &altered)
         .err()
@@ -850,7 +850,7 @@ fn many_blocks_study() -> StudyInfo {
     s
 }
 
-// issue 7: the final file is built in windows that hold at most `build_memory` bytes of
+// the final file is built in windows that hold at most `build_memory` bytes of
 // summary values, so that the store's memory does not grow with the study (several windows:
 // the journal is first split into one spill file per window). The file must not depend on
 // how many windows it took: a one-block-per-window build must equal the one-window build, and both must read back (in 65 536-point slabs) as the
@@ -898,7 +898,7 @@ fn multi_pass_build_equals_single_pass_and_reads_back_in_slabs() {
     assert_eq!(left, ["one_pass.h5", "per_block.h5"]);
 }
 
-/// Guards the finish without a second scan (issue 7): what the writer says it wrote is what
+/// Guards the finish without a second scan: what the writer says it wrote is what
 /// a scan of the file finds, for a new journal and for one resumed after a torn tail.
 #[test]
 fn journal_writer_extent_equals_a_scan() {
@@ -992,7 +992,7 @@ fn finish_refuses_a_journal_changed_after_it_was_written() {
     }
 }
 
-/// Guards the file begun before the bats are known (issue 7): begun from the shape, then
+/// Guards the file begun before the bats are known: begun from the shape, then
 /// taken over by the session, it holds exactly what a file made in one go holds; unused or
 /// refused, it leaves nothing behind.
 #[test]
@@ -1105,7 +1105,7 @@ fn chunk_layout(path: &Path, starts: &[Vec<u64>]) -> Vec<(String, Vec<(u64, u64)
     out
 }
 
-// issue 7: the summary chunks are compressed on every core and each is written as soon as
+// the summary chunks are compressed on every core and each is written as soon as
 // the ones before it are. Where a chunk lands in the file must not depend on which thread
 // finished first: a file built on one thread and one built on three hold every chunk of
 // every summary variable at the same address, with the same size.
@@ -1155,7 +1155,7 @@ fn all_chunks(path: &Path, group: &str) -> Vec<(String, Vec<common::ChunkPlace>)
         .collect()
 }
 
-// issue 22: the histories are written into the final file while the run goes on, in
+// the histories are written into the final file while the run goes on, in
 // flat-index order (`store::placer`), and the finish writes the rest after them. Where every
 // chunk lands must not depend on the order the points arrived in, on whether the placer kept
 // up or gave up, nor on a resume (whose histories all come from the journal at the finish):

@@ -1,4 +1,4 @@
-//! The study parser under mutation (issue 17): thousands of mutated study files go through
+//! The study parser under mutation: thousands of mutated study files go through
 //! `study::load_str`, the function behind `batstudy validate` and `run`. Nothing may panic,
 //! and every refusal must carry a position (line and column) and a field or a message that
 //! says what is wrong. The mutations are seeded, so a failure names a reproducible case.
@@ -79,7 +79,7 @@ const TOKENS: &[&str] = &[
     "allow_implausible: true",
     "numerics.max_steps",
     "1e20",
-    // issue 31: the history block, names and grids a hostile study may hold
+    // the history block, names and grids a hostile study may hold
     "fields: [force, force]",
     "fields: [displacement]",
     "z_step: 1.0e-9",

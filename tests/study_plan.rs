@@ -1,4 +1,4 @@
-//! Grid expansion, zip/points dimensions, point ids (issue 4).
+//! Grid expansion, zip/points dimensions, point ids.
 
 use batstudy::results::CoordValues;
 use batstudy::study::{load_str, LoadOptions};
@@ -13,7 +13,7 @@ fn load(text: &str) -> batstudy::study::Study {
     .unwrap_or_else(|e| panic!("{e}"))
 }
 
-// issue 4: range 0.40..0.84 step 0.01 gives 45 values and includes 0.84.
+// range 0.40..0.84 step 0.01 gives 45 values and includes 0.84.
 #[test]
 fn range_axis_has_exact_endpoints() {
     let s = load("name: t\nbase: {}\ngrid:\n  impact.z: {range: [0.40, 0.84, 0.01]}\n");
@@ -106,7 +106,7 @@ fn one_block_per_parameter() {
     assert!(e.message.contains("also set"), "{e}");
 }
 
-// issue 4: "A point has a stable id (a hash of its canonical parameters)".
+// a point has a stable id (a hash of its canonical parameters).
 #[test]
 fn point_ids_are_stable_and_ignore_key_order() {
     let a = load("name: a\nbase:\n  ball: {speed: 40, mass: 0.145}\n  impact: {z: 0.7}\n");
@@ -146,11 +146,11 @@ fn profile_csv_is_loaded_relative_to_the_study() {
         Some(batstudy::model::spec::ProfileSpec::Knots(k)) => assert_eq!(k.len(), 3),
         other => panic!("{other:?}"),
     }
-    // issue 21: the bat is not labelled as if it were the preset's own
+    // the bat is not labelled as if it were the preset's own
     assert_eq!(s.plan.bats()[0].label, "r161, profile p.csv");
 }
 
-// issue 4: memory bounded — a 10-million-point plan is lazy.
+// memory bounded — a 10-million-point plan is lazy.
 #[test]
 fn ten_million_points_are_lazy() {
     let s = load(
@@ -162,7 +162,7 @@ fn ten_million_points_are_lazy() {
     assert_eq!(last.spec.swing.omega, -60.0);
 }
 
-// Issue 21: a points dim shows what each entry ran with. The base case leaves the density to
+// A points dim shows what each entry ran with. The base case leaves the density to
 // the r161 preset (649 kg/m³, Nathan 2000) and the aluminum case to its preset (2700 kg/m³,
 // the paper); a record (`bat.grip`) becomes one coordinate per field; every entry has a label.
 #[test]

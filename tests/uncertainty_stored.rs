@@ -1,4 +1,4 @@
-//! Issue 36: `/uncertainty` as `batstudy run` stores it, against closed forms.
+//! `/uncertainty` as `batstudy run` stores it, against closed forms.
 //!
 //! Brody's rigid bat at rest, hit head-on at z by a ball of speed v and COR e: the ball
 //! leaves at v (e − r)/(1 + r), r = m/M_e, 1/M_e = 1/M + (z − z_cm)²/I_cm (Brody 1986;

@@ -7,7 +7,7 @@ swing is a one-value grid axis) and a `/history` group with `force` and `displac
 (several studies once wrote no /history and no swing_omega dim). Needs BATSTUDY_BIN (set by
 scripts/test.sh); skipped without it.
 
-Issue 37: the bundled studies store the displacement in modal form (the default); each is
+The bundled studies store the displacement in modal form (the default); each is
 run again with `history.displacement: grid`, and the displacement `batstudy.open` computes
 from the modal form equals the grid's, value by value, to float32 rounding of the history's
 largest displacement Y: within one f32 ulp of Y (the modal form is kept to half an ulp of
@@ -50,7 +50,7 @@ def test_bundled_study_has_the_public_layout(study, tmp_path):
         assert r.returncode == 0 and (figures_dir / "ball_tests.png").stat().st_size > 5_000, r.stdout + r.stderr
         return
     if "\noptimize:" in study.read_text():
-        # issue 36: a design study's `run` is its start design, for `batstudy optimize`
+        # a design study's `run` is its start design, for `batstudy optimize`
         # (tested in Rust: tests/optimize_*.rs); it keeps no histories
         for group in ["summary", "sweet_spot", "bat", "errors"]:
             xr.open_dataset(out, engine="h5netcdf", group=group).close()
@@ -58,7 +58,7 @@ def test_bundled_study_has_the_public_layout(study, tmp_path):
     for group in ["summary", "sweet_spot", "history", "bat", "errors"]:
         xr.open_dataset(out, engine="h5netcdf", group=group).close()
     with xr.open_dataset(out, engine="h5netcdf", group="summary") as s:
-        # a batter sets the swing itself (issue 35): its studies sweep where the ball is met
+        # a batter sets the swing itself: its studies sweep where the ball is met
         swept = {"impact_offset"} if "batter:" in study.read_text() else {"swing_omega", "impact_z"}
         assert swept <= set(s.exit_speed.dims), s.exit_speed.dims
     with xr.open_dataset(out, engine="h5netcdf", group="history") as h:
@@ -88,7 +88,7 @@ def assert_same_displacement(modal, grid):
     assert hg.displacement.dtype == np.float32
     assert hm.sizes["history"] == hg.sizes["history"] > 0
     for name in ("impact_z", "swing_omega", "time", "z"):
-        if name in hg.variables:  # a batter's study has no swing_omega (issue 35)
+        if name in hg.variables:  # a batter's study has no swing_omega
             np.testing.assert_array_equal(hm[name].values, hg[name].values)
     y, g = hm.displacement.values, hg.displacement.values
     assert y.shape == g.shape

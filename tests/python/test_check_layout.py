@@ -107,7 +107,7 @@ def test_a_file_without_impact_z_passes(tmp_path):
 
 @needs_bin
 def test_histories_compressed_by_the_workers_read_with_standard_filters(tmp_path):
-    # issue 22: the workers shuffle and deflate the history chunks and the finish writes them
+    # the workers shuffle and deflate the history chunks and the finish writes them
     # raw; h5py's standard filters and xarray read them, the same on 1 and 2 threads
     study = tmp_path / "threads.yaml"
     study.write_text(WITH_HISTORY)

@@ -1,4 +1,4 @@
-"""Issue 36: `batstudy.sobol_indices` against Sobol indices known in closed form, from a
+"""`batstudy.sobol_indices` against Sobol indices known in closed form, from a
 `sample` study's own file.
 
 Brody's rigid bat at rest hit at z by a ball of speed v and COR e: the ball leaves at

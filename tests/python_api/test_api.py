@@ -1,4 +1,4 @@
-"""The Python API (issue 21): simulate, run, open, histories, the `batstudy` command.
+"""The Python API: simulate, run, open, histories, the `batstudy` command.
 Physics references are cited where a number is asserted."""
 
 import json

@@ -1,4 +1,4 @@
-"""Issues 31 and 32: the Python API and the wheel's command as cluster and Python users use
+"""The Python API and the wheel's command as cluster and Python users use
 them to scale out, and what a study given to them cannot do. Runs against the installed
 wheel (scripts/test_wheel.sh)."""
 
@@ -110,7 +110,7 @@ def test_a_history_too_big_for_memory_raises_instead_of_killing_the_process():
 
 
 def test_mutated_spec_texts_raise_study_errors_and_never_crash():
-    """A bounded, seeded mutation fuzz of simulate()'s text (issue 31): whatever the text,
+    """A bounded, seeded mutation fuzz of simulate()'s text: whatever the text,
     the call returns a result or raises StudyError; it never aborts the interpreter (a
     crash would end this test run) or raises anything else."""
     import random
