@@ -1,5 +1,5 @@
-//! What history chunks spanning k neighbouring points save (docs/performance.md, "`cargo
-//! bench`: the development measurements", its `chunk_groups` row).
+//! What history chunks spanning k neighbouring points save (docs/performance.md, "Chunks of
+//! eight points").
 //!
 //! The store can give each history point its own chunk of each stored variable (eight chunks
 //! a point for a modal history study, each a zlib stream with its own per-plane Huffman
