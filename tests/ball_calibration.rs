@@ -14,6 +14,8 @@ use batstudy::model::bat::section::{BatGeometry, WOOD_DENSITY};
 use batstudy::model::measures::metrics::bbcor_scan;
 use batstudy::model::spec::{BallPreset, BallSpec, BatPreset, BatSpec, BoreSpec, CollisionSpec};
 use batstudy::model::{prepare_bat, simulate_target, Target};
+use batstudy::study::{load_str, LoadOptions};
+use std::path::Path;
 
 const BALL_MASS: f64 = 0.145;
 
@@ -55,6 +57,12 @@ fn wall_cor(speed: f64) -> f64 {
 
 /// The mean over the 36 balls of a column of data/mlb_balls_cylinder_2014_2016.csv.
 fn cylinder_mean(column: &str) -> f64 {
+    let values = cylinder_column(column);
+    values.iter().sum::<f64>() / values.len() as f64
+}
+
+/// A column of data/mlb_balls_cylinder_2014_2016.csv, one value a ball, and its lots.
+fn cylinder_column_lots(column: &str) -> (Vec<f64>, Vec<String>) {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/data/mlb_balls_cylinder_2014_2016.csv"
@@ -63,9 +71,56 @@ fn cylinder_mean(column: &str) -> f64 {
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header = split_csv(lines.next().unwrap());
     let k = header.iter().position(|h| h == column).unwrap();
-    let values: Vec<f64> = lines.map(|l| split_csv(l)[k].parse().unwrap()).collect();
+    let lot = header.iter().position(|h| h == "lot").unwrap();
+    lines
+        .map(|l| {
+            let f = split_csv(l);
+            (f[k].parse::<f64>().unwrap(), f[lot].clone())
+        })
+        .unzip()
+}
+
+fn cylinder_column(column: &str) -> Vec<f64> {
+    let values = cylinder_column_lots(column).0;
     assert_eq!(values.len(), 36);
-    values.iter().sum::<f64>() / values.len() as f64
+    values
+}
+
+fn mean(x: &[f64]) -> f64 {
+    x.iter().sum::<f64>() / x.len() as f64
+}
+
+/// Sample standard deviation.
+fn sd(x: &[f64]) -> f64 {
+    let m = mean(x);
+    (x.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (x.len() - 1) as f64).sqrt()
+}
+
+fn correlation(x: &[f64], y: &[f64]) -> f64 {
+    let (mx, my) = (mean(x), mean(y));
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    sxy / ((x.len() - 1) as f64 * sd(x) * sd(y))
+}
+
+/// The cylinder test run on balls that `sample.ball_spread` draws: (COR, ln DS) a ball.
+fn drawn_cylinder_balls(spread: &str) -> (Vec<f64>, Vec<f64>) {
+    let text = format!(
+        "name: spread\nmodel: wave\nbase:\n  bat: {{preset: cylinder, radius: 0.03}}\n  \
+         ball: {{preset: mlb, speed: {}}}\n  impact: {{z: 0.0}}\n\
+         sample: {{n: 256, seed: 11, ball_spread: {spread}}}\n",
+        120.0 * 0.44704
+    );
+    let s = load_str(&text, Path::new("spread.yaml"), &LoadOptions::default()).unwrap();
+    let (mut cor, mut ds) = (Vec::new(), Vec::new());
+    for i in 0..s.plan.n_points() {
+        let p = s.plan.point(i).unwrap();
+        let target = Target::prepare(&p.spec.bat, &p.spec.numerics).unwrap();
+        let o = simulate_target(&p.spec, &target, None).unwrap();
+        let v = o.approach_speed;
+        cor.push(o.exit_speed / v);
+        ds.push(((o.peak_force / v).powi(2) / p.spec.ball.mass).ln());
+    }
+    (cor, ds)
 }
 
 /// The mlb ball on a rigid target at `speed`: (COR, dynamic stiffness (F_peak / v)² / m)
@@ -139,6 +194,53 @@ fn the_cylinders_stiffness_serves_a_barrel() {
             "k1 x {scale}: BBCOR {at} moves by {moved}"
         );
     }
+}
+
+/// Consistency through the full loop: balls drawn by `sample.ball_spread: ball` and fired at
+/// the cylinder spread as the 36 game balls did (their COR's SD, their dynamic stiffness's,
+/// and the correlation of the two, computed here from the data file); with `lot`, the COR
+/// spreads as the three lots' means. It fails if the spread's k₁ is not carried to the peak
+/// force as DS ∝ k₁^(2/(α+1)) says, or the COR shift does not reach the cylinder. Tolerances:
+/// 256 quasi-random points and the 3-SD truncation (−1.5 % of an SD).
+#[test]
+fn drawn_balls_spread_on_the_cylinder_as_the_game_balls_did() {
+    let cor = cylinder_column("cor_cylinder");
+    let ds: Vec<f64> = cylinder_column("dynamic_stiffness_N_per_m")
+        .iter()
+        .map(|d| d.ln())
+        .collect();
+    let (model_cor, model_ds) = drawn_cylinder_balls("ball");
+    let near = |model: f64, data: f64, what: &str| {
+        assert!(
+            (model / data - 1.0).abs() < 0.06,
+            "{what}: drawn {model}, measured {data}"
+        )
+    };
+    near(sd(&model_cor), sd(&cor), "SD of the COR");
+    near(sd(&model_ds), sd(&ds), "SD of ln DS");
+    let (r_model, r_data) = (correlation(&model_cor, &model_ds), correlation(&cor, &ds));
+    assert!(
+        (r_model - r_data).abs() < 0.05,
+        "{r_model} against {r_data}"
+    );
+    let (cor, lots) = cylinder_column_lots("cor_cylinder");
+    let lot_means: Vec<f64> = ["A", "B", "C"]
+        .iter()
+        .map(|l| {
+            let of: Vec<f64> = cor
+                .iter()
+                .zip(&lots)
+                .filter(|(_, lot)| lot.starts_with(l))
+                .map(|(c, _)| *c)
+                .collect();
+            mean(&of)
+        })
+        .collect();
+    near(
+        sd(&drawn_cylinder_balls("lot").0),
+        sd(&lot_means),
+        "SD of the lots' COR",
+    );
 }
 
 #[test]

@@ -62,6 +62,22 @@ fn bad_sample_blocks() {
         "sample:\n  n: 100000\n  params:\n    ball.law.cor: {uniform: {min: 0.4, max: 0.5}}\n",
         &["bad.yaml:6:3", "value: 100000", "allowed: 1 to 65536"],
     );
+    // the measured spread needs the preset whose balls were measured, and owns its paths
+    check(
+        "run",
+        "sample: {n: 8, ball_spread: ball}\n",
+        &[
+            "bad.yaml:5:",
+            "sample.ball_spread",
+            "value: no preset",
+            "allowed: `base.ball.preset: mlb`",
+        ],
+    );
+    check(
+        "validate",
+        "  ball: {preset: mlb, law: {k1: 4.0e7}}\nsample: {n: 8, ball_spread: lot}\n",
+        &["`ball.law.k1` is drawn by `sample.ball_spread`"],
+    );
     // a draw beyond the plausible ranges is refused like a grid value
     check(
         "run",

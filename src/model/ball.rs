@@ -38,6 +38,41 @@ pub const CYLINDER_DYNAMIC_STIFFNESS: f64 = 2.236e6;
 /// balls, the three lots included; the lots' means differ by up to 0.006): what one ball,
 /// or one lot, may be off the `mlb` curve (`ball.law.cor_shift`).
 pub const MLB_COR_SD: f64 = 0.0050;
+/// The spread of the 36 balls' dynamic stiffness, the SD of its logarithm (3.2 %; ball to
+/// ball, the lots included), and of the three lots' means (1.0 %).
+pub const MLB_DS_LOG_SD: f64 = 0.0317;
+pub const MLB_LOT_DS_LOG_SD: f64 = 0.0104;
+/// The spread of the three lots' mean COR (17, 9 and 10 balls: 0.4892, 0.4951, 0.4941), SD.
+pub const MLB_LOT_COR_SD: f64 = 0.0032;
+/// The correlation of COR and ln DS over the 36 balls (0.35): livelier balls are stiffer.
+pub const MLB_COR_DS_RHO: f64 = 0.35;
+
+/// How far real balls stray from a preset, as measured: the SD of a shift of the COR curve
+/// (`ball.law.cor_shift`), the SD of ln k₁, and the correlation of the two.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeasuredSpread {
+    pub cor_sd: f64,
+    pub k1_log_sd: f64,
+    pub rho: f64,
+}
+
+/// The `mlb` ball's measured spread: of one ball (`lot == false`: ball to ball, the lots
+/// included) or of a lot's mean (`lot == true`: the three lots' means; a certification
+/// averages several hits, so its ball is nearer a lot's mean than one ball). k₁ ∝ DS^((α+1)/2)
+/// ([`mlb_k1`]), so ln k₁ spreads (α+1)/2 times as far as ln DS. The lots' correlation is
+/// taken to be the balls' (three means cannot measure one).
+pub fn mlb_spread(lot: bool) -> MeasuredSpread {
+    let (cor_sd, ds_log_sd) = match lot {
+        false => (MLB_COR_SD, MLB_DS_LOG_SD),
+        true => (MLB_LOT_COR_SD, MLB_LOT_DS_LOG_SD),
+    };
+    MeasuredSpread {
+        cor_sd,
+        k1_log_sd: ds_log_sd * (MLB_ALPHA + 1.0) / 2.0,
+        rho: MLB_COR_DS_RHO,
+    }
+}
+
 /// The loading's exponent α of the `mlb` ball: Nathan's (2000), shaped to Adair's
 /// force–time curves (one speed's dynamic stiffness cannot pin it).
 pub const MLB_ALPHA: f64 = 1.84;
@@ -152,7 +187,7 @@ const MAX_INTEGER_EXPONENT: f64 = 64.0;
 
 /// `x^e` for the laws' branches. An integer exponent (the paper's ball, e = 0.5, unloads with
 /// p = 2/e² − 1 = 7; Nathan's with β = 9) is taken by repeated squaring: four times faster than
-/// `powf`, which was a sixth of a collision's time (issue 22), and the same bits on every CPU
+/// `powf`, which was a sixth of a collision's time, and the same bits on every CPU
 /// (libm picks an FMA or a plain `pow` at run time). Accurate to a few ulp either way.
 #[inline]
 pub fn power(x: f64, e: f64) -> f64 {

@@ -1,4 +1,4 @@
-//! The `sample` block (issue 36): parameters drawn from distributions instead of a grid,
+//! The `sample` block: parameters drawn from distributions instead of a grid,
 //! one dimension (`sample`) whose coordinates are the drawn values.
 //!
 //! The design is quasi-random: Owen-scrambled Sobol points (Burley 2020, the `sobol_burley`
@@ -18,6 +18,7 @@ use super::types::StudyFile;
 use indexmap::IndexMap;
 use schemars::JsonSchema;
 use serde::Deserialize;
+use yaml_serde::Value;
 
 /// Most points a `sample` block may draw (the Sobol sequence's length, 2^16).
 pub const MAX_SAMPLES: usize = 1 << 16;
@@ -41,9 +42,17 @@ pub struct SampleBlock {
     /// Default 0.
     #[serde(default)]
     pub seed: u32,
-    /// Dotted parameter path → its distribution.
-    #[serde(deserialize_with = "super::types::via_json")]
+    /// Dotted parameter path → its distribution. Default: none (then `ball_spread` must
+    /// draw).
+    #[serde(default, deserialize_with = "super::types::via_json")]
     pub params: IndexMap<String, Distribution>,
+    /// Draw the base ball as measured balls spread about its preset (`base.ball.preset:
+    /// mlb`): `ball` for one ball (COR SD 0.005, dynamic stiffness 3.2 %: ball to ball, lots
+    /// included), `lot` for a lot's mean (0.0032 and 1.0 %: a certification's mean of several
+    /// hits). It adds `ball.law.cor_shift` and `ball.law.k1` to the drawn parameters,
+    /// correlated as measured (docs/physics.md, "The ball's measured spread"). Default: none.
+    #[serde(default)]
+    pub ball_spread: Option<BallSpread>,
     /// Correlated pairs: `{between: [path, path], rho: r}` (−1 < r < 1), the correlation of
     /// the two parameters' normal scores (a Gaussian copula). Default: independent.
     #[serde(default)]
@@ -57,6 +66,16 @@ pub enum SampleMethod {
     /// Owen-scrambled Sobol points (Burley 2020), seeded by `seed`.
     #[default]
     Sobol,
+}
+
+/// Which measured spread of the preset ball `sample.ball_spread` draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BallSpread {
+    /// One ball: the spread of single balls about the preset, lots included.
+    Ball,
+    /// A lot's mean: the spread of lots' means about the preset.
+    Lot,
 }
 
 /// A parameter's distribution.
@@ -124,7 +143,13 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
     let Some(block) = &file.sample else {
         return Ok(None);
     };
-    for path in block.params.keys() {
+    let block = &with_ball_spread(block, &file.base).map_err(|e| {
+        cx.err(&e.at, e.message)
+            .field(e.field)
+            .value(e.value)
+            .allowed(e.allowed)
+    })?;
+    for path in block.params.keys().filter(|p| !block.spread_path(p)) {
         check_path(cx, path, &keys(&["sample", "params", path]))?;
     }
     let values = draw(block).map_err(|e| {
@@ -150,6 +175,87 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
         params,
         origin: DimOrigin::Sample,
     }))
+}
+
+const COR_SHIFT: &str = "ball.law.cor_shift";
+const K1: &str = "ball.law.k1";
+
+impl SampleBlock {
+    /// Whether `ball_spread`, not the file, draws this path.
+    fn spread_path(&self, path: &str) -> bool {
+        self.ball_spread.is_some() && (path == COR_SHIFT || path == K1)
+    }
+}
+
+/// The block with the base ball's measured spread among its parameters, if it asks for it:
+/// the COR curve's shift a truncated normal, k₁ a truncated lognormal about the preset's
+/// (its median), both cut at 3 SD, their normal scores correlated as the balls' are.
+fn with_ball_spread(block: &SampleBlock, base: &Value) -> Result<SampleBlock, SampleError> {
+    let Some(unit) = block.ball_spread else {
+        return Ok(block.clone());
+    };
+    let ball = base.get("ball");
+    let preset = ball.and_then(|b| b.get("preset")).and_then(|p| p.as_str());
+    let fail = |message: String, value: String, allowed: &str| {
+        Err(err(
+            keys(&["sample", "ball_spread"]),
+            message,
+            "sample.ball_spread",
+            value,
+            allowed,
+        ))
+    };
+    if preset != Some("mlb") {
+        let value = preset.map_or("no preset".into(), |p| format!("ball.preset {p}"));
+        return fail(
+            "`sample.ball_spread` draws a preset ball's measured spread; the base ball has none"
+                .into(),
+            value,
+            "`base.ball.preset: mlb` (the preset calibrated on measured balls)",
+        );
+    }
+    let law = ball.and_then(|b| b.get("law"));
+    let path_set = |p: &str| {
+        let field = p.rsplit('.').next().unwrap_or(p);
+        block.params.contains_key(p) || law.and_then(|l| l.get(field)).is_some()
+    };
+    if let Some(p) = [COR_SHIFT, K1].into_iter().find(|p| path_set(p)) {
+        return fail(
+            format!("`{p}` is drawn by `sample.ball_spread` and also set in the study"),
+            p.to_string(),
+            "the spread's parameters left to it (remove them from `sample.params` and `base.ball.law`)",
+        );
+    }
+    let spread = crate::model::ball::mlb_spread(unit == BallSpread::Lot);
+    let (sd, sig, k1) = (
+        spread.cor_sd,
+        spread.k1_log_sd,
+        crate::model::ball::mlb_k1(),
+    );
+    let mut out = block.clone();
+    out.params.insert(
+        COR_SHIFT.into(),
+        Distribution::Normal {
+            mean: 0.0,
+            sd,
+            min: Some(-3.0 * sd),
+            max: Some(3.0 * sd),
+        },
+    );
+    out.params.insert(
+        K1.into(),
+        Distribution::Lognormal {
+            mean: k1 * (0.5 * sig * sig).exp(),
+            cov: (sig * sig).exp_m1().sqrt(),
+            min: Some(k1 * (-3.0 * sig).exp()),
+            max: Some(k1 * (3.0 * sig).exp()),
+        },
+    );
+    out.correlation.push(Correlation {
+        between: [COR_SHIFT.into(), K1.into()],
+        rho: spread.rho,
+    });
+    Ok(out)
 }
 
 /// The score at probability `p` of a standard normal truncated to [za, zb] (za ≤ 0 or the
@@ -347,7 +453,7 @@ fn check(block: &SampleBlock) -> Result<(), SampleError> {
             "`sample.params` must name 1 to 256 parameters".into(),
             "sample.params",
             format!("{} parameters", block.params.len()),
-            "1 to 256 dotted parameter paths, each with a distribution",
+            "1 to 256 dotted parameter paths, each with a distribution (or `ball_spread`)",
         ));
     }
     for (path, dist) in &block.params {
@@ -438,6 +544,7 @@ mod tests {
             name: None,
             n,
             method: SampleMethod::Sobol,
+            ball_spread: None,
             seed: 7,
             params: params
                 .iter()

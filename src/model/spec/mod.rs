@@ -266,7 +266,7 @@ pub struct ShellSpec {
     pub from: Option<f64>,
     /// The wall thickness along the bat instead of one `thickness`: `[[z, t], ...]` (m from
     /// the knob, m), linear between knots and constant beyond the first and the last
-    /// (issue 36: a barrel wall thicker than the handle's). Default none: `thickness`.
+    /// (a barrel wall thicker than the handle's). Default none: `thickness`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thickness_knots: Option<Vec<[f64; 2]>>,
 }
