@@ -1,5 +1,5 @@
 """The uncertainty and design figures in docs/figures/ from the bundled studies' results files:
-    .venv/bin/python scripts/issue36_figures.py UNCERTAINTY.h5 DESIGN_BBCOR.h5 DESIGN_WOOD.h5
+    .venv/bin/python scripts/design_figures.py UNCERTAINTY.h5 DESIGN_BBCOR.h5 DESIGN_WOOD.h5
 (`batstudy run studies/uncertainty.yaml`, `batstudy optimize studies/design_*.yaml`)."""
 import sys
 from pathlib import Path
