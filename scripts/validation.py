@@ -568,11 +568,17 @@ PREDICTION = [
                cork_difference("drilled")[0] + 2 * cork_difference("drilled")[1]),
         sigmas(*cork_difference("drilled"), 4), False, counted=True,
         reason=lambda f: (
-            f"not found. BBCOR takes out the mass the bore removes (the drilled bat's e_A falls by "
+            f"a loss the beam cannot have. A bound: the solid bat loses "
+            f"{1 - (best_bbcor(f, 'test_bat') / wall_cor(f, CORK_TEST_SPEED)) ** 2:.1%} of the rebound energy to all "
+            f"its bending vibrations at its best point (its BBCOR over the ball's COR, squared), the drop needs "
+            f"{1 - (0.4814 / 0.4898) ** 2:.1%} more; the bore changes the barrel's bending stiffness by "
+            f"{(0.0127 / 0.0318) ** 4:.1%} and its mass by {(0.0127 / 0.0318) ** 2:.0%} where the ball hits (a "
+            f"1-in bore in a 2.5-in barrel), changes that cannot multiply the "
+            f"vibrations' share by the factor needed. BBCOR takes out the mass the bore removes (the drilled bat's e_A falls by "
             f"{float(best(cert(f), 'test_bat', CORK_TEST_SPEED, 'collision_efficiency').collision_efficiency - best(cert(f), 'test_bat_hollow', CORK_TEST_SPEED, 'collision_efficiency').collision_efficiency):.3f}, "
             f"its BBCOR by {-(best_bbcor(f, 'test_bat_hollow') - best_bbcor(f, 'test_bat')):.4f}): the measured drop "
-            f"is a loss the beam model lacks, {1 - (0.4814 / 0.4898) ** 2:.1%} of the rebound energy (the hollow "
-            f"barrel's wall crushing or ringing locally; with the wall's hoop mode from the ring formula the "
+            f"is a loss of the hollow barrel's wall, crushing or ringing locally, which a beam of rigid "
+            f"cross-sections lacks (with the wall's hoop mode from the ring formula the "
             f"model's drilled bat gains instead: 'corked bat: BBCOR against the solid bat')"),
         band=f"±{2 * cork_difference('drilled')[1]:.4f}: 2 × the two s.d.s of the mean in quadrature (the ball's "
              f"level cancels)"),
