@@ -6,7 +6,8 @@
 
 pub mod bench;
 pub mod cli;
-pub mod model;
+/// The physics (crates/physics): one fully specified collision in, one `Outcome` out.
+pub use batstudy_physics as model;
 pub mod optimize;
 pub mod pointset;
 pub mod results;

@@ -1,7 +1,7 @@
 //! BBCOR (NCAA BBCOR protocol on ASTM F2219: bat pivoted 6 in from the knob, at rest, ball
 //! fired at it).
 //!
-//! References: the derivation in src/model/metrics.rs (angular momentum about the pivot +
+//! References: the derivation in crates/physics/src/measures/metrics.rs (angular momentum about the pivot +
 //! restitution at the impact point ⇒ BBCOR = e_A (1 + m/M_e) + m/M_e, M_e = I_p/(z − z_p)²,
 //! which is exactly the ball's COR e for a rigid bat); docs/physics.md: Nathan's
 //! e_A = (e − m/M*)/(1 + m/M*); the stiff-bat limit of the wave model (docs/physics.md: Y × 1000

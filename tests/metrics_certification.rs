@@ -3,7 +3,7 @@
 //! References:
 //! - NCAA BBCOR protocol (on ASTM F2219): for a *rigid* bat, pivoted or free, the protocol's
 //!   BBCOR `e_A (1 + m/M_e) + m/M_e` is exactly the ball's COR e, whatever the bat's inertia
-//!   (derivation in `src/model/measures/metrics.rs`; docs/physics.md, "BBCOR"). A very stiff
+//!   (derivation in `crates/physics/src/measures/metrics.rs`; docs/physics.md, "BBCOR"). A very stiff
 //!   wave bat (Y × 1000) is that rigid bat (`tests/physics_rigid_limit.rs`), so its BBCOR
 //!   must be e and its BPF (BBCOR over the ball's COR, ASTM F1890) 1.
 //! - BESR = e_A + 1/2 (Washington State University Sports Science Laboratory, "Bat

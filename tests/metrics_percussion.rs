@@ -1,7 +1,7 @@
 //! Centre of percussion.
 //!
 //! References: Brody, Am. J. Phys. 54, 640 (1986) and Cross, Am. J. Phys. 66, 772 (1998):
-//! for a pivot at z_p, z_cop = z_p + I_p/(M (z_cm − z_p)) (derived in src/model/metrics.rs).
+//! for a pivot at z_p, z_cop = z_p + I_p/(M (z_cm − z_p)) (derived in crates/physics/src/measures/metrics.rs).
 //! Closed form for a uniform rod of length L pivoted at its end: I_p = M L²/3, z_cm = L/2,
 //! so z_cop = 2L/3 (any mechanics text, e.g. Brody 1986 eq. 1).
 

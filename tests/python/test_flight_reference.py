@@ -1,4 +1,4 @@
-"""The Rust flight model (src/model/flight) against an independent implementation of the same
+"""The Rust flight model (crates/physics/src/flight) against an independent implementation of the same
 published equations: `BattedBallTrajectory` of the PyPI package pybaseball (2.2.7), a port of
 Alan Nathan's trajectory calculator integrated with SciPy's adaptive RK45.
 

@@ -1,0 +1,106 @@
+//! The batter and the batted ball's flight: the parts of a study that go beyond one
+//! collision. Field names are public interface; units SI.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A batter whose swing answers to the bat: the bat turns about `pivot` with an angular
+/// speed that scales as the bat's moment of inertia about that point to the power −n,
+/// Ω = Ω_ref (I_ref / I)^n, Ω_ref = `bat_speed` / (`bat_speed_at` − `pivot`). Measured
+/// exponents: 0.27 (Cross & Bower 2006), 0.25 pooled over players from 0.08 to 0.37
+/// (Smith, Broker & Nathan 2003), 0.29 ± 0.04 (Nathan, Crisco, Greenwald, Russell &
+/// Smith 2011, about the knob). With a batter the collision's `ball.speed`,
+/// `swing.omega` and `swing.cm_speed` follow from it (docs/physics.md, "The batter"), and
+/// a study may not set `swing.omega` or `swing.cm_speed` itself.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BatterSpec {
+    /// Lab-frame speed of the pitch toward the batter at contact, m/s.
+    pub pitch_speed: f64,
+    /// The batter's swing speed with the reference bat: the lab speed of the point
+    /// `bat_speed_at` of that bat at contact, m/s.
+    pub bat_speed: f64,
+    /// Where on the reference bat `bat_speed` is measured, m from the knob. Default 0.7112
+    /// (28 in: Crisco et al. 2002 quote swing speeds at 28 in; bat sensors and Statcast
+    /// measure about 6 in from the tip of a 34-in bat, the same point).
+    #[serde(default = "default_bat_speed_at")]
+    pub bat_speed_at: f64,
+    /// The reference bat's moment of inertia about `pivot`, kg·m² (a results file's
+    /// `/bat/moment_of_inertia_knob` gives a bat's about its knob; docs/study-files.md
+    /// lists the presets').
+    pub reference_moi: f64,
+    /// Exponent n of Ω ∝ I^(−n). Default 0.27 (Cross & Bower 2006; 0 = every bat swung at
+    /// the same Ω).
+    #[serde(default = "default_exponent")]
+    pub exponent: f64,
+    /// The point the swing turns about at contact, m from the knob. Default 0 (the knob:
+    /// Nathan et al. 2011 found the instantaneous axis of rotation at impact near it).
+    #[serde(default)]
+    pub pivot: f64,
+}
+
+fn default_bat_speed_at() -> f64 {
+    0.7112
+}
+fn default_exponent() -> f64 {
+    0.27
+}
+
+/// The batted ball's flight through the air to the ground, with Nathan's drag, lift and
+/// spin decay fitted to Statcast (docs/physics.md, "Flight"). Every field has the default
+/// of Nathan's trajectory calculator, so `flight: {}` flies the calculator's standard day.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FlightSpec {
+    /// Air temperature, K. Default 294.26 (70 °F).
+    #[serde(default = "default_temperature")]
+    pub temperature: f64,
+    /// Barometric pressure reduced to sea level, Pa, as weather reports give it. Default
+    /// 101 325 (29.92 inHg).
+    #[serde(default = "default_pressure")]
+    pub pressure: f64,
+    /// Elevation of the field above sea level, m. Default 0 (Coors Field: about 1 580).
+    #[serde(default)]
+    pub elevation: f64,
+    /// Relative humidity, 0–1. Default 0.5.
+    #[serde(default = "default_humidity")]
+    pub humidity: f64,
+    /// Wind speed over the ground, m/s, horizontal and uniform. Default 0.
+    #[serde(default)]
+    pub wind_speed: f64,
+    /// Where the wind blows to, rad from straight-away centre field, positive toward the
+    /// first-base (right-field) side. Default 0 (blowing out to centre field).
+    #[serde(default)]
+    pub wind_direction: f64,
+    /// Height of the contact point above the ground, m. Default 0.9144 (3 ft, the
+    /// calculator's).
+    #[serde(default = "default_height")]
+    pub height: f64,
+}
+
+impl Default for FlightSpec {
+    fn default() -> Self {
+        Self {
+            temperature: default_temperature(),
+            pressure: default_pressure(),
+            elevation: 0.0,
+            humidity: default_humidity(),
+            wind_speed: 0.0,
+            wind_direction: 0.0,
+            height: default_height(),
+        }
+    }
+}
+
+fn default_temperature() -> f64 {
+    crate::flight::fahrenheit_to_kelvin(70.0)
+}
+fn default_pressure() -> f64 {
+    crate::flight::air::STANDARD_PRESSURE_PA
+}
+fn default_humidity() -> f64 {
+    0.5
+}
+fn default_height() -> f64 {
+    crate::flight::DEFAULT_CONTACT_HEIGHT_M
+}
