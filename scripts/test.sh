@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 
 echo "== Rust tests"
-cargo test --all-targets -p batstudy -p batstudy-physics
+cargo test --all-targets -p batstudy -p batstudy-physics -p batstudy-store
 
 echo "== Study files against schemas/study.schema.json"
 .venv/bin/check-jsonschema --schemafile schemas/study.schema.json studies/*.yaml examples/*.yaml

@@ -9,9 +9,10 @@ pub mod cli;
 /// The physics (crates/physics): one fully specified collision in, one `Outcome` out.
 pub use batstudy_physics as model;
 pub mod optimize;
-pub mod pointset;
-pub mod results;
 pub mod run;
 pub mod slurm;
-pub mod store;
+/// The results file (crates/store): HDF5 layout, journal, codecs, reading back and merging;
+/// `results`, the plain data the runner hands it; `pointset`, sets of point indices.
+pub use batstudy_store as store;
+pub use batstudy_store::{pointset, results};
 pub mod study;

@@ -2,7 +2,8 @@
 //! (crates/physics) is pure functions of a specification, so that another project can use it
 //! and a reader can trust that nothing in it writes, waits or prints. It may depend only on
 //! the numeric and serialisation crates listed here, and its code names no file system, no
-//! thread, no process, no terminal.
+//! thread, no process, no terminal. The store crate (crates/store) depends on the physics,
+//! HDF5 and its codecs, never on the study layer or the command line.
 
 use std::path::Path;
 
@@ -71,6 +72,34 @@ fn the_physics_depends_on_numerics_and_serialisation_only() {
         section_keys(&toml, "features").is_empty(),
         "the physics has no features"
     );
+}
+
+/// What the store may depend on: the physics (the types it stores), HDF5 and the codecs'
+/// crates, its worker pool, serialisation. Not the study layer, the YAML, the terminal.
+const STORE_DEPENDENCIES: &[&str] = &[
+    "batstudy-physics",
+    "hdf5",
+    "hdf5-sys",
+    "ndarray",
+    "rayon",
+    "serde",
+    "serde_json",
+    "thiserror",
+    "memchr",
+    "sha2",
+    "libc",
+    "libdeflater",
+];
+
+#[test]
+fn the_store_depends_on_the_physics_hdf5_and_codecs_only() {
+    let toml = std::fs::read_to_string(Path::new(ROOT).join("crates/store/Cargo.toml")).unwrap();
+    for key in section_keys(&toml, "dependencies") {
+        assert!(
+            STORE_DEPENDENCIES.contains(&key.as_str()),
+            "crates/store depends on `{key}`; allowed: {STORE_DEPENDENCIES:?}"
+        );
+    }
 }
 
 #[test]

@@ -8,7 +8,7 @@ crash). :func:`check_structure` walks every collection in the file as HDF5 will,
 HDF5 does, and refuses the file when one would not end cleanly; everything else HDF5 reads
 from a results file (superblock, object headers, B-trees, heaps of links and attributes,
 chunk indices) has a checksum that HDF5 verifies itself. The Rust CLI makes the same check
-(``src/store/check.rs``); docs/layout.md describes it.
+(``crates/store/src/check.rs``); docs/layout.md describes it.
 """
 
 from __future__ import annotations

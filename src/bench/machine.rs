@@ -96,7 +96,7 @@ pub(super) fn describe(quick: bool, dir: &Path) -> Machine {
         dir: dir.display().to_string(),
         quick,
         batstudy_version: env!("CARGO_PKG_VERSION").to_string(),
-        git_commit: option_env!("BATSTUDY_GIT_COMMIT")
+        git_commit: crate::store::options::BUILD_COMMIT
             .unwrap_or("unknown")
             .to_string(),
     }

@@ -12,8 +12,7 @@ use crate::results::{Coord, CoordValues};
 use serde_json::Value as Json;
 use yaml_serde::Value;
 
-/// Suffix of a `points`/`zip` dim's label coordinate (`case` → `case_label`).
-pub const LABEL_SUFFIX: &str = "_label";
+pub use crate::results::LABEL_SUFFIX;
 
 /// Fill in, flatten and label the coordinates of every `points` and `zip` dim of the plan.
 /// Call once the plan resolves (every axis value was checked against the base).

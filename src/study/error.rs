@@ -51,25 +51,7 @@ impl StudyError {
     }
 }
 
-/// `s` as it may reach a terminal: control characters (an escape sequence would recolour
-/// or clear the user's screen, a carriage return overwrite a line) and the bidirectional
-/// overrides (which reorder what is shown) written as `\u{..}` escapes. `lines` keeps line
-/// breaks (a description's own). Study files and results files are data, never commands
-/// to the terminal.
-pub fn printable(s: &str, lines: bool) -> std::borrow::Cow<'_, str> {
-    let bidi = |c: char| matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}');
-    let bad = |c: char| c.is_control() && !(lines && c == '\n') || bidi(c);
-    if !s.chars().any(bad) {
-        return s.into();
-    }
-    s.chars()
-        .map(|c| match bad(c) {
-            true => c.escape_unicode().to_string(),
-            false => c.to_string(),
-        })
-        .collect::<String>()
-        .into()
-}
+pub use crate::results::printable;
 
 impl fmt::Display for StudyError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
