@@ -50,7 +50,7 @@ pub(super) fn build_plan(
     let mut dims = grid_dims(cx, file)?;
     dims.extend(zip_dims(cx, file, &mut names)?);
     dims.extend(points_dim(cx, file, &mut names)?);
-    dims.extend(super::sample::sample_dim(cx, file)?);
+    dims.extend(super::sample_dim::sample_dim(cx, file)?);
     check_one_block_per_path(cx, file, &dims)?;
     let n = check_size(cx, file, &dims, opts)?;
     let defaults = with_defaults(&base);

@@ -20,6 +20,7 @@ pub mod paths;
 pub mod plan;
 pub mod profile;
 pub mod sample;
+mod sample_dim;
 pub mod source;
 mod syntax;
 pub mod types;

@@ -77,17 +77,6 @@ pub struct StudyFile {
     pub allow_implausible: bool,
 }
 
-/// Deserialize through JSON: yaml_serde's `Value` reads an enum with data only from a YAML
-/// tag, while a study writes `{normal: {mean: 1, sd: 2}}`.
-pub(crate) fn via_json<'de, D, T>(d: D) -> Result<T, D::Error>
-where
-    D: serde::Deserializer<'de>,
-    T: serde::de::DeserializeOwned,
-{
-    let v = serde_json::Value::deserialize(d)?;
-    serde_json::from_value(v).map_err(serde::de::Error::custom)
-}
-
 fn base_schema(gen: &mut SchemaGenerator) -> Schema {
     let mut s = CollisionSpec::json_schema(gen);
     if let Some(obj) = s.as_object_mut() {

@@ -6,7 +6,7 @@
 //! compression that increases monotonically (unloading branch below s_max, loading above),
 //! which is what makes the integrators' implicit contact solve well posed.
 
-use crate::spec::{BallLaw, BallLawKind, BallPreset, Loading};
+use crate::spec::ball_law::{BallLaw, BallLawKind, BallPreset, Loading};
 
 /// `speed_dependent`: default reference speed, m/s (85 ft/s, the MLB ball specification's
 /// wall-test speed).

@@ -78,6 +78,28 @@ pub struct Oblique {
     pub cross_mass: f64,
 }
 
+/// The ball must meet the bat: |offset| below the bat's radius at the impact point plus the
+/// ball's (checked here so that a study that misses is refused before it runs).
+pub(crate) fn check_reach(
+    spec: &CollisionSpec,
+    g: &crate::bat::section::BatGeometry,
+) -> Result<(), ModelError> {
+    let z = spec.impact.z;
+    if spec.impact.offset == 0.0 || !(0.0..=g.length).contains(&z) {
+        return Ok(());
+    }
+    let ball = BallContact::of(&spec.ball);
+    let reach = g.outer_radius(z) + ball.radius;
+    if spec.impact.offset.abs() < reach {
+        return Ok(());
+    }
+    Err(crate::error::out_of_range(
+        "impact.offset",
+        spec.impact.offset,
+        &format!("|offset| < bat radius + ball radius = {reach:.4} m at impact.z = {z} m (else the ball misses)"),
+    ))
+}
+
 impl Oblique {
     /// The oblique part of `spec` on `bat`: `None` for a head-on ball without spin (the
     /// paper's collision, computed exactly as before).
@@ -88,7 +110,7 @@ impl Oblique {
         let ball = BallContact::of(&spec.ball);
         let bat_radius = bat.geometry.outer_radius(spec.impact.z);
         // the same check the study layer makes when it loads (a miss is refused)
-        crate::collision::validate::check_reach(spec, &bat.geometry)?;
+        check_reach(spec, &bat.geometry)?;
         let sin = spec.impact.offset / (bat_radius + ball.radius);
         Ok(Some(Oblique {
             cos: (1.0 - sin * sin).sqrt(),

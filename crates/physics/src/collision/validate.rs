@@ -36,7 +36,7 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
     check("swing.cm_speed", spec.swing.cm_speed, true, "finite m/s")?;
     check_oblique(spec, wall)?;
     if let Some(g) = &geometry {
-        check_reach(spec, g)?;
+        crate::collision::oblique::check_reach(spec, g)?;
     }
     check_batter(spec, wall)?;
     if let Some(flight) = &spec.flight {
@@ -216,23 +216,6 @@ fn check_oblique(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
         check(path, angle, angle.abs() < right_angle, "(-pi/2, pi/2) rad")?;
     }
     Ok(())
-}
-
-/// The ball must meet the bat: |offset| below the bat's radius at the impact point plus the
-/// ball's (checked here so that a study that misses is refused before it runs).
-pub(crate) fn check_reach(spec: &CollisionSpec, g: &BatGeometry) -> Result<(), ModelError> {
-    let z = spec.impact.z;
-    if spec.impact.offset == 0.0 || !(0.0..=g.length).contains(&z) {
-        return Ok(());
-    }
-    let ball = crate::collision::oblique::BallContact::of(&spec.ball);
-    let reach = g.outer_radius(z) + ball.radius;
-    check(
-        "impact.offset",
-        spec.impact.offset,
-        spec.impact.offset.abs() < reach,
-        &format!("|offset| < bat radius + ball radius = {reach:.4} m at impact.z = {z} m (else the ball misses)"),
-    )
 }
 
 /// The batter: speeds, the reference bat, the exponent, the pivot.

@@ -23,6 +23,7 @@ mod errors;
 mod fill;
 mod grid;
 mod history;
+mod history_vars;
 mod pieces;
 mod shapes;
 mod skeleton;

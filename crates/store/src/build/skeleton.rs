@@ -5,7 +5,7 @@ use super::attrs::root_attrs;
 use super::bat::write_bats;
 use super::errors::{create_errors, Errors};
 use super::grid::{summary_chunk, without};
-use super::history::{create_history, HistoryVars};
+use super::history_vars::{create_history, HistoryVars};
 use super::shapes::BatShapes;
 use super::vars::{new_var, study_dims};
 use crate::dimscale::{attr_str, attr_vec, Attacher};
