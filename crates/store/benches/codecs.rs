@@ -12,11 +12,12 @@
 //!   (`chunks::filtered_group_coordinates`, f64, mode-major, zero rows up to the block's
 //!   modes), shuffled: 8 planes of 51 200 bytes. The store codes it with `run_huffman`.
 //! - `modal_point`: one point's block (the same coded alone, 8 planes of 6 400 bytes).
-//! - `scalar_group`: a group's six scalar series (force, compression, ball velocity, rigid
-//!   translation and rotation, bat load) as `chunks::filtered_group` makes them, f32: six
-//!   chunks of 4 planes of 1 600 bytes. `run_huffman`.
-//! - `scalar_point`: the same series of one point, one chunk each (the grid form's chunks,
-//!   800 bytes): `chunks::filtered_whole`, whose small chunks go to `fixed_deflate` (noise
+//! - `scalar_group`: a group's six scalar series as `chunks::filtered_group` makes them:
+//!   force, compression, ball velocity, rigid translation and rotation in f32 (five chunks
+//!   of 4 planes of 1 600 bytes), the bat load in f64 as the model rounds it (8 planes of
+//!   1 600 bytes). `run_huffman`.
+//! - `scalar_point`: the five f32 series of one point of the grid form, one chunk each (800
+//!   bytes): `chunks::filtered_whole`, whose small chunks go to `fixed_deflate` (noise
 //!   planes stored, the rest one block of the fixed codes).
 //! - `grid_point`: one point's displacement on the grid, 200 samples × 85 positions of f32
 //!   (`chunks::filtered_whole`: noise planes stored, the rest libdeflate level 1).
@@ -146,6 +147,9 @@ struct Inputs {
     grid_point: Input,
     /// The modal group's values, for the shuffle.
     coordinates: Vec<f64>,
+    /// The modes each of the group's collisions stepped, and the modes of a block.
+    modes: Vec<usize>,
+    block: usize,
 }
 
 fn inputs() -> &'static Inputs {
@@ -183,16 +187,40 @@ fn f32s(values: &[f64]) -> Vec<f32> {
     values.iter().map(|&x| x as f32).collect()
 }
 
-/// A history's scalar series, in the file's order.
-fn scalar_series(h: &History) -> [&[f64]; 6] {
+/// The scalar series stored in the request's precision (f32), in the file's order.
+const F32_SERIES: usize = 5;
+
+/// A history's scalar series stored in f32, in the file's order (the modal form's bat load
+/// is stored in f64, rounded by the model).
+fn scalar_series(h: &History) -> [&[f64]; F32_SERIES] {
     [
         &h.force,
         &h.compression,
         &h.ball_velocity,
         &h.rigid_translation,
         &h.rigid_rotation,
-        &h.modal.bat_load,
     ]
+}
+
+/// A group chunk of one series of the group's points (`places`), as the store makes it
+/// (`chunks::filtered_group`), checked against `run_huffman` on the store's shuffle.
+fn group_chunk<T: chunks::ChunkValue>(places: &[&[f64]], convert: fn(f64) -> T, fill: T) -> Chunk {
+    let values: Vec<T> = places
+        .iter()
+        .flat_map(|a| a.iter().map(|&x| convert(x)))
+        .collect();
+    let bytes = shuffled(&values);
+    let places: Vec<Option<&[f64]>> = places.iter().map(|&a| Some(a)).collect();
+    assert_eq!(
+        chunks::filtered_group(&places, N_SAMPLES, HISTORY_DEFLATE_LEVEL, convert, fill),
+        run_huffman::zlib_planes(&bytes, values.len()),
+        "a scalar group's input is the store's"
+    );
+    Chunk {
+        shuffled: bytes,
+        values: None,
+        plane: values.len(),
+    }
 }
 
 fn make_inputs() -> Inputs {
@@ -273,31 +301,22 @@ fn make_inputs() -> Inputs {
         path: StorePath::RunHuffman,
     };
 
-    // the scalar series: a group's chunk of each, and one point's
+    // the scalar series: a group's chunk of each (the bat load in f64, as the modal form
+    // stores it), and one point's (the grid form's, which has no bat load)
+    let mut group_chunks: Vec<Chunk> = (0..F32_SERIES)
+        .map(|s| {
+            let places: Vec<_> = histories.iter().map(|h| scalar_series(h)[s]).collect();
+            group_chunk(&places, |x| x as f32, f32::NAN)
+        })
+        .collect();
+    let bat_loads: Vec<_> = histories
+        .iter()
+        .map(|h| h.modal.bat_load.as_slice())
+        .collect();
+    group_chunks.push(group_chunk(&bat_loads, |x| x, f64::NAN));
     let scalar_group = Input {
         name: "scalar_group",
-        chunks: (0..6)
-            .map(|s| {
-                let places: Vec<Option<&[f64]>> = histories
-                    .iter()
-                    .map(|h| Some(scalar_series(h)[s]))
-                    .collect();
-                let values: Vec<f32> = places.iter().flatten().flat_map(|a| f32s(a)).collect();
-                let bytes = shuffled(&values);
-                let stored =
-                    chunks::filtered_group(&places, N_SAMPLES, level, |x| x as f32, f32::NAN);
-                assert_eq!(
-                    stored,
-                    run_huffman::zlib_planes(&bytes, values.len()),
-                    "the scalar group's input is the store's"
-                );
-                Chunk {
-                    shuffled: bytes,
-                    values: None,
-                    plane: values.len(),
-                }
-            })
-            .collect(),
+        chunks: group_chunks,
         path: StorePath::RunHuffman,
     };
     let whole = |v: Vec<f32>| Chunk {
@@ -307,7 +326,7 @@ fn make_inputs() -> Inputs {
     };
     let scalar_point = Input {
         name: "scalar_point",
-        chunks: scalar_series(&histories[0])
+        chunks: scalar_series(&grid_history)
             .into_iter()
             .map(|a| whole(f32s(a)))
             .collect(),
@@ -326,6 +345,8 @@ fn make_inputs() -> Inputs {
         scalar_point,
         grid_point,
         coordinates,
+        modes: histories.iter().map(|h| h.modal.modes).collect(),
+        block,
     }
 }
 
@@ -429,7 +450,11 @@ fn checked_size(input: &Input, codec: Codec) -> usize {
 
 /// The sizes of every input by every codec, each output checked.
 fn print_sizes(inputs: &Inputs) {
-    eprintln!("codec sizes (bytes; every output inflated and compared with its input):");
+    eprintln!(
+        "modes stepped {:?}, {} a block; codec sizes (bytes; every output inflated and \
+         compared with its input):",
+        inputs.modes, inputs.block
+    );
     eprint!("{:<14}{:>9}", "input", "raw");
     for codec in CODECS {
         eprint!("{:>14}", codec.to_string());
