@@ -237,8 +237,20 @@ fn write_us(dir: &TempDir, name: &str, chunks: &[&[u8]], points: usize) -> f64 {
     best
 }
 
-fn main() {
-    let bench = std::env::args().any(|a| a == "--bench");
+/// The records of the bench's study, run on one thread, in flat-index order, with what the
+/// store knows of them.
+struct Fixture {
+    recs: Vec<PointRecord>,
+    info: batstudy::results::StudyInfo,
+    vars: Vec<Var>,
+    ext: ModalExtents,
+    /// points, z positions of a history, time samples
+    n: usize,
+    nz: usize,
+    nt: usize,
+}
+
+fn fixture(bench: bool) -> Fixture {
     let omegas = if bench { 40 } else { 1 };
     let study = load_study(
         &curve_study_text("chunk-groups", omegas, MODAL_HISTORY_BLOCK),
@@ -267,27 +279,38 @@ fn main() {
     .expect("the run");
     let mut recs = kept.0;
     recs.sort_by_key(|r| r.index);
-    let (n, nz, nt) = (recs.len(), 45, request.n_samples);
-    let ext = ModalExtents::of(&info);
-    let vars: Vec<Var> = header::history_vars(&request)
+    let vars = header::history_vars(&request)
         .into_iter()
         .map(|k| (k, layout::history_precision(&request, k)))
         .collect();
+    Fixture {
+        n: recs.len(),
+        nz: 45,
+        nt: request.n_samples,
+        ext: ModalExtents::of(&info),
+        recs,
+        info,
+        vars,
+    }
+}
 
-    // every point alone, and every group of k, as the store encodes them
-    let path = std::env::temp_dir().join("chunk-groups.h5");
-    let single = RecordEncoder::with_groups(&path, &info, PointGroups::single());
-    let encoded: Vec<_> = recs
-        .iter()
-        .map(|r| single.encode(r.clone()).expect("encoded"))
-        .collect();
-    let gathered = gather(&recs, &vars, &ext, nt);
+/// Every group of each k encoded by the store, each checked byte for byte against the
+/// prototype's chunks: the encoders, the groups and the records, by k.
+fn encode_groups(
+    fx: &Fixture,
+    path: &std::path::Path,
+) -> (
+    Vec<RecordEncoder>,
+    Vec<Vec<std::ops::Range<usize>>>,
+    Vec<Vec<batstudy::store::EncodedRecord>>,
+) {
+    let gathered = gather(&fx.recs, &fx.vars, &fx.ext, fx.nt);
     let encoders: Vec<RecordEncoder> = GROUPS
         .iter()
-        .map(|&k| RecordEncoder::with_groups(&path, &info, PointGroups::new(k, nz)))
+        .map(|&k| RecordEncoder::with_groups(path, &fx.info, PointGroups::new(k, fx.nz)))
         .collect();
     let grouped: Vec<Vec<std::ops::Range<usize>>> =
-        GROUPS.iter().map(|&k| groups(n, nz, k)).collect();
+        GROUPS.iter().map(|&k| groups(fx.n, fx.nz, k)).collect();
     let mut group_records = Vec::new();
     for ((&k, gs), encoder) in GROUPS.iter().zip(&grouped).zip(&encoders) {
         let mut records = Vec::new();
@@ -295,7 +318,7 @@ fn main() {
             let prototype = group_chunks(&gathered, g.clone(), k);
             check_group(&prototype, &gathered, g.clone(), k);
             let rec = encoder
-                .encode_group(recs[g.clone()].to_vec())
+                .encode_group(fx.recs[g.clone()].to_vec())
                 .expect("encoded");
             let stored =
                 journal::history_chunks(&rec.framed[journal::REC_PREFIX..]).expect("chunks");
@@ -307,14 +330,23 @@ fn main() {
         }
         group_records.push(records);
     }
-    // every variant in turn, pass after pass: what the machine does meanwhile falls on all
-    // alike; µs a point, [pass][variant]: one point a chunk, then groups of each k; the
-    // records copied before the clock starts (the encoder takes them by value)
-    // CPU time of this thread: what another process takes of the core does not count
-    let us = |t: f64| (thread_cpu_seconds() - t) * 1e6 / n as f64;
+    (encoders, grouped, group_records)
+}
+
+/// µs of CPU a point to encode, [pass][variant]: one point a chunk, then groups of each k.
+/// Every variant in turn, pass after pass, so that what the machine does meanwhile falls on
+/// all alike; the records are copied before the clock starts (the encoder takes them by
+/// value); CPU time of this thread, so that what another process takes does not count.
+fn time_passes(
+    fx: &Fixture,
+    single: &RecordEncoder,
+    encoders: &[RecordEncoder],
+    grouped: &[Vec<std::ops::Range<usize>>],
+) -> Vec<Vec<f64>> {
+    let us = |t: f64| (thread_cpu_seconds() - t) * 1e6 / fx.n as f64;
     let mut passes: Vec<Vec<f64>> = Vec::new();
     for _ in 0..PASSES {
-        let copies = std::hint::black_box(recs.to_vec());
+        let copies = std::hint::black_box(fx.recs.to_vec());
         let t = thread_cpu_seconds();
         let e: Vec<_> = copies
             .into_iter()
@@ -322,9 +354,9 @@ fn main() {
             .collect();
         let mut row = vec![us(t)];
         std::hint::black_box(e);
-        for (gs, encoder) in grouped.iter().zip(&encoders) {
+        for (gs, encoder) in grouped.iter().zip(encoders) {
             let copies: Vec<Vec<PointRecord>> =
-                std::hint::black_box(gs.iter().map(|g| recs[g.clone()].to_vec()).collect());
+                std::hint::black_box(gs.iter().map(|g| fx.recs[g.clone()].to_vec()).collect());
             let t = thread_cpu_seconds();
             let e: Vec<_> = copies
                 .into_iter()
@@ -335,6 +367,15 @@ fn main() {
         }
         passes.push(row);
     }
+    passes
+}
+
+fn report_encoding(
+    fx: &Fixture,
+    passes: &[Vec<f64>],
+    encoded: &[batstudy::store::EncodedRecord],
+    group_records: &[Vec<batstudy::store::EncodedRecord>],
+) {
     let median = |mut v: Vec<f64>| {
         v.sort_by(f64::total_cmp);
         v[v.len() / 2]
@@ -342,19 +383,20 @@ fn main() {
     let column = |c: usize| median(passes.iter().map(|r| r[c]).collect());
     let against_one = |c: usize| median(passes.iter().map(|r| r[c] - r[0]).collect());
     let bytes = |e: &[batstudy::store::EncodedRecord]| {
-        e.iter().map(|e| e.framed.len()).sum::<usize>() as f64 / n as f64
+        e.iter().map(|e| e.framed.len()).sum::<usize>() as f64 / fx.n as f64
     };
     println!(
-        "{n} points, {} stored variables, {} samples, blocks of {MODE_BLOCK} modes; medians of {PASSES} passes",
-        vars.len(),
-        nt
+        "{} points, {} stored variables, {} samples, blocks of {MODE_BLOCK} modes; medians of {PASSES} passes",
+        fx.n,
+        fx.vars.len(),
+        fx.nt
     );
     println!(
         "the store, one point a chunk : {:6.1} µs of CPU a point to encode, {:7.0} B a point with its journal framing",
         column(0),
-        bytes(&encoded)
+        bytes(encoded)
     );
-    for (v, (&k, records)) in GROUPS.iter().zip(&group_records).enumerate() {
+    for (v, (&k, records)) in GROUPS.iter().zip(group_records).enumerate() {
         println!(
             "the store, chunks of {k:2} points: {:6.1} µs of CPU a point to encode ({:+5.1} against one point a chunk, pass by pass), {:7.0} B a point",
             column(v + 1),
@@ -362,9 +404,15 @@ fn main() {
             bytes(records)
         );
     }
+}
 
-    // H5Dwrite_chunk: every chunk of the single points, one call each, against every chunk
-    // of the groups of WRITTEN_GROUP
+/// H5Dwrite_chunk: every chunk of the single points, one call each, against every chunk of
+/// the groups of WRITTEN_GROUP.
+fn report_writes(
+    n: usize,
+    encoded: &[batstudy::store::EncodedRecord],
+    group_records: &[Vec<batstudy::store::EncodedRecord>],
+) {
     let dir = TempDir::new_in(&std::env::temp_dir()).expect("a scratch directory");
     let pieces = |e: &[batstudy::store::EncodedRecord]| -> Vec<Vec<u8>> {
         e.iter()
@@ -380,7 +428,7 @@ fn main() {
         .iter()
         .position(|&k| k == WRITTEN_GROUP)
         .expect("a group of 8");
-    let (one, eight) = (pieces(&encoded), pieces(&group_records[written]));
+    let (one, eight) = (pieces(encoded), pieces(&group_records[written]));
     let one_slices: Vec<&[u8]> = one.iter().map(Vec::as_slice).collect();
     let eight_slices: Vec<&[u8]> = eight.iter().map(Vec::as_slice).collect();
     let w1 = write_us(&dir, "one", &one_slices, n);
@@ -390,4 +438,20 @@ fn main() {
         one.len() as f64 / n as f64,
         eight.len() as f64 / n as f64
     );
+}
+
+fn main() {
+    let fx = fixture(std::env::args().any(|a| a == "--bench"));
+    // every point alone, and every group of k, as the store encodes them
+    let path = std::env::temp_dir().join("chunk-groups.h5");
+    let single = RecordEncoder::with_groups(&path, &fx.info, PointGroups::single());
+    let encoded: Vec<_> = fx
+        .recs
+        .iter()
+        .map(|r| single.encode(r.clone()).expect("encoded"))
+        .collect();
+    let (encoders, grouped, group_records) = encode_groups(&fx, &path);
+    let passes = time_passes(&fx, &single, &encoders, &grouped);
+    report_encoding(&fx, &passes, &encoded, &group_records);
+    report_writes(fx.n, &encoded, &group_records);
 }

@@ -15,3 +15,12 @@ pub mod shapes;
 pub mod static_memo;
 
 pub use prepared::*;
+
+/// Whether an impact at `z` (m from the knob) is on a bat of `length` (m): 0 ≤ z ≤ length,
+/// give or take a picometre a metre, so that an end reached by floating-point arithmetic
+/// (0.50 + 34 × 0.01 = 0.8400000000000001) counts as the end. The beam's interpolation
+/// extrapolates past its last node to the end, so such a z computes as the end does.
+pub fn on_bat(z: f64, length: f64) -> bool {
+    let slack = 1e-12 * length;
+    z >= -slack && z <= length + slack
+}

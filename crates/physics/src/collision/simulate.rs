@@ -39,7 +39,7 @@ pub fn simulate_with_diagnostics(
     // with a batter, the swing this bat gets
     let swung = swung(spec, bat)?;
     let spec = swung.as_ref();
-    if !(spec.impact.z >= 0.0 && spec.impact.z <= bat.length()) {
+    if !crate::bat::on_bat(spec.impact.z, bat.length()) {
         return Err(crate::error::out_of_range(
             "impact.z",
             spec.impact.z,

@@ -54,7 +54,7 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         check(
             "impact.z",
             spec.impact.z,
-            spec.impact.z >= 0.0 && spec.impact.z <= length,
+            crate::bat::on_bat(spec.impact.z, length),
             &format!("on the bat: 0 <= z <= {length} m"),
         )?;
     }
