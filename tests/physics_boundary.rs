@@ -84,14 +84,14 @@ fn an_end_reached_by_rounding_is_the_end() {
     assert!(z > 0.84, "{z}: the rounding this test is about");
     let mut spec = CollisionSpec::base_case(0.84);
     let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
-    let at_end = simulate(&spec, &bat).unwrap().exit_speed;
+    let at_end = simulate(&spec, &bat, None).unwrap().exit_speed;
     spec.impact.z = z;
-    let rounded = simulate(&spec, &bat).unwrap().exit_speed;
+    let rounded = simulate(&spec, &bat, None).unwrap().exit_speed;
     assert!(
         (rounded - at_end).abs() < 1e-9,
         "{rounded} against {at_end}"
     );
     spec.impact.z = 0.8401;
-    assert!(simulate(&spec, &bat).is_err());
+    assert!(simulate(&spec, &bat, None).is_err());
     assert!(batstudy::model::validate_spec(&spec).is_err());
 }
