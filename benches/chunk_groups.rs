@@ -294,16 +294,16 @@ fn fixture(bench: bool) -> Fixture {
     }
 }
 
-/// Every group of each k encoded by the store, each checked byte for byte against the
-/// prototype's chunks: the encoders, the groups and the records, by k.
-fn encode_groups(
-    fx: &Fixture,
-    path: &std::path::Path,
-) -> (
+/// By group size k: the encoders, the groups of points and their records.
+type Encoded = (
     Vec<RecordEncoder>,
     Vec<Vec<std::ops::Range<usize>>>,
     Vec<Vec<batstudy::store::EncodedRecord>>,
-) {
+);
+
+/// Every group of each k encoded by the store, each checked byte for byte against the
+/// prototype's chunks: the encoders, the groups and the records, by k.
+fn encode_groups(fx: &Fixture, path: &std::path::Path) -> Encoded {
     let gathered = gather(&fx.recs, &fx.vars, &fx.ext, fx.nt);
     let encoders: Vec<RecordEncoder> = GROUPS
         .iter()

@@ -114,7 +114,7 @@ BAT = {
     "node1_barrel": (("bat",), "m"), "node2_barrel": (("bat",), "m"),
     "bbcor_ball_speed": (("bat",), "m/s"), "bbcor_z": (("bat", "bbcor_point"), "m"),
     "bbcor": (("bat", "bbcor_point"), "1"), "bbcor_max": (("bat",), "1"),
-    "bbcor_max_position": (("bat",), "m"),
+    "bbcor_max_position": (("bat",), "m"), "bbcor_shot": (("bat",), ""),
 }
 BAT_DIMS = ["bat", "mode", "node", "profile_point", "bbcor_point"]
 

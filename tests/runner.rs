@@ -27,7 +27,12 @@ struct Fake {
 
 impl Simulator for Fake {
     type Bat = f64;
-    fn prepare(&self, bat: &BatSpec, _: &NumericsSpec) -> Result<(BatProperties, f64), String> {
+    fn prepare(
+        &self,
+        bat: &BatSpec,
+        _: &NumericsSpec,
+        _: &batstudy::model::measures::metrics::BbcorShot,
+    ) -> Result<(BatProperties, f64), String> {
         self.prepared.fetch_add(1, Ordering::SeqCst);
         let rho = bat.material.density.unwrap_or(649.0);
         Ok((

@@ -168,7 +168,11 @@ fn measured_costs(s: &Study) -> (f64, f64, f64) {
     for i in spread(8) {
         let Ok(p) = plan.point(i) else { continue };
         let start = std::time::Instant::now();
-        let Ok((_, bat)) = ModelSimulator.prepare(&p.spec.bat, &p.spec.numerics) else {
+        let Ok((_, bat)) = ModelSimulator.prepare(
+            &p.spec.bat,
+            &p.spec.numerics,
+            &crate::model::measures::metrics::BbcorShot::of(&p.spec),
+        ) else {
             continue;
         };
         let prepared = start.elapsed().as_secs_f64();

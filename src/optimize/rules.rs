@@ -14,10 +14,10 @@
 //!   solid wood (checked when the study is loaded: no shell, bore or fill).
 
 use super::quantity::{BatQuantity, Quantity};
+use crate::model::measures::metrics::{bbcor_scan_mapped, BbcorShot};
 use crate::model::measures::sweet::find_maximum;
-use crate::model::protocol::BBCOR_BALL_SPEED;
-use crate::model::spec::{CollisionSpec, SwingSpec};
-use crate::model::{simulate_target, Target};
+use crate::model::spec::CollisionSpec;
+use crate::model::Target;
 use crate::study::optimize_block::{Aggregate, RuleSet};
 use rayon::prelude::*;
 
@@ -125,38 +125,23 @@ pub fn rule_limits(rules: RuleSet, moi_min: Option<f64>) -> Vec<Limit> {
     }
 }
 
-/// The protocol's impact positions: from the CM to the barrel end less the ball's radius,
-/// every centimetre.
-fn scan_positions(z_cm: f64, length: f64) -> Vec<f64> {
-    let end = length - crate::model::measures::metrics::BBCOR_SCAN_END_MARGIN;
-    let n = ((end - z_cm) / 0.01).floor().max(0.0) as usize + 1;
-    (0..n).map(|k| z_cm + k as f64 * 0.01).collect()
-}
-
-/// The BBCOR protocol on a candidate: `spec`'s bat, ball (at 136 mph, no spin, head-on)
-/// and hoop, the bat at rest and free (Nathan 2000: a pivot does not change barrel impacts,
-/// and ASTM F2219 evaluates the bat unconstrained); the largest BBCOR along the barrel,
-/// parabola-refined. NaN if no collision of the scan succeeds.
+/// The BBCOR protocol on a candidate (`metrics::bbcor_scan_mapped`, the one scan `/bat` stores
+/// too): `spec`'s bat, ball (at 136 mph, no spin, head-on) and hoop, the bat at rest and free
+/// (Nathan 2000: a pivot does not change barrel impacts, and ASTM F2219 evaluates the bat
+/// unconstrained); the largest BBCOR along the barrel, parabola-refined. NaN for a rigid
+/// target or if no collision of the scan succeeds.
 pub fn protocol_bbcor(spec: &CollisionSpec, target: &Target) -> f64 {
-    let p = target.properties();
-    let mut base = spec.clone();
-    base.swing = SwingSpec::default();
-    base.batter = None;
-    base.flight = None;
-    base.impact.offset = 0.0;
-    base.ball.speed = BBCOR_BALL_SPEED;
-    base.ball.spin = 0.0;
-    base.bat.grip = None;
-    let z = scan_positions(p.z_cm, p.length);
-    let bbcor: Vec<f64> = z
-        .par_iter()
-        .map(|&zi| {
-            let mut s = base.clone();
-            s.impact.z = zi;
-            simulate_target(&s, target, None).map_or(f64::NAN, |o| o.bbcor)
-        })
-        .collect();
-    find_maximum(&z, &bbcor).map_or(f64::NAN, |m| m.1)
+    let Some(bat) = target.bat() else {
+        return f64::NAN;
+    };
+    let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
+        z.par_iter().map(|&z| f(z)).collect()
+    };
+    let shot = BbcorShot::of(spec);
+    match bbcor_scan_mapped(bat, &spec.bat, &spec.numerics, &shot, &parallel) {
+        Ok((z, bbcor)) => find_maximum(&z, &bbcor).map_or(f64::NAN, |m| m.1),
+        Err(_) => f64::NAN,
+    }
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 
 use super::traits::{Encode, Simulator, Sink};
 use crate::model::bat::shapes;
-use crate::model::measures::metrics::bat_metrics_mapped;
+use crate::model::measures::metrics::{bat_metrics_mapped, BbcorShot};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
@@ -22,6 +22,7 @@ impl Simulator for ModelSimulator {
         &self,
         bat: &BatSpec,
         numerics: &NumericsSpec,
+        shot: &BbcorShot,
     ) -> Result<(BatProperties, Target), String> {
         let target = Target::prepare(bat, numerics).map_err(|e| e.to_string())?;
         let mut properties = target.properties();
@@ -33,7 +34,7 @@ impl Simulator for ModelSimulator {
             let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
                 z.par_iter().map(|&z| f(z)).collect()
             };
-            properties.metrics = bat_metrics_mapped(prepared, bat, numerics, &parallel)
+            properties.metrics = bat_metrics_mapped(prepared, bat, numerics, shot, &parallel)
                 .map_err(|e| e.to_string())?;
         }
         Ok((properties, target))

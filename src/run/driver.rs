@@ -140,8 +140,10 @@ pub fn prepare_bats<S: Simulator>(
     let results: Vec<Prepared<S::Bat>> = pool.install(|| {
         plan.bats()
             .par_iter()
-            .map(
-                |b| match catch_unwind(AssertUnwindSafe(|| sim.prepare(&b.bat, &b.numerics))) {
+            .map(|b| {
+                match catch_unwind(AssertUnwindSafe(|| {
+                    sim.prepare(&b.bat, &b.numerics, &b.shot)
+                })) {
                     Ok(Ok((props, bat))) => (props, Ok(Arc::new(bat))),
                     Ok(Err(e)) => (
                         BatProperties::default(),
@@ -151,8 +153,8 @@ pub fn prepare_bats<S: Simulator>(
                         BatProperties::default(),
                         Err(format!("bat `{}`: panic: {}", b.label, panic_text(p))),
                     ),
-                },
-            )
+                }
+            })
             .collect()
     });
     let mut variants = Vec::new();

@@ -1,6 +1,7 @@
 //! The two seams of the driver: the physics (`Simulator`) and the results file (`Sink`).
 //! The real implementations live in `model` and `store`; tests use fakes.
 
+use crate::model::measures::metrics::BbcorShot;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::results::{PointGroups, PointRecord, ShapeSource};
@@ -11,11 +12,12 @@ pub trait Simulator: Sync {
     /// A prepared bat (discretisation, modal basis…), shared read-only by every point
     /// that uses it.
     type Bat: Send + Sync;
-    /// Prepare one bat (called once per distinct bat + numerics).
+    /// Prepare one bat (called once per distinct bat + numerics); its BBCOR with `shot`.
     fn prepare(
         &self,
         bat: &BatSpec,
         numerics: &NumericsSpec,
+        shot: &BbcorShot,
     ) -> Result<(BatProperties, Self::Bat), String>;
     /// The bat's mode shapes, for the modal form of its displacement histories (None: it
     /// has none to store).

@@ -544,6 +544,7 @@ fn distinct_bats(cx: &Ctx, file: &StudyFile, plan: &mut Plan) -> Result<(), Stud
                     key: key.clone(),
                     bat: spec.bat.clone(),
                     numerics: spec.numerics.clone(),
+                    shot: crate::model::measures::metrics::BbcorShot::of(&spec),
                 });
                 by_key.insert(key, i);
                 i

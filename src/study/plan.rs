@@ -40,6 +40,8 @@ pub struct BatChoice {
     pub label: String,
     pub bat: BatSpec,
     pub numerics: NumericsSpec,
+    /// What the BBCOR protocol fires at it: the ball and hoop of the first point that uses it.
+    pub shot: crate::model::measures::metrics::BbcorShot,
 }
 
 /// One point of the study.

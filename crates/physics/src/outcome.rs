@@ -333,6 +333,8 @@ pub struct BatMetrics {
     /// Maximum BBCOR (parabola-refined), and where, m.
     pub bbcor_max: f64,
     pub bbcor_max_position: f64,
+    /// The ball and hoop the scan fired and gave (`metrics::BbcorShot`), canonical JSON.
+    pub bbcor_shot: String,
 }
 
 impl Default for BatMetrics {
@@ -347,6 +349,7 @@ impl Default for BatMetrics {
             bbcor: Vec::new(),
             bbcor_max: f64::NAN,
             bbcor_max_position: f64::NAN,
+            bbcor_shot: String::new(),
         }
     }
 }

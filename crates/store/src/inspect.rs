@@ -5,6 +5,7 @@ use super::error::{H5Ctx, StoreError};
 use super::header::JournalHeader;
 use super::layout as l;
 use super::read::{open_checked, shown, str_attr};
+use crate::results::printable;
 use hdf5::types::VarLenUnicode;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -188,7 +189,31 @@ fn dim_labels(g: &hdf5::Group, dim: &str, size: usize) -> Vec<String> {
     out
 }
 
-/// One line per bat (at most 10): mass, centre of mass, swing weight, first mode, BBCOR.
+/// The ball and hoop of a BBCOR scan (`/bat/bbcor_shot`'s JSON) in a few words: the ball's
+/// preset or law, and the hoop.
+fn shot_name(json: &str) -> String {
+    let Ok(shot) = serde_json::from_str::<serde_json::Value>(json) else {
+        return String::new();
+    };
+    let ball = &shot["ball"];
+    let ball = match (ball["preset"].as_str(), ball["law"]["kind"].as_str()) {
+        (Some(preset), _) => format!("{preset} ball"),
+        (None, Some(kind)) => format!("{kind} ball, COR {}", ball["law"]["cor"]),
+        (None, None) => "ball unknown".into(),
+    };
+    let hoop = &shot["hoop"];
+    let hoop = if hoop.is_null() {
+        "no hoop".to_string()
+    } else if hoop["from_geometry"].as_bool() == Some(true) {
+        "hoop from the wall".to_string()
+    } else {
+        format!("hoop {} Hz", hoop["frequency"])
+    };
+    printable(&format!("{ball}, {hoop}"), false).into_owned()
+}
+
+/// One line per bat (at most 10): mass, centre of mass, swing weight, first mode, BBCOR with
+/// the ball and hoop that gave it.
 fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
     let f64s = |n: &str| {
         bg.dataset(n)
@@ -206,6 +231,11 @@ fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
         f64s("moment_of_inertia_knob6"),
         f64s("bbcor_max"),
     );
+    let shots: Vec<String> = bg
+        .dataset(l::BAT_BBCOR_SHOT.name)
+        .and_then(|d| d.read_raw::<VarLenUnicode>())
+        .map(|v| v.iter().map(|j| shot_name(j.as_str())).collect())
+        .unwrap_or_default();
     let modes = f64s("mode_frequency");
     let per = if labels.is_empty() {
         0
@@ -218,12 +248,13 @@ fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
         let f1 = if per > 0 { modes[i * per] } else { f64::NAN };
         let _ = writeln!(
             s,
-            "  {label}: mass {:.3} kg, CM {:.3} m, MOI(6 in) {:.4} kg m^2, mode 1 {:.0} Hz, max BBCOR {:.3}",
+            "  {label}: mass {:.3} kg, CM {:.3} m, MOI(6 in) {:.4} kg m^2, mode 1 {:.0} Hz, max BBCOR {:.3}{}",
             get(&mass),
             get(&zcm),
             get(&moi6),
             f1,
-            get(&bbcor)
+            get(&bbcor),
+            shots.get(i).map_or(String::new(), |n| format!(" ({n})"))
         );
     }
     if labels.len() > 10 {

@@ -801,6 +801,12 @@ pub const BAT_BBCOR_MAX_POS: VarDef = v(
     "impact position of maximum BBCOR, from the knob",
 );
 pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR point", "BBCOR scan point number");
+pub const BAT_BBCOR_SHOT: VarDef = v(
+    "bbcor_shot",
+    "",
+    "BBCOR ball and hoop",
+    "the ball and hoop the BBCOR scan fired (the first point's of the study that uses the bat), canonical JSON",
+);
 pub const BAT_BBCOR_Z: VarDef = v(
     "bbcor_z",
     "m",

@@ -40,7 +40,8 @@ use crate::protocol::{
     bbcor_from_efficiency, free_effective_mass, moment_of_inertia_about, BBCOR_BALL_SPEED, KNOB6,
 };
 use crate::spec::{
-    BallSpec, BatSpec, CollisionSpec, EndsSpec, ImpactSpec, ModelKind, NumericsSpec, SwingSpec,
+    BallSpec, BatSpec, CollisionSpec, EndsSpec, HoopSpec, ImpactSpec, ModelKind, NumericsSpec,
+    SwingSpec,
 };
 
 /// Spacing of the BBCOR scan along the barrel, m.
@@ -98,14 +99,40 @@ pub fn barrel_node(nodes: &[f64]) -> f64 {
         .fold(f64::NAN, f64::max)
 }
 
-/// Every bat-only metric of a prepared bat, pivot at [`KNOB6`]. `bat_spec` and `numerics` must
-/// be those `bat` was prepared with. The BBCOR scan runs the wave model (see [`bbcor_scan`]).
+/// What the BBCOR protocol fires at a bat (head-on, at the protocol's speed, the bat at rest
+/// and free): a ball, and the hoop mode the barrel is given. A study's is the ball and hoop of
+/// the first point that uses the bat ([`BbcorShot::of`]), so that the bat's BBCOR is the one
+/// its own collisions and `batstudy optimize` see.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
+pub struct BbcorShot {
+    pub ball: BallSpec,
+    pub hoop: Option<HoopSpec>,
+}
+
+impl BbcorShot {
+    /// The ball and hoop of a collision.
+    pub fn of(spec: &CollisionSpec) -> Self {
+        BbcorShot {
+            ball: spec.ball.clone(),
+            hoop: spec.hoop.clone(),
+        }
+    }
+
+    /// Its canonical JSON, stored beside the BBCOR it gave (`/bat/bbcor_shot`).
+    pub fn json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_default()
+    }
+}
+
+/// Every bat-only metric of a prepared bat, pivot at [`KNOB6`], the BBCOR with the default
+/// ball and no hoop. `bat_spec` and `numerics` must be those `bat` was prepared with. The
+/// BBCOR scan runs the wave model (see [`bbcor_scan`]).
 pub fn bat_metrics(
     bat: &PreparedBat,
     bat_spec: &BatSpec,
     numerics: &NumericsSpec,
 ) -> Result<BatMetrics, ModelError> {
-    bat_metrics_mapped(bat, bat_spec, numerics, &in_order)
+    bat_metrics_mapped(bat, bat_spec, numerics, &BbcorShot::default(), &in_order)
 }
 
 /// Runs a scan's collisions: `f` at each position, the values in the positions' order. Each
@@ -118,16 +145,17 @@ fn in_order(z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> {
     z.iter().map(|&z| f(z)).collect()
 }
 
-/// [`bat_metrics`] with the BBCOR scan's collisions run by `map`.
+/// [`bat_metrics`] with `shot`'s ball and hoop and the BBCOR scan's collisions run by `map`.
 pub fn bat_metrics_mapped(
     bat: &PreparedBat,
     bat_spec: &BatSpec,
     numerics: &NumericsSpec,
+    shot: &BbcorShot,
     map: &ScanMap,
 ) -> Result<BatMetrics, ModelError> {
     let p = bat.properties();
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
-    let (bbcor_z, bbcor) = bbcor_scan_mapped(bat, bat_spec, numerics, &BallSpec::default(), map)?;
+    let (bbcor_z, bbcor) = bbcor_scan_mapped(bat, bat_spec, numerics, shot, map)?;
     let (bbcor_max_position, bbcor_max) =
         crate::measures::sweet::find_maximum(&bbcor_z, &bbcor).unwrap_or((f64::NAN, f64::NAN));
     Ok(BatMetrics {
@@ -140,6 +168,7 @@ pub fn bat_metrics_mapped(
         bbcor,
         bbcor_max,
         bbcor_max_position,
+        bbcor_shot: shot.json(),
     })
 }
 
@@ -160,7 +189,11 @@ pub fn bbcor_scan(
     numerics: &NumericsSpec,
     ball: &BallSpec,
 ) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
-    bbcor_scan_mapped(bat, bat_spec, numerics, ball, &in_order)
+    let shot = BbcorShot {
+        ball: ball.clone(),
+        hoop: None,
+    };
+    bbcor_scan_mapped(bat, bat_spec, numerics, &shot, &in_order)
 }
 
 /// [`bbcor_scan`] with its collisions run by `map`.
@@ -168,7 +201,7 @@ pub fn bbcor_scan_mapped(
     bat: &PreparedBat,
     bat_spec: &BatSpec,
     numerics: &NumericsSpec,
-    ball: &BallSpec,
+    shot: &BbcorShot,
     map: &ScanMap,
 ) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
     if bat_spec.ends != EndsSpec::default() {
@@ -183,15 +216,19 @@ pub fn bbcor_scan_mapped(
         .collect();
     let spec = CollisionSpec {
         model: ModelKind::Wave,
-        bat: bat_spec.clone(),
+        // the bat free, as the protocol evaluates it (ASTM F2219: unconstrained)
+        bat: BatSpec {
+            grip: None,
+            ..bat_spec.clone()
+        },
         // the protocol's head-on shot of a ball without spin
         ball: BallSpec {
             speed: BBCOR_BALL_SPEED,
             spin: 0.0,
-            ..ball.clone()
+            ..shot.ball.clone()
         },
         swing: SwingSpec::default(),
-        hoop: None,
+        hoop: shot.hoop.clone(),
         impact: ImpactSpec { z: z0, offset: 0.0 },
         numerics: numerics.clone(),
         batter: None,

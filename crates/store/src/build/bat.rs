@@ -54,6 +54,13 @@ pub(super) fn write_bats(
     let ds = h5u::write_1d(&g, l::BAT_SPEC.name, &spec).ctx(out, &e("spec"))?;
     describe(&ds, &l::BAT_SPEC).ctx(out, &e("spec"))?;
     att.add(&ds, &[&w.bat]);
+    let shot: Vec<VarLenUnicode> = p
+        .iter()
+        .map(|p| h5u::vlstr(&p.metrics.bbcor_shot))
+        .collect();
+    let ds = h5u::write_1d(&g, l::BAT_BBCOR_SHOT.name, &shot).ctx(out, &e("bbcor_shot"))?;
+    describe(&ds, &l::BAT_BBCOR_SHOT).ctx(out, &e("bbcor_shot"))?;
+    att.add(&ds, &[&w.bat]);
     Ok(shapes)
 }
 
