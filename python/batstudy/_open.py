@@ -17,7 +17,11 @@ from xarray.core import indexing
 from ._files import check_structure, reading, require_results
 from ._modal import ModalReader
 
-GROUPS = ("summary", "sweet_spot", "bat", "errors")
+GROUPS = ("summary", "sweet_spot", "bat", "errors", "uncertainty")
+# `/optimize`'s per-variable and per-constraint columns (design_0, …), stacked in tidy form
+_STACKED = (("design", "variable"), ("constraint", "constraint"), ("margin", "constraint"))
+# the stacked names (a variable may not take its dimension's name)
+_TIDY_NAME = {"design": "design", "constraint": "constraint_value", "margin": "margin"}
 HISTORY_DIM = "history"
 
 
@@ -212,6 +216,41 @@ def _plain(v):
     return v
 
 
+def _stack(ds: xr.Dataset, stem: str, dim: str) -> xr.DataArray:
+    """`stem_0`, `stem_1`, … of `ds` (one per entry of `dim`, each with its own units) as one
+    variable along (candidate, `dim`); the units per entry in the coordinate `{dim}_units`."""
+    parts = [ds[f"{stem}_{k}"] for k in range(ds.sizes[dim])]
+    out = xr.concat(parts, dim=dim).transpose("candidate", dim)
+    out = out.assign_coords({dim: ds[dim].values})
+    units = [str(p.attrs.get("units", "")) for p in parts]
+    out = out.assign_coords({f"{dim}_units": (dim, units, {"long_name": f"units of each {dim}"})})
+    out.attrs = {"long_name": stem, "units": units[0] if len(set(units)) == 1 else "mixed",
+                 "description": f"{stem} of each candidate along {dim} (units per {dim}: {dim}_units)"}
+    return out
+
+
+def _tidy_optimize(path: str) -> tuple[xr.Dataset, xr.Dataset]:
+    """`/optimize` with its columns stacked (`design(candidate, variable)`,
+    `constraint_value(candidate, constraint)`, `margin(candidate, constraint)`), and the best
+    feasible design as a Dataset of its own."""
+    with xr.open_dataset(path, group="optimize", engine="h5netcdf") as raw:
+        raw = raw.load()
+    stacked = {_TIDY_NAME[stem]: _stack(raw, stem, dim) for stem, dim in _STACKED}
+    drop = [v for v in raw.data_vars if any(v.startswith(f"{stem}_") and v[len(stem) + 1:].isdigit()
+                                            for stem, _ in _STACKED)]  # fmt: skip
+    tidy = raw.drop_vars(drop).assign(stacked)
+    attrs = {k: _plain(v) for k, v in raw.attrs.items()}
+    best_index = int(attrs.get("best_candidate", -1))
+    best = xr.Dataset(attrs={"description": "the best feasible design of the search (none: no candidate met "
+                                            "every constraint)"})  # fmt: skip
+    tidy.attrs = {k: v for k, v in attrs.items() if not k.startswith("best")}
+    if best_index >= 0:
+        best = tidy[["design", "constraint_value", "margin", "objective"]].sel(candidate=best_index)
+        best.attrs = {"description": "the best feasible design of the search, its constraints' values and "
+                                     "margins, and its objective"}  # fmt: skip
+    return tidy, best
+
+
 def open_results(path: Union[str, os.PathLike], z: Any = None) -> xr.DataTree:
     """Open a results file as an :class:`xarray.DataTree` (also ``batstudy.open``).
 
@@ -221,7 +260,15 @@ def open_results(path: Union[str, os.PathLike], z: Any = None) -> xr.DataTree:
     - ``/summary``: one value per point; the study's grid as named dimensions, with the
       resolved parameter values as coordinates (never NaN for a value a preset supplies)
       and, for a ``points`` or ``zip`` block, a text label coordinate (e.g. ``case_label``).
-    - ``/sweet_spot``, ``/bat``, ``/errors``: as in the file (``docs/layout.md``).
+    - ``/sweet_spot``, ``/bat``, ``/errors``, ``/uncertainty`` (a sampled study's): as in
+      the file (``docs/layout.md``).
+    - ``/optimize`` (a design search's) in tidy form: ``design(candidate, variable)``,
+      ``constraint_value(candidate, constraint)`` and ``margin(candidate, constraint)``,
+      their units per entry in ``variable_units`` and ``constraint_units``, beside
+      ``objective``, ``status``, ``message`` and the scaled forms; ``/optimize/best`` the
+      best feasible design as a Dataset (``design``, ``constraint_value``, ``margin``,
+      ``objective``, its ``candidate`` a coordinate), empty when no candidate met the
+      constraints.
     - ``/history``: only the stored histories, along a dimension ``history``, each row
       with its point's coordinates (``impact_z``, ``case_label``, …); see
       :func:`histories`. A file that stores the bat's displacement in modal form
@@ -244,9 +291,12 @@ def open_results(path: Union[str, os.PathLike], z: Any = None) -> xr.DataTree:
             require_results(path, f)
             root_attrs = {k: _plain(v) for k, v in f.attrs.items()}
             present = [g for g in GROUPS if g in f]
+            searched = "optimize" in f
         nodes["/"] = xr.Dataset(attrs=root_attrs)
         for g in present:
             nodes[f"/{g}"] = xr.open_dataset(path, group=g, engine="h5netcdf")
+        if searched:
+            nodes["/optimize"], nodes["/optimize/best"] = _tidy_optimize(path)
         parts = _history_parts(path, nodes["/summary"])
     if parts is not None:
         nodes["/history"] = _sparse_history(path, nodes["/summary"], parts, z)

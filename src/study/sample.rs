@@ -44,7 +44,8 @@ pub struct SampleBlock {
     /// mlb`): `ball` for one ball (COR SD 0.005, dynamic stiffness 3.2 %: ball to ball, lots
     /// included), `lot` for a lot's mean (0.0032 and 1.0 %: a certification's mean of several
     /// hits). It adds `ball.law.cor_shift` and `ball.law.k1` to the drawn parameters,
-    /// correlated as measured (docs/physics.md, "The ball's measured spread"). Default: none.
+    /// correlated as measured (the rigid model, which uses the COR alone, draws only the
+    /// shift; docs/physics.md, "The ball's measured spread"). Default: none.
     #[serde(default)]
     pub ball_spread: Option<BallSpread>,
     /// Correlated pairs: `{between: [path, path], rho: r}` (−1 < r < 1), the correlation of

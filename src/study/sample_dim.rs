@@ -15,7 +15,9 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
     let Some(block) = &file.sample else {
         return Ok(None);
     };
-    let block = &with_ball_spread(block, &file.base).map_err(|e| {
+    let rigid = file.model == Some(crate::model::spec::ModelKind::Rigid)
+        || file.base.get("model").and_then(|m| m.as_str()) == Some("rigid");
+    let block = &with_ball_spread(block, &file.base, !rigid).map_err(|e| {
         cx.err(&e.at, e.message)
             .field(e.field)
             .value(e.value)
@@ -62,7 +64,12 @@ impl SampleBlock {
 /// The block with the base ball's measured spread among its parameters, if it asks for it:
 /// the COR curve's shift a truncated normal, k₁ a truncated lognormal about the preset's
 /// (its median), both cut at 3 SD, their normal scores correlated as the balls' are.
-fn with_ball_spread(block: &SampleBlock, base: &Value) -> Result<SampleBlock, SampleError> {
+/// `stiffness_used`: whether the study's model uses k₁ (the wave model does, the rigid one not).
+fn with_ball_spread(
+    block: &SampleBlock,
+    base: &Value,
+    stiffness_used: bool,
+) -> Result<SampleBlock, SampleError> {
     let Some(unit) = block.ball_spread else {
         return Ok(block.clone());
     };
@@ -114,6 +121,10 @@ fn with_ball_spread(block: &SampleBlock, base: &Value) -> Result<SampleBlock, Sa
             max: Some(3.0 * sd),
         },
     );
+    if !stiffness_used {
+        // the rigid model uses the ball's COR alone
+        return Ok(out);
+    }
     out.params.insert(
         K1.into(),
         Distribution::Lognormal {
