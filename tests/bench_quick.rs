@@ -113,11 +113,20 @@ fn bench_quick_reports_every_section_and_no_targets() {
 fn bench_quick_json_has_every_section_and_key() {
     let (r, _) = quick_bench();
     let json = serde_json::to_value(&r).unwrap();
-    for key in ["machine", "scaling", "writer_headroom", "memory", "batted"] {
+    for key in [
+        "machine",
+        "scaling",
+        "writer_headroom",
+        "memory",
+        "batted",
+        "simulate",
+    ] {
         assert!(json.get(key).is_some(), "json lacks {key}");
     }
     let batted = &r.batted;
     assert!(batted.flight_time_ratio > 0.0 && batted.flight_time_ratio.is_finite());
+    let simulate = &r.simulate;
+    assert!(simulate.call_to_point_ratio > 0.0 && simulate.call_to_point_ratio.is_finite());
     for key in ["nproc", "cpu_model", "memory_bytes", "os", "kernel"] {
         assert!(json["machine"].get(key).is_some(), "machine lacks {key}");
     }

@@ -4,7 +4,7 @@
 
 use batstudy::cli::{self, RunArgs};
 use batstudy::model::outcome::Outcome;
-use batstudy::run::{self, ModelSimulator, PointCounter, Simulator};
+use batstudy::run::{self, PointCounter};
 use batstudy::store::layout as l;
 use batstudy::study::{self, LoadOptions, DEFAULT_MAX_POINTS};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
@@ -86,18 +86,9 @@ fn simulate<'py>(
             }
             e.to_string()
         })?;
-        let plan = &loaded.plan;
-        let pool = run::build_pool(1).map_err(|e| e.to_string())?;
-        let bats = run::prepare_bats(&ModelSimulator, plan, &pool);
-        let request = loaded.history_request(bats.max_length());
-        let point = plan.point(0).map_err(|e| e.message)?;
-        let bat = bats.handles[point.bat as usize]
-            .as_ref()
-            .map_err(|e| e.clone())?;
-        let outcome = ModelSimulator
-            .simulate(bat, &point.spec, request.as_ref())
-            .and_then(|o| run::check_finite_for(&o, point.spec.model).map(|_| o))?;
-        Ok((outcome, request, point.id, bats.variants[0].clone()))
+        // the bat prepared once across calls (run::single)
+        let one = run::single::simulate_first_point(&loaded)?;
+        Ok((one.outcome, one.request, one.id, one.bat))
     });
     let (outcome, request, id, bat) = computed.map_err(PyValueError::new_err)?;
     let summary = summary_dict(py, &outcome)?;

@@ -17,6 +17,9 @@
 //!   (`fdatasync`) over the bytes one worker produces: the workers any store on this disk
 //!   keeps up with;
 //! - `optimize`: design candidates per second of a 6-variable profile search;
+//! - `simulate`: one collision a call (`batstudy.simulate`, each its own one-point study, the
+//!   bat prepared once across calls) against the same collisions as a study's points on one
+//!   thread: the ratio of a call's time to a point's;
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before
 //!   each run) of the scaling studies on the most threads and of a large summary-only study.
 //!
@@ -39,6 +42,7 @@ mod memory;
 mod optimize;
 mod report;
 mod scaling;
+mod simulate;
 mod sinks;
 mod store_run;
 
@@ -53,6 +57,7 @@ pub use measure::thread_cpu_seconds;
 pub use memory::{MemoryBench, RunMemory};
 pub use report::BenchReport;
 pub use scaling::{Scaling, ScalingPoint};
+pub use simulate::SimulateBench;
 pub use sinks::{null_run, NullSink};
 pub use store_run::{store_run, store_run_with, StoreRun, TempDir};
 
@@ -113,6 +118,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     report::print_batted(out, &batted);
     let optimize = optimize::bench_optimize(if opts.quick { 8 } else { 120 }, scaling.cores)?;
     optimize::print(out, &optimize);
+    let simulate = simulate::bench_simulate(&sz, dir.path())?;
+    report::print_simulate(out, &simulate);
 
     machine.loadavg_end = machine::loadavg();
     report::print_end(out, &machine);
@@ -123,6 +130,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         memory,
         batted,
         optimize,
+        simulate,
     })
 }
 

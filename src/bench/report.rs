@@ -24,6 +24,8 @@ pub struct BenchReport {
     pub batted: Batted,
     /// Design candidates per second of a profile search.
     pub optimize: super::optimize::OptimizeBench,
+    /// One collision a call (`batstudy.simulate`) against a study's point.
+    pub simulate: super::simulate::SimulateBench,
 }
 
 fn mib(b: Option<u64>) -> String {
@@ -347,6 +349,22 @@ pub(super) fn print_batted(out: &mut dyn Write, b: &Batted) {
             b.without_flight_points_per_second,
             b.with_flight_points_per_second,
             b.flight_time_ratio
+        ),
+    );
+}
+
+pub(super) fn print_simulate(out: &mut dyn Write, s: &super::simulate::SimulateBench) {
+    line(
+        out,
+        format!(
+            "\n== one collision a call (batstudy.simulate), {} calls, against a study's point, 1 thread\n\
+             a point of the study {:.2} ms, a call {:.2} ms (the first, its bat prepared: {:.1} ms): \
+             a call costs {:.2}× a point",
+            s.points,
+            s.study_seconds_per_point * 1e3,
+            s.call_seconds * 1e3,
+            s.first_call_seconds * 1e3,
+            s.call_to_point_ratio
         ),
     );
 }

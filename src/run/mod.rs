@@ -5,6 +5,7 @@ pub mod adapters;
 pub mod driver;
 pub mod progress;
 pub mod shard;
+pub mod single;
 pub mod traits;
 
 pub use adapters::{ModelSimulator, StoreEncoder, StoreSink};
