@@ -223,28 +223,10 @@ fn group_chunk<T: chunks::ChunkValue>(places: &[&[f64]], convert: fn(f64) -> T, 
     }
 }
 
-fn make_inputs() -> Inputs {
+/// The modal coordinates: the group's chunk of each point's first block, as the store cuts
+/// it, and one point's chunk; and the group's coordinates.
+fn modal_inputs(histories: &[History], block: usize) -> (Input, Input, Vec<f64>) {
     let level = HISTORY_DEFLATE_LEVEL;
-    let spec0 = CollisionSpec::base_case(0.62);
-    let bat = prepare_bat(&spec0.bat, &spec0.numerics).expect("the base case's bat");
-    let block = MODE_BLOCK.min(n_modes(&bat)).max(1);
-    let (modal, grid) = (
-        request(HistoryDisplacement::Modal),
-        request(HistoryDisplacement::Grid),
-    );
-    let histories: Vec<History> = (0..MODAL_HISTORY_GROUP)
-        .map(|k| {
-            let spec = CollisionSpec::base_case(0.62 + 0.01 * k as f64);
-            let o = simulate(&spec, &bat, Some(&modal)).expect("a modal history");
-            o.history.expect("a history")
-        })
-        .collect();
-    let grid_history = simulate(&spec0, &bat, Some(&grid))
-        .expect("a grid history")
-        .history
-        .expect("a history");
-
-    // the modal coordinates: each point's first block, as the store cuts it
     let places: Vec<_> = histories
         .iter()
         .map(|h| {
@@ -282,7 +264,6 @@ fn make_inputs() -> Inputs {
         }],
         path: StorePath::RunHuffman,
     };
-
     let (q, modes, rows) = places[0].clone();
     let one = mode_major_block(q, modes, N_SAMPLES, rows.clone(), block);
     let point = shuffled(&one);
@@ -300,9 +281,12 @@ fn make_inputs() -> Inputs {
         }],
         path: StorePath::RunHuffman,
     };
+    (modal_group, modal_point, coordinates)
+}
 
-    // the scalar series: a group's chunk of each (the bat load in f64, as the modal form
-    // stores it), and one point's (the grid form's, which has no bat load)
+/// The scalar series of a group: a chunk of each (the bat load in f64, as the modal form
+/// stores it).
+fn scalar_group_input(histories: &[History]) -> Input {
     let mut group_chunks: Vec<Chunk> = (0..F32_SERIES)
         .map(|s| {
             let places: Vec<_> = histories.iter().map(|h| scalar_series(h)[s]).collect();
@@ -314,11 +298,15 @@ fn make_inputs() -> Inputs {
         .map(|h| h.modal.bat_load.as_slice())
         .collect();
     group_chunks.push(group_chunk(&bat_loads, |x| x, f64::NAN));
-    let scalar_group = Input {
+    Input {
         name: "scalar_group",
         chunks: group_chunks,
         path: StorePath::RunHuffman,
-    };
+    }
+}
+
+/// One point of the grid form: its scalar series (no bat load) and its displacement.
+fn grid_inputs(grid_history: &History) -> (Input, Input) {
     let whole = |v: Vec<f32>| Chunk {
         shuffled: shuffled(&v),
         plane: v.len(),
@@ -326,7 +314,7 @@ fn make_inputs() -> Inputs {
     };
     let scalar_point = Input {
         name: "scalar_point",
-        chunks: scalar_series(&grid_history)
+        chunks: scalar_series(grid_history)
             .into_iter()
             .map(|a| whole(f32s(a)))
             .collect(),
@@ -338,10 +326,34 @@ fn make_inputs() -> Inputs {
         chunks: vec![whole(f32s(&grid_history.displacement))],
         path: StorePath::FilteredWhole,
     };
+    (scalar_point, grid_point)
+}
+
+fn make_inputs() -> Inputs {
+    let spec0 = CollisionSpec::base_case(0.62);
+    let bat = prepare_bat(&spec0.bat, &spec0.numerics).expect("the base case's bat");
+    let block = MODE_BLOCK.min(n_modes(&bat)).max(1);
+    let (modal, grid) = (
+        request(HistoryDisplacement::Modal),
+        request(HistoryDisplacement::Grid),
+    );
+    let histories: Vec<History> = (0..MODAL_HISTORY_GROUP)
+        .map(|k| {
+            let spec = CollisionSpec::base_case(0.62 + 0.01 * k as f64);
+            let o = simulate(&spec, &bat, Some(&modal)).expect("a modal history");
+            o.history.expect("a history")
+        })
+        .collect();
+    let grid_history = simulate(&spec0, &bat, Some(&grid))
+        .expect("a grid history")
+        .history
+        .expect("a history");
+    let (modal_group, modal_point, coordinates) = modal_inputs(&histories, block);
+    let (scalar_point, grid_point) = grid_inputs(&grid_history);
     Inputs {
         modal_group,
         modal_point,
-        scalar_group,
+        scalar_group: scalar_group_input(&histories),
         scalar_point,
         grid_point,
         coordinates,
