@@ -17,36 +17,58 @@ from typing import Union
 import numpy as np
 
 
+def _groups(source):
+    """`/summary` and `/sweet_spot` of a path, a DataTree, or a `/summary` Dataset (no
+    `/sweet_spot` then)."""
+    import xarray as xr
+
+    if isinstance(source, xr.Dataset):
+        return source, None
+    if isinstance(source, xr.DataTree):
+        sweet = source["sweet_spot"].to_dataset() if "sweet_spot" in source.children else None
+        return source["summary"].to_dataset(), sweet
+    with xr.open_dataset(source, engine="h5netcdf", group="summary") as s:
+        summary = s.load()
+    with xr.open_dataset(source, engine="h5netcdf", group="sweet_spot") as w:
+        return summary, w.load()
+
+
 def sobol_indices(
-    path: Union[str, os.PathLike],
+    source,
     output: str = "bbcor_max",
     *,
     dim: str = "sample",
     seed: int = 0,
+    **select,
 ):
-    """First-order Sobol indices of ``output`` over the sampled parameters of the results
-    file ``path``: a :class:`dict` parameter path → (S1, its bootstrap confidence half-width).
+    """First-order Sobol indices of ``output`` over the sampled parameters of ``source`` (a
+    results file's path, its :class:`xarray.DataTree` from :func:`open_results`, or its
+    ``/summary`` Dataset): a :class:`dict` parameter path → (S1, its bootstrap confidence
+    half-width).
 
     ``output`` is a ``/summary`` variable, ``sweet_spot.NAME`` a ``/sweet_spot`` one, or
     ``bbcor_max`` (the bat's BBCOR: the largest ``bbcor`` along ``impact_z``). Every other
-    dimension must have one value (select it first in a study of your own). Needs SALib
-    (``pip install 'batstudy[sensitivity]'``)."""
-    import xarray as xr
+    dimension must have one value: select it with keyword arguments, an integer as an index
+    along a dimension, any other value as a coordinate's value (``case=2``,
+    ``swing_omega=-40.0``). Only first-order indices: the
+    sample is plain Sobol points, not the paired design total-order estimators need. Needs
+    SALib (``pip install 'batstudy[sensitivity]'``)."""
     from SALib.analyze import rbd_fast
 
-    with xr.open_dataset(path, engine="h5netcdf", group="summary") as s:
-        s = s.load()
+    s, sweet = _groups(source)
     inputs = [c for c in s.coords if s[c].dims == (dim,) and "parameter_path" in s[c].attrs]
     if output == "bbcor_max":
         y = s.bbcor.max("impact_z")
     elif output.startswith("sweet_spot."):
-        with xr.open_dataset(path, engine="h5netcdf", group="sweet_spot") as w:
-            y = w[output.split(".", 1)[1]].load()
+        if sweet is None:
+            raise ValueError(f"{output} is in /sweet_spot: pass the path or the tree, not /summary")
+        y = sweet[output.split(".", 1)[1]]
     else:
         y = s[output]
-    y = y.squeeze(drop=True)
+    y = _selected(y, select).squeeze(drop=True)
     if y.dims != (dim,):
-        raise ValueError(f"{output} has dims {y.dims}: select one value of every dim but {dim!r}")
+        others = [d for d in y.dims if d != dim]
+        raise ValueError(f"{output} has dims {y.dims}: select one value of {others} (e.g. {others[0]}=0)")
     x = np.column_stack([s[c].values for c in inputs])
     keep = np.isfinite(y.values)
     problem = {
@@ -56,3 +78,19 @@ def sobol_indices(
     }
     r = rbd_fast.analyze(problem, x[keep], y.values[keep], seed=seed)
     return {n: (float(a), float(b)) for n, a, b in zip(problem["names"], r["S1"], r["S1_conf"])}
+
+
+def _selected(y, select):
+    """`y` at one value of each selected dimension: an integer is an index along a dimension,
+    anything else a value of a coordinate along one (`swing_omega=0` is the first swing speed,
+    `swing_omega=0.0` the speed 0)."""
+    for name, want in select.items():
+        if name in y.dims and isinstance(want, (int, np.integer)) and not isinstance(want, bool):
+            y = y.isel({name: want})
+        elif name in y.dims:
+            y = y.sel({name: want})
+        elif name in y.coords and y[name].ndim == 1:
+            y = y.swap_dims({y[name].dims[0]: name}).sel({name: want})
+        else:
+            raise KeyError(f"no dimension or coordinate {name!r} to select; there are: {', '.join(map(str, y.dims))}")
+    return y

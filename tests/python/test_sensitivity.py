@@ -60,3 +60,27 @@ def test_first_order_indices_match_the_closed_form(tmp_path):
     for k, s in exact.items():
         assert abs(got[k][0] - s) < 0.05, (k, got[k], s)
     assert 0.9 < sum(exact.values()) <= 1.0  # nearly additive: most variance is first-order
+
+
+def test_a_tree_and_a_selection_give_the_same_indices(tmp_path):
+    # the same study with a second, unused dimension: selected by index or value, from the
+    # tree of open_results, it gives the path's indices of the one-dimension study
+    import batstudy
+    from batstudy import sobol_indices
+
+    study, out = tmp_path / "s.yaml", tmp_path / "s.h5"
+    study.write_text(STUDY.replace(f"impact.z: [{Z}]", f"impact.z: [{Z}]\n  swing.omega: [0.0, -10.0]"))
+    r = subprocess.run([BIN, "run", str(study), "-o", str(out), "--quiet"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with pytest.raises(ValueError, match="select one value"):
+        sobol_indices(out, "exit_speed")
+    tree = batstudy.open_results(out)
+    by_index = sobol_indices(tree, "exit_speed", swing_omega=0)
+    by_value = sobol_indices(tree["summary"].to_dataset(), "exit_speed", swing_omega=0.0)
+    assert by_index == by_value
+    one = tmp_path / "one.yaml"
+    one.write_text(STUDY)
+    r = subprocess.run([BIN, "run", str(one), "-o", str(tmp_path / "one.h5"), "--quiet"], capture_output=True,
+                       text=True)
+    assert r.returncode == 0, r.stderr
+    assert by_index == sobol_indices(tmp_path / "one.h5", "exit_speed")
