@@ -62,7 +62,7 @@ LONG_NAME_MAX = 40
 
 # ---- the public names of docs/layout.md ------------------------------------------------
 
-ROOT_STR = ["Conventions", "title", "study_name", "study_description", "study_yaml",
+ROOT_STR = ["Conventions", "title", "source", "history", "references", "study_name", "study_description", "study_yaml",
             "study_sha256", "study_path", "batstudy_version", "git_commit", "created", "host",
             "command_line", "shard", "batstudy_store_header"]
 ROOT_INT = ["layout_version", "git_dirty", "threads", "n_points", "n_done", "n_failed",

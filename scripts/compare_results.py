@@ -16,7 +16,7 @@ import h5py
 import numpy as np
 
 RUN_ATTRS = {"created", "host", "threads", "command_line", "study_path", "shard",
-             "git_commit", "git_dirty", "batstudy_version"}
+             "git_commit", "git_dirty", "batstudy_version", "source", "history"}
 SCALE_ATTRS = {"REFERENCE_LIST", "DIMENSION_LIST"}
 
 

@@ -801,6 +801,12 @@ pub const BAT_BBCOR_MAX_POS: VarDef = v(
     "impact position of maximum BBCOR, from the knob",
 );
 pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR point", "BBCOR scan point number");
+/// What the numbers of a results file rest on (its CF `references` attribute).
+pub const REFERENCES: &str =
+    "the wave model: A. M. Nathan, Am. J. Phys. 68, 979 (2000); the rigid \
+    model: H. Brody, Am. J. Phys. 54, 640 (1986); the calibrated ball, the protocols and every \
+    other source: batstudy's docs/physics.md and docs/validation.md";
+
 pub const BAT_BBCOR_SHOT: VarDef = v(
     "bbcor_shot",
     "",

@@ -20,6 +20,19 @@ pub(super) fn root_attrs(
     let s = |k: &str, v: &str| attr_str(f, k, v).ctx(out, "write root attributes");
     s("Conventions", "CF-1.8")?;
     s("title", &format!("batstudy results: {}", info.name))?;
+    // CF's provenance: what made the file, how, and what its numbers rest on
+    s(
+        "source",
+        &format!(
+            "batstudy {} (commit {})",
+            meta.batstudy_version, meta.git_commit
+        ),
+    )?;
+    s(
+        "history",
+        &format!("{}: {}", meta.created, meta.command_line),
+    )?;
+    s("references", l::REFERENCES)?;
     s("study_name", &info.name)?;
     s("study_description", &info.description)?;
     s("study_yaml", &info.study_text)?;
