@@ -347,13 +347,6 @@ def cor_needed(f: Files, bat: str, speed: float, target: float) -> float:
     return target * (1 + r) + r
 
 
-def fig7_cause(f: Files, z: float, measured: float) -> str:
-    v0, v66, soft = (low_speed_at(f, z, k) for k in (0, 3, 2))
-    return (f"the ball's COR at 1 m/s: with 0.66 (the value Nathan's fit needed; Cross measured 0.64 "
-            f"without a stated uncertainty) this point is {v66:.3f} ({v66 - measured:+.3f}); a loading a third "
-            f"as stiff gives {soft:.3f}")
-
-
 def curve_fit(f: Files, variant: int = 0) -> tuple[float, float, float]:
     """Cross's eight points against the model's 1 m/s curve scaled to its best level: the scale
     (measured over model), its standard error from the error bars, and the χ² of the shape."""
