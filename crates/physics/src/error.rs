@@ -56,6 +56,13 @@ pub enum ModelError {
         /// Known before the run (true) or found when the budget ran out (false).
         provable: bool,
     },
+    /// A name that is not in a list of known names (a layer's material).
+    #[error("{path} = {name:?} is not known; allowed: {allowed}")]
+    UnknownName {
+        path: String,
+        name: String,
+        allowed: String,
+    },
     /// A feature not available (yet).
     #[error("unsupported: {0}")]
     Unsupported(&'static str),
@@ -91,6 +98,11 @@ impl ModelError {
                 thickness.to_string(),
                 format!("< the bat's outer radius, {radius} m at z = {z} m"),
             ),
+            ModelError::UnknownName {
+                path,
+                name,
+                allowed,
+            } => (path.clone(), name.clone(), allowed.clone()),
             ModelError::Profile(message) => ("bat.profile".into(), none(), message.clone()),
             ModelError::UnresolvedCsvProfile(path) => (
                 "bat.profile.csv".into(),

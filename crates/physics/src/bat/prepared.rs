@@ -49,6 +49,10 @@ pub struct PreparedBat {
     /// The static shapes of the histories in modal form at each contact point asked
     /// (`static_memo`).
     pub(crate) static_shapes: super::static_memo::StaticShapes,
+    /// The hollow part's breathing modes (`barrel::barrel_modes`), found when a collision
+    /// first asks for them.
+    pub(crate) shell_modes:
+        std::sync::OnceLock<Result<Option<super::shell::ShellModes>, ModelError>>,
     properties: BatProperties,
 }
 
@@ -123,6 +127,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         total_mass,
         shape_max: std::sync::OnceLock::new(),
         static_shapes: Default::default(),
+        shell_modes: std::sync::OnceLock::new(),
         properties,
     })
 }
@@ -223,6 +228,15 @@ impl PreparedBat {
     /// Moment of inertia of the lumped beam about its CM, kg·m².
     pub fn inertia_cm(&self) -> f64 {
         self.inertia_cm
+    }
+
+    /// The hollow part's breathing modes (`None` for a solid bat), solved on first use.
+    pub fn shell_modes(&self) -> Result<Option<&super::shell::ShellModes>, ModelError> {
+        self.shell_modes
+            .get_or_init(|| super::barrel::barrel_modes(&self.geometry))
+            .as_ref()
+            .map(Option::as_ref)
+            .map_err(Clone::clone)
     }
 
     /// Modal damping ratio ζ = 1/(2Q) of the flexible modes (0: undamped).

@@ -1,6 +1,7 @@
 //! A bat resolved to numbers: outer and inner radius, material and fill along z, and the
 //! cross-section properties (A, I, mass per length) with exact-enough integrals over z.
 
+use crate::bat::laminate::{self, Laminate, Layer};
 use crate::bat::profile::{handle_factor, Profile};
 use crate::error::{out_of_range, ModelError};
 use crate::spec::{BatPreset, BatSpec, BoreSpec, HandleSpec, ProfileSpec, ShellSpec};
@@ -71,6 +72,8 @@ pub struct BatGeometry {
     /// (radius, start z) of an axial bore from the barrel end, if any (exclusive with
     /// `shell`; its filling is `fill_density`).
     pub bore: Option<(f64, f64)>,
+    /// The hollow part's wall as layers (after any break-in), if given.
+    pub laminate: Option<Laminate>,
 }
 
 impl BatGeometry {
@@ -91,7 +94,13 @@ impl BatGeometry {
         } else {
             ALUMINUM_POISSON
         });
-        let youngs_modulus = material.youngs_modulus.unwrap_or(preset.youngs_modulus);
+        let laminate = laminate_of(bat.shell.as_ref())?;
+        // a layered wall sets the beam's modulus and density unless the material does
+        let smeared = laminate.as_ref().map(Laminate::smeared);
+        let youngs_modulus = material
+            .youngs_modulus
+            .or(smeared.map(|s| s.0))
+            .unwrap_or(preset.youngs_modulus);
         let shear_modulus = material.shear_modulus.unwrap_or(if is_wood {
             WOOD_SHEAR_MODULUS
         } else {
@@ -104,13 +113,21 @@ impl BatGeometry {
             profile,
             handle: bat.handle.clone(),
             length,
-            density: bat.material.density.unwrap_or(preset.density),
+            density: bat
+                .material
+                .density
+                .or(smeared.map(|s| s.1))
+                .unwrap_or(preset.density),
             youngs_modulus,
             poisson_ratio,
             shear_modulus,
             shear_coefficient: material.shear_coefficient,
             damping_ratio,
-            shell: shell_of(bat.shell.as_ref(), preset.shell)?,
+            shell: shell_of(
+                bat.shell.as_ref(),
+                preset.shell,
+                laminate.as_ref().map(Laminate::thickness),
+            )?,
             shell_knots: shell_knots(bat.shell.as_ref())?,
             fill_density: bat
                 .fill
@@ -118,6 +135,7 @@ impl BatGeometry {
                 .map(|f| f.density)
                 .unwrap_or(preset.fill_density),
             bore: None,
+            laminate,
         };
         let geometry = match &bat.bore {
             None => geometry,
@@ -432,8 +450,18 @@ fn shell_knots(spec: Option<&ShellSpec>) -> Result<Vec<[f64; 2]>, ModelError> {
 fn shell_of(
     spec: Option<&ShellSpec>,
     preset: Option<(f64, f64)>,
+    stack: Option<f64>,
 ) -> Result<Option<(f64, f64)>, ModelError> {
     let Some(s) = spec else { return Ok(preset) };
+    if let (Some(t), Some(stack)) = (s.thickness, stack) {
+        if (t - stack).abs() > 1e-9 * stack {
+            return Err(out_of_range(
+                "bat.shell.thickness",
+                t,
+                &format!("{stack} m, the sum of bat.shell.layers' thicknesses (or unset)"),
+            ));
+        }
+    }
     // with knots, `thickness` is their thickest (what the knots leave to it is nothing)
     let from_knots = s
         .thickness_knots
@@ -442,6 +470,7 @@ fn shell_of(
     let thickness = s
         .thickness
         .or(from_knots)
+        .or(stack)
         .or(preset.map(|p| p.0))
         .ok_or_else(|| {
             out_of_range(
@@ -454,6 +483,55 @@ fn shell_of(
         thickness,
         s.from.or(preset.map(|p| p.1)).unwrap_or(0.0),
     )))
+}
+
+/// The wall's layers (materials looked up, thicknesses and angles checked, the break-in
+/// applied), if the shell lists them.
+fn laminate_of(spec: Option<&ShellSpec>) -> Result<Option<Laminate>, ModelError> {
+    let Some(s) = spec else { return Ok(None) };
+    if !(0.0..1.0).contains(&s.break_in) {
+        return Err(out_of_range(
+            "bat.shell.break_in",
+            s.break_in,
+            "[0, 1) (the fraction of the matrix's stiffness lost)",
+        ));
+    }
+    let Some(specs) = &s.layers else {
+        return Ok(None);
+    };
+    let mut layers = Vec::with_capacity(specs.len());
+    for (i, l) in specs.iter().enumerate() {
+        let path = format!("bat.shell.layers[{i}]");
+        let ply = laminate::material(&format!("{path}.material"), &l.material)?;
+        if !(l.thickness > 0.0 && l.thickness.is_finite()) {
+            return Err(out_of_range(
+                &format!("{path}.thickness"),
+                l.thickness,
+                "(0, ∞) m",
+            ));
+        }
+        if !l.angle.is_finite() {
+            return Err(out_of_range(
+                &format!("{path}.angle"),
+                l.angle,
+                "a finite angle in rad",
+            ));
+        }
+        layers.push(Layer {
+            ply,
+            thickness: l.thickness,
+            angle: l.angle,
+        });
+    }
+    let solid = |l: &Layer| l.ply.is_some();
+    if !layers.first().is_some_and(solid) || !layers.last().is_some_and(solid) {
+        return Err(out_of_range(
+            "bat.shell.layers",
+            f64::NAN,
+            "a stack that starts and ends with a material (a gap only between two walls)",
+        ));
+    }
+    Ok(Some(Laminate { layers }.broken_in(s.break_in)))
 }
 
 #[cfg(test)]

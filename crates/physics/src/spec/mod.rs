@@ -271,6 +271,34 @@ pub struct ShellSpec {
     /// (a barrel wall thicker than the handle's). Default none: `thickness`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thickness_knots: Option<Vec<[f64; 2]>>,
+    /// The wall as layers from the outside in (classical lamination theory; a `gap` layer
+    /// between two walls makes a double wall). Sets the wall's stiffness for the shell's
+    /// breathing modes, and, unless `bat.material` says otherwise, the beam's axial modulus
+    /// and density (the stack smeared over its thickness). `thickness` defaults to the
+    /// stack's; with `thickness_knots` every layer scales with the local thickness.
+    /// Default none: a homogeneous wall of `bat.material`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layers: Option<Vec<LayerSpec>>,
+    /// Break-in: the fraction of the matrix's stiffness a composite wall has lost to
+    /// cracking with use (0 new, < 1), applied to every polymer-matrix ply's E₂ and G₁₂.
+    /// No effect on a metal. Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub break_in: f64,
+}
+
+/// One layer of a wall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LayerSpec {
+    /// The layer's material: `al7050`, `al7055`, `al6061` (bat alloys), `carbon_epoxy`,
+    /// `glass_epoxy` (unidirectional plies), or `gap` (an empty layer between two walls).
+    /// Properties and sources: docs/physics.md.
+    pub material: String,
+    /// Thickness, m.
+    pub thickness: f64,
+    /// Fibre angle from the bat's axis, rad (ignored for a metal). Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub angle: f64,
 }
 
 /// An axial bore from the barrel end (a corked bat as drilled: Nathan's 2003 test bat had

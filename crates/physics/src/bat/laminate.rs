@@ -1,0 +1,258 @@
+//! A bat's wall as a stack of layers: the membrane and bending stiffnesses of classical
+//! lamination theory (Jones, "Mechanics of Composite Materials", 2nd ed. 1999, §4.2–4.3;
+//! Daniel & Ishai, "Engineering Mechanics of Composite Materials", ch. 7), and a small
+//! library of the materials bats are made of.
+//!
+//! Axes: 1 along the bat, 2 around it; a ply's fibre angle is measured from the bat's axis.
+//! The shell keeps A₁₁, A₁₂, A₂₂, A₆₆ and D₁₁, D₁₂, D₂₂, D₆₆. The shear–extension terms
+//! (A₁₆, A₂₆) vanish for balanced ±θ stacks; the bending–twisting ones (D₁₆, D₂₆) and the
+//! coupling B are dropped (zero for symmetric stacks, small for the thin ones of a bat).
+//! A `gap` layer separates walls that slide on each other (a double-wall barrel): their
+//! membrane stiffnesses add, and each wall bends about its own mid-plane.
+
+use crate::error::ModelError;
+
+/// A ply's (or an isotropic metal's) elastic constants and density.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ply {
+    /// Modulus along the fibres (or the metal's Young's modulus), Pa.
+    pub e1: f64,
+    /// Modulus across the fibres, Pa.
+    pub e2: f64,
+    /// In-plane shear modulus, Pa.
+    pub g12: f64,
+    /// Major Poisson's ratio ν₁₂.
+    pub nu12: f64,
+    /// Density, kg/m³.
+    pub density: f64,
+    /// Whether a break-in (matrix cracking) softens it: a polymer-matrix ply.
+    pub matrix: bool,
+}
+
+impl Ply {
+    /// An isotropic material.
+    pub const fn isotropic(e: f64, nu: f64, density: f64) -> Self {
+        Ply {
+            e1: e,
+            e2: e,
+            g12: e / (2.0 * (1.0 + nu)),
+            nu12: nu,
+            density,
+            matrix: false,
+        }
+    }
+
+    /// The ply after a break-in that has taken `fraction` of its matrix's stiffness: the
+    /// matrix-dominated E₂ and G₁₂ scaled by 1 − fraction (the fibres' E₁ unchanged).
+    pub fn broken_in(self, fraction: f64) -> Self {
+        if !self.matrix {
+            return self;
+        }
+        Ply {
+            e2: self.e2 * (1.0 - fraction),
+            g12: self.g12 * (1.0 - fraction),
+            ..self
+        }
+    }
+
+    /// The reduced stiffnesses Q̄₁₁, Q̄₁₂, Q̄₂₂, Q̄₆₆ of the ply turned by `angle` (rad).
+    fn turned(&self, angle: f64) -> [f64; 4] {
+        let nu21 = self.nu12 * self.e2 / self.e1;
+        let den = 1.0 - self.nu12 * nu21;
+        let (q11, q22, q12, q66) = (
+            self.e1 / den,
+            self.e2 / den,
+            self.nu12 * self.e2 / den,
+            self.g12,
+        );
+        let (s, c) = angle.sin_cos();
+        let (s2, c2) = (s * s, c * c);
+        [
+            q11 * c2 * c2 + 2.0 * (q12 + 2.0 * q66) * s2 * c2 + q22 * s2 * s2,
+            (q11 + q22 - 4.0 * q66) * s2 * c2 + q12 * (s2 * s2 + c2 * c2),
+            q11 * s2 * s2 + 2.0 * (q12 + 2.0 * q66) * s2 * c2 + q22 * c2 * c2,
+            (q11 + q22 - 2.0 * q12 - 2.0 * q66) * s2 * c2 + q66 * (s2 * s2 + c2 * c2),
+        ]
+    }
+}
+
+/// The materials a layer may name, with their sources (data/shell_materials.md).
+pub const MATERIALS: &[(&str, Ply)] = &[
+    // 7050-T7451 plate: E 71.7 GPa, ν 0.33, ρ 2830 (ASM Handbook vol. 2, 1990)
+    ("al7050", Ply::isotropic(71.7e9, 0.33, 2830.0)),
+    // 7055-T7751: E 72.4 GPa, ν 0.33, ρ 2860 (Alcoa data sheet)
+    ("al7055", Ply::isotropic(72.4e9, 0.33, 2860.0)),
+    // 6061-T6: E 68.9 GPa, ν 0.33, ρ 2700 (ASM Handbook vol. 2)
+    ("al6061", Ply::isotropic(68.9e9, 0.33, 2700.0)),
+    // T300/5208 carbon/epoxy, unidirectional (Tsai & Hahn 1980, table 1.1)
+    (
+        "carbon_epoxy",
+        Ply {
+            e1: 181.0e9,
+            e2: 10.3e9,
+            g12: 7.17e9,
+            nu12: 0.28,
+            density: 1600.0,
+            matrix: true,
+        },
+    ),
+    // Scotchply 1002 E-glass/epoxy, unidirectional (Tsai & Hahn 1980, table 1.1)
+    (
+        "glass_epoxy",
+        Ply {
+            e1: 38.6e9,
+            e2: 8.27e9,
+            g12: 4.14e9,
+            nu12: 0.26,
+            density: 1800.0,
+            matrix: true,
+        },
+    ),
+];
+
+/// The name of the empty layer between two walls.
+pub const GAP: &str = "gap";
+
+/// The ply a material name stands for (`None` for the gap).
+pub fn material(path: &str, name: &str) -> Result<Option<Ply>, ModelError> {
+    if name == GAP {
+        return Ok(None);
+    }
+    MATERIALS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, p)| Some(*p))
+        .ok_or_else(|| ModelError::UnknownName {
+            path: path.to_string(),
+            name: name.to_string(),
+            allowed: MATERIALS
+                .iter()
+                .map(|(n, _)| *n)
+                .chain([GAP])
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+/// One layer of a wall: its ply (`None`: a gap), thickness (m) and fibre angle (rad).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layer {
+    pub ply: Option<Ply>,
+    pub thickness: f64,
+    pub angle: f64,
+}
+
+/// A wall's layers from the outside in.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Laminate {
+    pub layers: Vec<Layer>,
+}
+
+/// The wall at one station: mid-surface radius, mass per area and the stiffnesses the
+/// shell uses.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Wall {
+    /// Mid-surface radius, m.
+    pub radius: f64,
+    /// Mass per unit area, kg/m².
+    pub mass_per_area: f64,
+    /// Membrane stiffnesses, N/m.
+    pub a11: f64,
+    pub a12: f64,
+    pub a22: f64,
+    pub a66: f64,
+    /// Bending stiffnesses, N·m.
+    pub d11: f64,
+    pub d12: f64,
+    pub d22: f64,
+    pub d66: f64,
+}
+
+impl Wall {
+    /// A homogeneous isotropic wall of thickness h.
+    pub fn isotropic(e: f64, nu: f64, density: f64, h: f64, radius: f64) -> Wall {
+        let laminate = Laminate {
+            layers: vec![Layer {
+                ply: Some(Ply::isotropic(e, nu, density)),
+                thickness: h,
+                angle: 0.0,
+            }],
+        };
+        laminate.wall(1.0, radius)
+    }
+}
+
+impl Laminate {
+    /// Total thickness, gaps included, m.
+    pub fn thickness(&self) -> f64 {
+        self.layers.iter().map(|l| l.thickness).sum()
+    }
+
+    /// Mass per unit area, kg/m².
+    pub fn mass_per_area(&self) -> f64 {
+        self.layers
+            .iter()
+            .filter_map(|l| l.ply.map(|p| p.density * l.thickness))
+            .sum()
+    }
+
+    /// The laminate after a break-in (`Ply::broken_in`).
+    pub fn broken_in(&self, fraction: f64) -> Laminate {
+        Laminate {
+            layers: self
+                .layers
+                .iter()
+                .map(|l| Layer {
+                    ply: l.ply.map(|p| p.broken_in(fraction)),
+                    ..*l
+                })
+                .collect(),
+        }
+    }
+
+    /// The walls the gaps separate, each a run of plies.
+    fn walls(&self) -> Vec<&[Layer]> {
+        self.layers
+            .split(|l| l.ply.is_none())
+            .filter(|w| !w.is_empty())
+            .collect()
+    }
+
+    /// The wall with every layer's thickness times `scale` (a wall that thins along the
+    /// barrel keeps its stack's proportions), at mid-surface radius `radius`.
+    pub fn wall(&self, scale: f64, radius: f64) -> Wall {
+        let mut w = Wall {
+            radius,
+            mass_per_area: self.mass_per_area() * scale,
+            ..Wall::default()
+        };
+        for plies in self.walls() {
+            let total: f64 = plies.iter().map(|l| l.thickness * scale).sum();
+            let mut top = 0.5 * total;
+            for layer in plies {
+                let t = layer.thickness * scale;
+                let bottom = top - t;
+                let q = layer.ply.expect("a wall holds plies").turned(layer.angle);
+                let (m1, m3) = (t, (top.powi(3) - bottom.powi(3)) / 3.0);
+                w.a11 += q[0] * m1;
+                w.a12 += q[1] * m1;
+                w.a22 += q[2] * m1;
+                w.a66 += q[3] * m1;
+                w.d11 += q[0] * m3;
+                w.d12 += q[1] * m3;
+                w.d22 += q[2] * m3;
+                w.d66 += q[3] * m3;
+                top = bottom;
+            }
+        }
+        w
+    }
+
+    /// The axial modulus the beam sees, (A₁₁ − A₁₂²/A₂₂)/thickness over the whole
+    /// thickness (gaps included, as the beam's wall area is), Pa; and the mean density.
+    pub fn smeared(&self) -> (f64, f64) {
+        let w = self.wall(1.0, 1.0);
+        let t = self.thickness();
+        ((w.a11 - w.a12 * w.a12 / w.a22) / t, w.mass_per_area / t)
+    }
+}

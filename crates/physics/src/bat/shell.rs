@@ -1,0 +1,329 @@
+//! The barrel wall as a thin shell of revolution: its breathing (hoop) modes of
+//! circumferential wave number n ≥ 2, discretised along the axis.
+//!
+//! Theory: Love's first-approximation shell (Love 1888; Leissa, "Vibration of Shells",
+//! NASA SP-288, 1973, ch. 2, the Love–Timoshenko strain–displacement relations), taken as
+//! locally cylindrical (the barrel's taper, a few degrees, is neglected in the strains; the
+//! radius and the wall vary along the axis). With u = U(x) cos nθ, v = V(x) sin nθ,
+//! w = W(x) cos nθ (w outward) the strains are
+//! ε_x = U′, ε_θ = (nV + W)/a, γ = V′ − nU/a,
+//! κ_x = −W″, κ_θ = (nV + n²W)/a², τ = 2(V′ + nW′)/a,
+//! and the energies per unit length, after the θ integral (π for every term),
+//! U = (π/2) a [A₁₁ε_x² + 2A₁₂ε_xε_θ + A₂₂ε_θ² + A₆₆γ² + D₁₁κ_x² + 2D₁₂κ_xκ_θ + D₂₂κ_θ²
+//! + D₆₆τ²], T = (π/2) a ρ_s (U̇² + V̇² + Ẇ²), with A and D the wall's membrane and bending
+//! stiffnesses (classical lamination theory for a layered wall, `laminate`).
+//!
+//! Every function of x is a cubic Hermite interpolant on two-node elements (U, U′, V, V′,
+//! W, W′ at each node), so that the inextensional motions the lowest modes are made of
+//! (ε_θ = 0 needs nV and W from the same space) are represented without membrane locking.
+//! The free ends are natural conditions; a wall that joins a solid section (a bored wood
+//! bat, a shell that starts inside the bat) is clamped there.
+//!
+//! These modes are orthogonal to the beam's (n = 1) bending: they carry no net force or
+//! momentum across a section, so the wall's mass is in the beam's translation and in the
+//! shell's breathing without being counted twice, and the contact force drives both in
+//! parallel (the contact point's displacement is the beam's plus the shell's).
+
+use nalgebra::{Cholesky, DMatrix, SymmetricEigen};
+
+use super::laminate::Wall;
+use crate::error::ModelError;
+
+/// Degrees of freedom per node: U, U′, V, V′, W, W′.
+const NODE_DOF: usize = 6;
+/// Gauss–Legendre points per element (exact for the element's polynomial integrands with
+/// constant properties).
+const GAUSS: [(f64, f64); 4] = [
+    (0.069_431_844_202_973_71, 0.173_927_422_568_726_9),
+    (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
+    (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
+    (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
+];
+
+/// How each end of the shell is held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShellEnd {
+    /// No force or moment: the knob end of a tube, the barrel's end (its cap neglected).
+    Free,
+    /// Joined to a solid section: every displacement and slope zero.
+    Clamped,
+    /// Simply supported (w = v = 0, u and the slope free): the textbook case the closed
+    /// forms are written for.
+    Supported,
+}
+
+/// The wall along the shell: what each station's stiffness and mass are.
+pub trait WallAlong {
+    /// The wall at axial position x, m.
+    fn wall(&self, x: f64) -> Wall;
+}
+
+/// One mode: its wave number, angular frequency and its radial shape W (and W′) at the
+/// nodes, scaled to unit modal mass (∫ ρ_s (U² + V² + W²) π a dx = 1, kg).
+#[derive(Debug, Clone)]
+pub struct ShellMode {
+    pub wave_number: u32,
+    /// rad/s.
+    pub omega: f64,
+    pub w: Vec<f64>,
+    pub dw: Vec<f64>,
+}
+
+/// The shell's lowest modes for the wave numbers asked, on one axial mesh.
+#[derive(Debug, Clone)]
+pub struct ShellModes {
+    /// Node positions, m (along the bat, from the knob).
+    pub nodes: Vec<f64>,
+    /// Every mode found, sorted by frequency.
+    pub modes: Vec<ShellMode>,
+}
+
+/// The axial mesh: the breakpoints inside [start, end] kept as nodes, each piece cut into
+/// equal elements no longer than (end − start)/`elements`.
+pub fn mesh(start: f64, end: f64, breakpoints: &[f64], elements: usize) -> Vec<f64> {
+    let mut cuts = vec![start];
+    cuts.extend(
+        breakpoints
+            .iter()
+            .copied()
+            .filter(|&z| z > start + 1e-9 && z < end - 1e-9),
+    );
+    cuts.push(end);
+    let target = (end - start) / elements as f64;
+    let mut nodes = vec![start];
+    for w in cuts.windows(2) {
+        let pieces = ((w[1] - w[0]) / target).ceil().max(1.0) as usize;
+        for i in 1..=pieces {
+            nodes.push(w[0] + (w[1] - w[0]) * i as f64 / pieces as f64);
+        }
+    }
+    nodes
+}
+
+/// Cubic Hermite shape functions on an element of length `le` at ξ ∈ [0, 1]: values, first
+/// and second x-derivatives, for (value₁, slope₁, value₂, slope₂).
+fn hermite(xi: f64, le: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+    let (x2, x3) = (xi * xi, xi * xi * xi);
+    let n = [
+        1.0 - 3.0 * x2 + 2.0 * x3,
+        le * (xi - 2.0 * x2 + x3),
+        3.0 * x2 - 2.0 * x3,
+        le * (-x2 + x3),
+    ];
+    let d = [
+        (-6.0 * xi + 6.0 * x2) / le,
+        1.0 - 4.0 * xi + 3.0 * x2,
+        (6.0 * xi - 6.0 * x2) / le,
+        -2.0 * xi + 3.0 * x2,
+    ];
+    let dd = [
+        (-6.0 + 12.0 * xi) / (le * le),
+        (-4.0 + 6.0 * xi) / le,
+        (6.0 - 12.0 * xi) / (le * le),
+        (-2.0 + 6.0 * xi) / le,
+    ];
+    (n, d, dd)
+}
+
+/// The element dof index of field f (0 U, 1 V, 2 W) for Hermite function k (0..4).
+fn dof(field: usize, k: usize) -> usize {
+    (k / 2) * NODE_DOF + 2 * field + (k % 2)
+}
+
+/// The strains (ε_x, ε_θ, γ, κ_x, κ_θ, τ) per element dof at one point, and the
+/// displacements (U, V, W) per element dof.
+fn strain_rows(
+    n: f64,
+    a: f64,
+    h: &([f64; 4], [f64; 4], [f64; 4]),
+) -> ([[f64; 12]; 6], [[f64; 12]; 3]) {
+    let (val, d1, d2) = h;
+    let mut b = [[0.0; 12]; 6];
+    let mut disp = [[0.0; 12]; 3];
+    for k in 0..4 {
+        let (u, v, w) = (dof(0, k), dof(1, k), dof(2, k));
+        b[0][u] = d1[k];
+        b[1][v] = n * val[k] / a;
+        b[1][w] = val[k] / a;
+        b[2][v] = d1[k];
+        b[2][u] = -n * val[k] / a;
+        b[3][w] = -d2[k];
+        b[4][v] = n * val[k] / (a * a);
+        b[4][w] = n * n * val[k] / (a * a);
+        b[5][v] = 2.0 * d1[k] / a;
+        b[5][w] = 2.0 * n * d1[k] / a;
+        disp[0][u] = val[k];
+        disp[1][v] = val[k];
+        disp[2][w] = val[k];
+    }
+    (b, disp)
+}
+
+/// The wall's stiffness as the 6×6 matrix of the strains above.
+fn wall_matrix(wall: &Wall) -> [[f64; 6]; 6] {
+    let mut c = [[0.0; 6]; 6];
+    c[0][0] = wall.a11;
+    c[0][1] = wall.a12;
+    c[1][0] = wall.a12;
+    c[1][1] = wall.a22;
+    c[2][2] = wall.a66;
+    c[3][3] = wall.d11;
+    c[3][4] = wall.d12;
+    c[4][3] = wall.d12;
+    c[4][4] = wall.d22;
+    c[5][5] = wall.d66;
+    c
+}
+
+/// Stiffness and mass matrices of wave number n on the mesh (before the end conditions).
+pub fn assemble(n: u32, nodes: &[f64], walls: &dyn WallAlong) -> (DMatrix<f64>, DMatrix<f64>) {
+    let size = nodes.len() * NODE_DOF;
+    let (mut k, mut m) = (DMatrix::zeros(size, size), DMatrix::zeros(size, size));
+    let nf = f64::from(n);
+    for (e, x) in nodes.windows(2).enumerate() {
+        let le = x[1] - x[0];
+        let base = e * NODE_DOF;
+        for &(xi, weight) in &GAUSS {
+            let wall = walls.wall(x[0] + xi * le);
+            let (b, disp) = strain_rows(nf, wall.radius, &hermite(xi, le));
+            let c = wall_matrix(&wall);
+            let scale = std::f64::consts::PI * wall.radius * weight * le;
+            for i in 0..12 {
+                let cb: [f64; 6] = std::array::from_fn(|r| (0..6).map(|s| c[r][s] * b[s][i]).sum());
+                for j in 0..12 {
+                    let kij: f64 = (0..6).map(|r| b[r][j] * cb[r]).sum();
+                    let mij: f64 = (0..3).map(|r| disp[r][i] * disp[r][j]).sum();
+                    k[(base + i, base + j)] += scale * kij;
+                    m[(base + i, base + j)] += scale * wall.mass_per_area * mij;
+                }
+            }
+        }
+    }
+    (k, m)
+}
+
+/// The dofs an end condition removes at the node `node`.
+fn held(end: ShellEnd, node: usize) -> Vec<usize> {
+    let b = node * NODE_DOF;
+    match end {
+        ShellEnd::Free => vec![],
+        ShellEnd::Clamped => (b..b + NODE_DOF).collect(),
+        ShellEnd::Supported => vec![b + 2, b + 4],
+    }
+}
+
+/// The lowest modes of wave number n (at most `count`), with the ends held as asked.
+pub fn modes_of(
+    n: u32,
+    nodes: &[f64],
+    walls: &dyn WallAlong,
+    ends: (ShellEnd, ShellEnd),
+    count: usize,
+) -> Result<Vec<ShellMode>, ModelError> {
+    let (k, m) = assemble(n, nodes, walls);
+    let mut removed = held(ends.0, 0);
+    removed.extend(held(ends.1, nodes.len() - 1));
+    let kept: Vec<usize> = (0..k.nrows()).filter(|i| !removed.contains(i)).collect();
+    let pick =
+        |a: &DMatrix<f64>| DMatrix::from_fn(kept.len(), kept.len(), |i, j| a[(kept[i], kept[j])]);
+    let (k, m) = (pick(&k), pick(&m));
+    let chol = Cholesky::new(m).ok_or(ModelError::Unsupported(
+        "the shell's mass matrix is not positive definite (a wall of zero mass?)",
+    ))?;
+    let l_inv = chol
+        .l()
+        .solve_lower_triangular(&DMatrix::identity(kept.len(), kept.len()));
+    let l_inv = l_inv.ok_or(ModelError::Unsupported(
+        "the shell's mass matrix is singular",
+    ))?;
+    let reduced = &l_inv * k * l_inv.transpose();
+    let reduced = (&reduced + reduced.transpose()) * 0.5;
+    let eigen = SymmetricEigen::new(reduced);
+    let mut order: Vec<usize> = (0..eigen.eigenvalues.len()).collect();
+    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
+    let l_inv_t = l_inv.transpose();
+    Ok(order
+        .into_iter()
+        .take(count)
+        .map(|c| {
+            let mut full = vec![0.0; nodes.len() * NODE_DOF];
+            let shape = &l_inv_t * eigen.eigenvectors.column(c);
+            for (slot, &i) in kept.iter().enumerate() {
+                full[i] = shape[slot];
+            }
+            // the sign: W positive where it is largest
+            let w: Vec<f64> = (0..nodes.len()).map(|p| full[p * NODE_DOF + 4]).collect();
+            let peak = w
+                .iter()
+                .copied()
+                .fold(0.0, |acc: f64, x| if x.abs() > acc.abs() { x } else { acc });
+            let sign = if peak < 0.0 { -1.0 } else { 1.0 };
+            ShellMode {
+                wave_number: n,
+                omega: eigen.eigenvalues[c].max(0.0).sqrt(),
+                w: w.iter().map(|x| sign * x).collect(),
+                dw: (0..nodes.len())
+                    .map(|p| sign * full[p * NODE_DOF + 5])
+                    .collect(),
+            }
+        })
+        .collect())
+}
+
+impl ShellModes {
+    /// The modes of every wave number in `wave_numbers`, `per_wave` of each.
+    pub fn solve(
+        nodes: Vec<f64>,
+        walls: &dyn WallAlong,
+        ends: (ShellEnd, ShellEnd),
+        wave_numbers: &[u32],
+        per_wave: usize,
+    ) -> Result<Self, ModelError> {
+        let mut modes = Vec::new();
+        for &n in wave_numbers {
+            modes.extend(modes_of(n, &nodes, walls, ends, per_wave)?);
+        }
+        modes.sort_by(|a, b| a.omega.total_cmp(&b.omega));
+        Ok(ShellModes { nodes, modes })
+    }
+
+    /// Mode `j`'s radial shape W at axial position x (Hermite interpolation; 0 off the
+    /// shell).
+    pub fn radial(&self, j: usize, x: f64) -> f64 {
+        let nodes = &self.nodes;
+        let (first, last) = (nodes[0], nodes[nodes.len() - 1]);
+        if !(first..=last).contains(&x) {
+            return 0.0;
+        }
+        let e = nodes.partition_point(|&z| z <= x).clamp(1, nodes.len() - 1) - 1;
+        let le = nodes[e + 1] - nodes[e];
+        let (val, _, _) = hermite((x - nodes[e]) / le, le);
+        let mode = &self.modes[j];
+        val[0] * mode.w[e] + val[1] * mode.dw[e] + val[2] * mode.w[e + 1] + val[3] * mode.dw[e + 1]
+    }
+
+    /// Mode `j`'s radial shape averaged over a circular contact patch of radius `patch`
+    /// centred at axial position x on a wall of outer radius `radius` (the ball's force
+    /// spread over the patch: the generalised force per newton, and the patch's mean
+    /// displacement per unit modal coordinate). A 4×4 Gauss rule over the patch's square
+    /// in polar form.
+    pub fn over_patch(&self, j: usize, x: f64, patch: f64, radius: f64) -> f64 {
+        if patch <= 0.0 {
+            return self.radial(j, x);
+        }
+        let n = f64::from(self.modes[j].wave_number);
+        let mut sum = 0.0;
+        let mut weight = 0.0;
+        for &(r, wr) in &GAUSS {
+            for &(t, wt) in &GAUSS {
+                let rho = r * patch;
+                let phi = t * std::f64::consts::TAU;
+                let (dx, ds) = (rho * phi.cos(), rho * phi.sin());
+                let w = wr * wt * rho;
+                sum += w * self.radial(j, x + dx) * (n * ds / radius).cos();
+                weight += w;
+            }
+        }
+        sum / weight
+    }
+}
