@@ -183,3 +183,36 @@ fn lamination_limits() {
     assert!((split.d22 / (0.25 * one.d22) - 1.0).abs() < 1e-12);
     assert!((split.mass_per_area / (RHO * h) - 1.0).abs() < 1e-12);
 }
+
+#[test]
+fn subspace_iteration_agrees_with_the_dense_solver() {
+    // the same matrices through nalgebra's dense symmetric solver (Cholesky of M on the
+    // free dofs, then L⁻¹ K L⁻ᵀ)
+    use batstudy::model::bat::shell::held_matrices;
+    let nodes = mesh(0.0, 0.3, &[], 12);
+    let ends = (ShellEnd::Clamped, ShellEnd::Supported);
+    let walls = Uniform {
+        h: 0.0022,
+        a: 0.032,
+    };
+    let (k, m) = held_matrices(2, &nodes, &walls, ends);
+    let free: Vec<usize> = (0..m.n).filter(|&i| m.get(i, i) > 0.0).collect();
+    let pick = |a: &nalgebra::DMatrix<f64>| {
+        nalgebra::DMatrix::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])])
+    };
+    let (kd, md) = (pick(&k.to_dense()), pick(&m.to_dense()));
+    let l = md.cholesky().unwrap().l();
+    let li = l.try_inverse().unwrap();
+    let a = &li * kd * li.transpose();
+    let mut dense: Vec<f64> = SymmetricEigen::new((&a + a.transpose()) * 0.5)
+        .eigenvalues
+        .iter()
+        .copied()
+        .collect();
+    dense.sort_by(f64::total_cmp);
+    let modes = modes_of(2, &nodes, &walls, ends, 4).unwrap();
+    for (j, mode) in modes.iter().enumerate() {
+        let rel = mode.omega.powi(2) / dense[j] - 1.0;
+        assert!(rel.abs() < 1e-10, "mode {j}: {rel:e}");
+    }
+}

@@ -159,7 +159,7 @@ pub const RULES: &[Rule] = &[
         uses: |t| wave(t) && speed_dependent(t),
     },
     Rule {
-        field: "hoop.length",
+        field: "hoop.patch_radius",
         used_when: "with hoop.from_geometry: true",
         uses: |t| get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true),
     },

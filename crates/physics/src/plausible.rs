@@ -285,12 +285,12 @@ pub const RANGES: &[Range] = &[
         get: |s| s.hoop.as_ref().and_then(|h| h.mass),
     },
     Range {
-        path: "hoop.length",
+        path: "hoop.patch_radius",
         min: 0.005,
-        max: 0.5,
+        max: 0.04,
         unit: "m",
-        reason: "the hoop deformation spans a few centimetres of the barrel",
-        get: |s| s.hoop.as_ref().and_then(|h| h.length),
+        reason: "a baseball's contact patch on a barrel spans one to three centimetres",
+        get: |s| s.hoop.as_ref().and_then(|h| h.patch_radius),
     },
     Range {
         path: "impact.offset",

@@ -34,11 +34,13 @@ impl WallAlong for BarrelWall<'_> {
 
 /// The breathing modes of the bat's hollow part (`None` for a solid bat). A hollow part that
 /// starts inside the bat (a bore, a shell from z > 0) is clamped to the solid section
-/// there; the knob end of a tube and the barrel's end are free (an end cap's stiffening is
-/// left out, which puts the lowest mode slightly low).
+/// there; the knob end of a tube is free. At the barrel's end a hollow bat's end cap, or a
+/// bore's plug where the bore is filled, holds the wall round (w = v = 0, a supported end:
+/// the cap's own flexibility is left out); an empty bore's end is open and free.
 pub fn barrel_modes(g: &BatGeometry) -> Result<Option<ShellModes>, ModelError> {
-    let start = match (g.shell, g.bore) {
-        (Some((_, from)), _) | (None, Some((_, from))) => from,
+    let (start, capped) = match (g.shell, g.bore) {
+        (Some((_, from)), _) => (from, true),
+        (None, Some((_, from))) => (from, g.fill_density > 0.0),
         (None, None) => return Ok(None),
     };
     let start_end = if start > 0.0 {
@@ -46,11 +48,16 @@ pub fn barrel_modes(g: &BatGeometry) -> Result<Option<ShellModes>, ModelError> {
     } else {
         ShellEnd::Free
     };
+    let barrel_end = if capped {
+        ShellEnd::Supported
+    } else {
+        ShellEnd::Free
+    };
     let nodes = mesh(start, g.length, &g.breakpoints(), ELEMENTS);
     ShellModes::solve(
         nodes,
         &BarrelWall(g),
-        (start_end, ShellEnd::Free),
+        (start_end, barrel_end),
         &WAVE_NUMBERS,
         MODES_PER_WAVE,
     )

@@ -76,35 +76,36 @@ impl Ply {
     }
 }
 
-/// The materials a layer may name, with their sources (data/shell_materials.md).
+/// The materials a layer may name, with their sources (docs/physics.md,
+/// data/shell_materials.md).
 pub const MATERIALS: &[(&str, Ply)] = &[
-    // 7050-T7451 plate: E 71.7 GPa, ν 0.33, ρ 2830 (ASM Handbook vol. 2, 1990)
+    // 7050-T7451: Aluminum Association typical values (second-hand)
     ("al7050", Ply::isotropic(71.7e9, 0.33, 2830.0)),
-    // 7055-T7751: E 72.4 GPa, ν 0.33, ρ 2860 (Alcoa data sheet)
-    ("al7055", Ply::isotropic(72.4e9, 0.33, 2860.0)),
-    // 6061-T6: E 68.9 GPa, ν 0.33, ρ 2700 (ASM Handbook vol. 2)
-    ("al6061", Ply::isotropic(68.9e9, 0.33, 2700.0)),
-    // T300/5208 carbon/epoxy, unidirectional (Tsai & Hahn 1980, table 1.1)
+    // 7075-T6: E and ρ second-hand; ν that of the 7xxx alloys
+    ("al7075", Ply::isotropic(72.0e9, 0.33, 2810.0)),
+    // the paper's aluminum; ν from ASM 6061-T6
+    ("al6061", Ply::isotropic(69.0e9, 0.33, 2700.0)),
+    // AS4/3501-6 carbon/epoxy, unidirectional, V_f 0.63 (Daniel & Ishai's table)
     (
         "carbon_epoxy",
         Ply {
-            e1: 181.0e9,
+            e1: 147.0e9,
             e2: 10.3e9,
-            g12: 7.17e9,
-            nu12: 0.28,
+            g12: 7.0e9,
+            nu12: 0.27,
             density: 1600.0,
             matrix: true,
         },
     ),
-    // Scotchply 1002 E-glass/epoxy, unidirectional (Tsai & Hahn 1980, table 1.1)
+    // E-glass/epoxy, unidirectional, V_f 0.55 (Daniel & Ishai's table)
     (
         "glass_epoxy",
         Ply {
-            e1: 38.6e9,
-            e2: 8.27e9,
-            g12: 4.14e9,
-            nu12: 0.26,
-            density: 1800.0,
+            e1: 41.0e9,
+            e2: 10.4e9,
+            g12: 4.3e9,
+            nu12: 0.28,
+            density: 1970.0,
             matrix: true,
         },
     ),

@@ -17,6 +17,7 @@ pub mod section;
 pub mod shapes;
 pub mod shell;
 pub mod static_memo;
+pub mod subspace;
 
 pub use prepared::*;
 

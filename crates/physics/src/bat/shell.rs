@@ -9,8 +9,8 @@
 //! ε_x = U′, ε_θ = (nV + W)/a, γ = V′ − nU/a,
 //! κ_x = −W″, κ_θ = (nV + n²W)/a², τ = 2(V′ + nW′)/a,
 //! and the energies per unit length, after the θ integral (π for every term),
-//! U = (π/2) a [A₁₁ε_x² + 2A₁₂ε_xε_θ + A₂₂ε_θ² + A₆₆γ² + D₁₁κ_x² + 2D₁₂κ_xκ_θ + D₂₂κ_θ²
-//! + D₆₆τ²], T = (π/2) a ρ_s (U̇² + V̇² + Ẇ²), with A and D the wall's membrane and bending
+//! U = (π/2) a [A₁₁ε_x² + 2A₁₂ε_xε_θ + A₂₂ε_θ² + A₆₆γ² + D₁₁κ_x² + 2D₁₂κ_xκ_θ + D₂₂κ_θ² +
+//! D₆₆τ²], T = (π/2) a ρ_s (U̇² + V̇² + Ẇ²), with A and D the wall's membrane and bending
 //! stiffnesses (classical lamination theory for a layered wall, `laminate`).
 //!
 //! Every function of x is a cubic Hermite interpolant on two-node elements (U, U′, V, V′,
@@ -24,9 +24,8 @@
 //! shell's breathing without being counted twice, and the contact force drives both in
 //! parallel (the contact point's displacement is the beam's plus the shell's).
 
-use nalgebra::{Cholesky, DMatrix, SymmetricEigen};
-
 use super::laminate::Wall;
+use super::subspace::{self, Band};
 use crate::error::ModelError;
 
 /// Degrees of freedom per node: U, U′, V, V′, W, W′.
@@ -175,10 +174,12 @@ fn wall_matrix(wall: &Wall) -> [[f64; 6]; 6] {
     c
 }
 
-/// Stiffness and mass matrices of wave number n on the mesh (before the end conditions).
-pub fn assemble(n: u32, nodes: &[f64], walls: &dyn WallAlong) -> (DMatrix<f64>, DMatrix<f64>) {
+/// Stiffness and mass matrices of wave number n on the mesh (before the end conditions),
+/// as bands in node order (half-bandwidth 11: an element couples its two nodes' dofs).
+pub fn assemble(n: u32, nodes: &[f64], walls: &dyn WallAlong) -> (Band, Band) {
     let size = nodes.len() * NODE_DOF;
-    let (mut k, mut m) = (DMatrix::zeros(size, size), DMatrix::zeros(size, size));
+    let band = 2 * NODE_DOF - 1;
+    let (mut k, mut m) = (Band::zeros(size, band), Band::zeros(size, band));
     let nf = f64::from(n);
     for (e, x) in nodes.windows(2).enumerate() {
         let le = x[1] - x[0];
@@ -190,11 +191,11 @@ pub fn assemble(n: u32, nodes: &[f64], walls: &dyn WallAlong) -> (DMatrix<f64>, 
             let scale = std::f64::consts::PI * wall.radius * weight * le;
             for i in 0..12 {
                 let cb: [f64; 6] = std::array::from_fn(|r| (0..6).map(|s| c[r][s] * b[s][i]).sum());
-                for j in 0..12 {
+                for j in i..12 {
                     let kij: f64 = (0..6).map(|r| b[r][j] * cb[r]).sum();
                     let mij: f64 = (0..3).map(|r| disp[r][i] * disp[r][j]).sum();
-                    k[(base + i, base + j)] += scale * kij;
-                    m[(base + i, base + j)] += scale * wall.mass_per_area * mij;
+                    k.add(base + i, base + j, scale * kij);
+                    m.add(base + i, base + j, scale * wall.mass_per_area * mij);
                 }
             }
         }
@@ -212,6 +213,24 @@ fn held(end: ShellEnd, node: usize) -> Vec<usize> {
     }
 }
 
+/// The stiffness and mass with the ends held: a held dof's row and column cleared, its
+/// stiffness 1 and mass 0 (an infinite eigenvalue: it never enters the lowest modes).
+pub fn held_matrices(
+    n: u32,
+    nodes: &[f64],
+    walls: &dyn WallAlong,
+    ends: (ShellEnd, ShellEnd),
+) -> (Band, Band) {
+    let (mut k, mut m) = assemble(n, nodes, walls);
+    let mut removed = held(ends.0, 0);
+    removed.extend(held(ends.1, nodes.len() - 1));
+    for &i in &removed {
+        k.hold(i, 1.0);
+        m.hold(i, 0.0);
+    }
+    (k, m)
+}
+
 /// The lowest modes of wave number n (at most `count`), with the ends held as asked.
 pub fn modes_of(
     n: u32,
@@ -220,39 +239,14 @@ pub fn modes_of(
     ends: (ShellEnd, ShellEnd),
     count: usize,
 ) -> Result<Vec<ShellMode>, ModelError> {
-    let (k, m) = assemble(n, nodes, walls);
-    let mut removed = held(ends.0, 0);
-    removed.extend(held(ends.1, nodes.len() - 1));
-    let kept: Vec<usize> = (0..k.nrows()).filter(|i| !removed.contains(i)).collect();
-    let pick =
-        |a: &DMatrix<f64>| DMatrix::from_fn(kept.len(), kept.len(), |i, j| a[(kept[i], kept[j])]);
-    let (k, m) = (pick(&k), pick(&m));
-    let chol = Cholesky::new(m).ok_or(ModelError::Unsupported(
-        "the shell's mass matrix is not positive definite (a wall of zero mass?)",
-    ))?;
-    let l_inv = chol
-        .l()
-        .solve_lower_triangular(&DMatrix::identity(kept.len(), kept.len()));
-    let l_inv = l_inv.ok_or(ModelError::Unsupported(
-        "the shell's mass matrix is singular",
-    ))?;
-    let reduced = &l_inv * k * l_inv.transpose();
-    let reduced = (&reduced + reduced.transpose()) * 0.5;
-    let eigen = SymmetricEigen::new(reduced);
-    let mut order: Vec<usize> = (0..eigen.eigenvalues.len()).collect();
-    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
-    let l_inv_t = l_inv.transpose();
-    Ok(order
-        .into_iter()
-        .take(count)
+    let (k, m) = held_matrices(n, nodes, walls, ends);
+    let count = count.min(k.n / 2);
+    let (values, vectors) = subspace::lowest(&k, &m, count)?;
+    Ok((0..values.len())
         .map(|c| {
-            let mut full = vec![0.0; nodes.len() * NODE_DOF];
-            let shape = &l_inv_t * eigen.eigenvectors.column(c);
-            for (slot, &i) in kept.iter().enumerate() {
-                full[i] = shape[slot];
-            }
+            let col = vectors.column(c);
+            let w: Vec<f64> = (0..nodes.len()).map(|p| col[p * NODE_DOF + 4]).collect();
             // the sign: W positive where it is largest
-            let w: Vec<f64> = (0..nodes.len()).map(|p| full[p * NODE_DOF + 4]).collect();
             let peak = w
                 .iter()
                 .copied()
@@ -260,10 +254,10 @@ pub fn modes_of(
             let sign = if peak < 0.0 { -1.0 } else { 1.0 };
             ShellMode {
                 wave_number: n,
-                omega: eigen.eigenvalues[c].max(0.0).sqrt(),
+                omega: values[c].max(0.0).sqrt(),
                 w: w.iter().map(|x| sign * x).collect(),
                 dw: (0..nodes.len())
-                    .map(|p| sign * full[p * NODE_DOF + 5])
+                    .map(|p| sign * col[p * NODE_DOF + 5])
                     .collect(),
             }
         })

@@ -334,8 +334,8 @@ fn check_hoop(hoop: &crate::spec::HoopSpec, ball_mass: f64) -> Result<(), ModelE
                 check(path, v, false, "unset (hoop.from_geometry derives it)")?;
             }
         }
-        if let Some(l) = hoop.length {
-            check("hoop.length", l, l > 0.0, "(0, ∞) m")?;
+        if let Some(r) = hoop.patch_radius {
+            check("hoop.patch_radius", r, r > 0.0 && r <= 0.05, "(0, 0.05] m")?;
         }
         return Ok(());
     }

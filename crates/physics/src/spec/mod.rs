@@ -290,7 +290,7 @@ pub struct ShellSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LayerSpec {
-    /// The layer's material: `al7050`, `al7055`, `al6061` (bat alloys), `carbon_epoxy`,
+    /// The layer's material: `al7050`, `al7075`, `al6061` (bat alloys), `carbon_epoxy`,
     /// `glass_epoxy` (unidirectional plies), or `gap` (an empty layer between two walls).
     /// Properties and sources: docs/physics.md.
     pub material: String,
@@ -540,17 +540,17 @@ pub struct HoopSpec {
     /// unless `from_geometry`.
     #[serde(default)]
     pub mass: Option<f64>,
-    /// Derive frequency and mass of the lowest (n = 2, ovalling) shell mode from the wall at
-    /// the impact point (thickness h, mid-surface radius, Y, ρ, ν): the ring formula
-    /// ω² = Y h² / (12 ρ (1 − ν²) a⁴) · n²(n² − 1)²/(n² + 1). Where the impact point is
-    /// solid (before a shell or bore starts) there is no hoop mode. Default false.
+    /// The barrel wall's own breathing modes instead of one given mass–spring: the hollow
+    /// part solved as a shell (wave numbers 2–4, four axial modes each, the wall's layers
+    /// and thickness along the bat; docs/physics.md), each mode driven by the ball's force
+    /// over its contact patch in parallel with the beam. Where the impact point is solid
+    /// (before a shell or bore starts) there is none. Default false.
     #[serde(default)]
     pub from_geometry: bool,
-    /// Axial length in m of the shell that moves in the hoop mode (`from_geometry`):
-    /// mass = (1 + 1/n²) π ρ h a · length. Default: twice the decay length of an n = 2
-    /// deformation, a (12(1 − ν²))^¼ √(a/h) / (n √(n² − 1)) (semi-membrane estimate).
-    #[serde(default)]
-    pub length: Option<f64>,
+    /// Radius of the ball's contact patch over which the shell's modes are loaded and
+    /// felt (`from_geometry`), m. Default 0.02.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub patch_radius: Option<f64>,
 }
 
 /// Where the ball hits.

@@ -32,13 +32,15 @@ mod exit;
 mod hoop;
 mod modal;
 mod project;
+mod shell_contact;
 mod step;
 mod verlet;
 mod wall;
 
 use contact::Contact;
-pub use hoop::{default_hoop_length, resolve_hoop, Hoop, HOOP_WAVE_NUMBER};
+pub use hoop::{resolve_hoop, Hoop};
 use modal::run_modal;
+pub use shell_contact::{resolve_shell, ShellContact, DEFAULT_PATCH_RADIUS};
 use step::contact_omega;
 pub use step::{approach_speed, checked_step_budget, stability_limit, step_budget, time_step};
 use verlet::run_verlet;
@@ -94,6 +96,8 @@ struct Collision {
     /// Velocity of the frame (the hands) in the bat-CM frame: ω (z_grip − z_cm), or 0.
     frame_velocity: f64,
     hoop: Option<Hoop>,
+    /// The barrel's breathing modes at the impact point (a hoop from the geometry).
+    shell: Option<ShellContact>,
     /// Impact point: node pair k, k+1 and weight a of node k+1; lever arm z − z_cm.
     k: usize,
     a: f64,
@@ -172,6 +176,11 @@ fn check_integrator(spec: &CollisionSpec, bat: &PreparedBat) -> Result<(), Model
             "a pinned grip needs the modal integrator",
         ));
     }
+    if spec.hoop.as_ref().is_some_and(|h| h.from_geometry) {
+        return Err(ModelError::Unsupported(
+            "hoop.from_geometry (the barrel's shell modes) needs the modal integrator",
+        ));
+    }
     if bat.damping_ratio > 0.0 || bat.grip_damping > 0.0 {
         return Err(ModelError::Unsupported(
             "material damping needs the modal integrator",
@@ -209,7 +218,8 @@ fn collision_of(
     bat: &PreparedBat,
     approach: f64,
 ) -> Result<Collision, ModelError> {
-    let hoop = resolve_hoop(spec, bat)?;
+    let hoop = resolve_hoop(spec)?;
+    let shell = resolve_shell(spec, bat)?;
     let oblique = Oblique::resolve(spec, bat)?;
     let dt = time_step(spec, bat)?;
     // The run lasts at least the re-contact watch after the ball has left.
@@ -231,6 +241,7 @@ fn collision_of(
         omega: spec.swing.omega,
         frame_velocity,
         hoop,
+        shell,
         k,
         a,
         lever: spec.impact.z - bat.z_cm,
@@ -317,8 +328,16 @@ fn outcome_of(
         approach_speed: approach,
         contact_time: contact.first_duration,
         impulse_time_99: contact.impulse_time(0.99),
-        hoop_frequency: c.hoop.map_or(f64::NAN, |h| h.frequency()),
-        hoop_mass: c.hoop.map_or(f64::NAN, |h| h.mass),
+        hoop_frequency: match (&c.hoop, &c.shell) {
+            (Some(h), _) => h.frequency(),
+            (None, Some(s)) => s.frequency,
+            (None, None) => f64::NAN,
+        },
+        hoop_mass: match (&c.hoop, &c.shell) {
+            (Some(h), _) => h.mass,
+            (None, Some(s)) => s.mass,
+            (None, None) => f64::NAN,
+        },
         // filled for a bat at rest by `collision::simulate`
         bbcor: f64::NAN,
         besr: f64::NAN,

@@ -35,7 +35,7 @@ pub(super) fn contact_omega(
 pub fn stability_limit(spec: &CollisionSpec, bat: &PreparedBat) -> f64 {
     let approach = approach_speed(spec, bat);
     let law = ContactLaw::new(&spec.ball.law, approach.abs());
-    let hoop = resolve_hoop(spec, bat).ok().flatten();
+    let hoop = resolve_hoop(spec).ok().flatten();
     let wc = contact_omega(spec, hoop, &law, approach.abs());
     match spec.numerics.integrator {
         // The scheme is stable up to ω_c·dt = 2√3 (linear-acceleration method), but steps

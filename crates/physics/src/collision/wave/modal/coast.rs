@@ -52,7 +52,7 @@ pub(super) fn may_return(c: &Collision, s: &Setup, state: &State) -> bool {
 /// Whether the motion after the ball has left is the free flight [`may_return`] bounds and
 /// [`free_step`] steps: head-on, without a hoop or a grip damper.
 fn free_after_contact(c: &Collision, s: &Setup) -> bool {
-    c.hoop.is_none() && c.oblique.is_none() && s.grip.is_none()
+    c.hoop.is_none() && c.shell.is_none() && c.oblique.is_none() && s.grip.is_none()
 }
 
 /// Complete the history in `rec` after the collision has ended at `state`, until it has its

@@ -11,6 +11,7 @@ mod coast;
 mod propagator;
 mod record;
 mod setup;
+mod shell;
 mod state;
 pub(super) mod tangential;
 
@@ -69,14 +70,27 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     let (y_free, g_end, alpha_d) = state::free_contact_point(c, s, state);
     let h2 = s.h * s.h;
     let w_free = state.w + s.h * state.v - h2 * state.force / (3.0 * c.ball_mass);
+    let n0 = state.contact_force();
+    let shell_part = s
+        .shell
+        .as_ref()
+        .map_or((0.0, 0.0), |sh| shell::free(sh, &state.shell, n0));
     let (new_force, new_hoop_force, new_s, oblique_forces) = match &c.oblique {
-        Some(o) => oblique_end_forces(c, o, s, state, contact, (w_free, y_free, g_end)),
+        Some(o) => {
+            let free = (w_free, y_free, g_end);
+            oblique_end_forces(c, o, s, state, contact, free, shell_part)
+        }
         None => {
+            let (y_all, g_all) = (y_free + shell_part.0, g_end + shell_part.1);
             let (f1, fh1, s1) =
-                state::solve_contact(c, state, contact, w_free, y_free, s.g_start, g_end);
+                state::solve_contact(c, state, contact, w_free, y_all, s.g_start, g_all);
             (f1, fh1, s1, None)
         }
     };
+    if let Some(sh) = &s.shell {
+        let n1 = oblique_forces.map_or(new_force, |f| f.0);
+        shell::advance(sh, state, (n0, n1));
+    }
     // the bat is pushed by the ball (no hoop) or by the hoop spring
     let (p0, p1) = match c.hoop {
         Some(_) => (state.hoop_force, new_hoop_force),
@@ -112,6 +126,7 @@ fn oblique_end_forces(
     state: &mut State,
     contact: &Contact,
     (w_free, y_free, g_end): (f64, f64, f64),
+    shell_part: (f64, f64),
 ) -> ObliqueEnd {
     let Some(t) = state.tangential else {
         return (0.0, 0.0, state.s, None);
@@ -128,7 +143,7 @@ fn oblique_end_forces(
     let y0 = y_free + s.g_start * state.bat_force(c);
     let Some(hoop) = c.hoop else {
         let y_part = (w_free - y0, s.h * s.h / (6.0 * c.ball_mass) + g_end);
-        let (n1, t1, s1) = tangential::end_forces(o, &t, &inputs, y_part, dy_now);
+        let (n1, t1, s1) = tangential::end_forces(o, &t, &inputs, y_part, dy_now, shell_part);
         let fy = Tangential::bat_force_y(o, n1, t1);
         return (fy, 0.0, s1, Some((n1, t1, n1)));
     };
@@ -183,8 +198,8 @@ fn ball_and_contact(
     let s_states = match (c.hoop, &c.oblique, &state.tangential) {
         (Some(_), Some(o), Some(t)) => t.hoop_compression(o, state.w, state.xh),
         (Some(_), _, _) => state.w - state.xh,
-        (None, Some(o), Some(t)) => t.compression(o, state.w - state.y_c),
-        _ => state.w - state.y_c,
+        (None, Some(o), Some(t)) => t.compression(o, state.w - state.y_c) - state.shell.r,
+        _ => state.w - state.y_c - state.shell.r,
     };
     // s from the solve and from the states agree to round-off; use the solve's in-contact
     let s_track = if new_force > 0.0 { new_s } else { s_states };
@@ -215,15 +230,19 @@ fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> Fi
     let p_final = state.bat_force(c);
     bat_energy += 0.5 * s.g_static * p_final * p_final;
     let dot = |x: &[f64]| x.iter().zip(qd).map(|(a, b)| a * b).sum::<f64>();
-    let hoop_energy = c.hoop.map_or(0.0, |hp| {
-        0.5 * hp.mass * state.vh * state.vh + 0.5 * hp.stiffness * state.hoop_stretch(c).powi(2)
-    });
+    let hoop_energy = match (c.hoop, &s.shell) {
+        (Some(hp), _) => {
+            0.5 * hp.mass * state.vh * state.vh + 0.5 * hp.stiffness * state.hoop_stretch(c).powi(2)
+        }
+        (None, Some(sh)) => state.shell.energy(sh),
+        (None, None) => 0.0,
+    };
     let bat_rigid_energy = qd[..bat.modes.n_rigid].iter().map(|x| 0.5 * x * x).sum();
     FinalState {
         ball_velocity: state.v,
         bat_energy,
         bat_rigid_energy,
-        bat_damping: state.bat_damping,
+        bat_damping: state.bat_damping + state.shell.damping,
         grip_loss: state.grip_loss,
         bat_momentum: dot(&bat.momentum_weight),
         bat_angular_momentum: dot(&bat.angular_weight),

@@ -1,7 +1,7 @@
 //! What one collision keeps fixed while the modal integrator steps: the modes it steps, their
 //! step constants, the contact point's compliances and the grip damper's.
 
-use super::super::{Collision, MIN_MODES};
+use super::super::{Collision, ShellContact, MIN_MODES};
 use super::propagator::ModalStep;
 use crate::bat::shapes::shape_at;
 use crate::bat::PreparedBat;
@@ -47,6 +47,39 @@ pub(super) struct Setup<'b> {
     pub(super) g_start: f64,
     pub(super) g_end: f64,
     pub(super) grip: Option<GripDamper>,
+    /// The barrel's breathing modes, stepped beside the beam's.
+    pub(super) shell: Option<ShellStep>,
+}
+
+/// The shell's modes over one step: their propagators (each mode's response already
+/// weighted by its patch shape φ), and the contact point's compliance through them.
+pub(super) struct ShellStep {
+    pub(super) omega: Vec<f64>,
+    pub(super) phi: Vec<f64>,
+    pub(super) zeta: f64,
+    pub(super) h: f64,
+    pub(super) st: ModalStep,
+    pub(super) half: Option<ModalStep>,
+    pub(super) g_start: f64,
+    pub(super) g_end: f64,
+}
+
+impl ShellStep {
+    fn new(shell: &ShellContact, h: f64) -> Self {
+        let (omega, phi, zeta) = (&shell.omega, &shell.phi, shell.zeta);
+        let st = ModalStep::new(omega, zeta, phi, h);
+        let half = (zeta > 0.0).then(|| ModalStep::new(omega, zeta, phi, 0.5 * h));
+        ShellStep {
+            g_start: dot_n(&st.q_start, phi),
+            g_end: dot_n(&st.q_end, phi),
+            omega: omega.clone(),
+            phi: phi.clone(),
+            zeta,
+            h,
+            st,
+            half,
+        }
+    }
 }
 
 pub(super) fn dot_n(a: &[f64], b: &[f64]) -> f64 {
@@ -117,6 +150,7 @@ impl<'b> Setup<'b> {
             g_start,
             g_end,
             grip,
+            shell: c.shell.as_ref().map(|sh| ShellStep::new(sh, h)),
         }
     }
 

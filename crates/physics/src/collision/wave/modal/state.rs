@@ -6,6 +6,7 @@ use super::super::contact::Contact;
 use super::super::Collision;
 use super::propagator::ModalStep;
 use super::setup::{dot_n, GripDamper, Setup};
+use super::shell::ShellState;
 use super::tangential::Tangential;
 use crate::bat::PreparedBat;
 
@@ -37,6 +38,8 @@ pub(super) struct State {
     pub(super) grip_loss: f64,
     /// The oblique contact's state (`None` head-on without spin).
     pub(super) tangential: Option<Tangential>,
+    /// The barrel's breathing modes (empty without them).
+    pub(super) shell: ShellState,
 }
 
 impl State {
@@ -67,12 +70,16 @@ impl State {
             bat_damping: 0.0,
             grip_loss: 0.0,
             tangential: c.oblique.as_ref().map(Tangential::first_contact),
+            shell: ShellState::at_rest(c.shell.as_ref().map_or(0, |s| s.omega.len())),
         }
     }
 
     /// The hoop spring's stretch: the hoop mass's displacement less the bat's surface point's,
     /// along ŷ head-on, along the line of centres n̂ in an oblique contact.
     pub(super) fn hoop_stretch(&self, c: &Collision) -> f64 {
+        if c.shell.is_some() {
+            return self.shell.r;
+        }
         match (&c.oblique, &self.tangential) {
             (Some(o), Some(t)) => self.xh - (o.cos * self.y_c + o.sin * t.bat_x),
             _ => self.xh - self.y_c,

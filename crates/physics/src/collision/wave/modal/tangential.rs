@@ -106,20 +106,23 @@ fn patch_stiffness(o: &Oblique, inp: &StepInputs) -> f64 {
 /// The step's end forces (N₁, T₁) and compression s₁. `y_part`: the relative displacement
 /// along ŷ at the step's end without the end force, and its compliance to the bat's end
 /// force along ŷ (the head-on solve's s₀ and c); `dy_now`: the relative displacement along
-/// ŷ now.
+/// ŷ now; the shell's part: its contact point's motion along n̂ without the end force, and
+/// its compliance to N₁ (zeros without a shell).
 pub(in crate::collision::wave) fn end_forces(
     o: &Oblique,
     t: &Tangential,
     inp: &StepInputs,
     (a_y, c_y): (f64, f64),
     dy_now: f64,
+    (r_free, g_r): (f64, f64),
 ) -> (f64, f64, f64) {
     let (c, s) = (o.cos, o.sin);
     let (a_x, c_x) = cross_part(o, t, inp);
     let (u_free, c_rot) = turn_part(o, t, inp.h);
-    let s0 = c * a_y + s * a_x;
+    // the shell's breathing moves the surface along n̂ only, under N
+    let s0 = c * a_y + s * a_x - r_free;
     let u0 = -s * a_y + c * a_x + u_free;
-    let b_nn = c * c * c_y + s * s * c_x;
+    let b_nn = c * c * c_y + s * s * c_x + g_r;
     let b_nt = c * s * (c_y - c_x);
     let b_tt = s * s * c_y + c * c * c_x + c_rot;
     let k = patch_stiffness(o, inp);

@@ -1,0 +1,79 @@
+//! The barrel's breathing modes in a modal step: stepped exactly, as the beam's modes are,
+//! under the contact's normal force (linear over the step), beside the beam.
+
+use super::setup::{dot_n, ShellStep};
+use super::state::State;
+
+/// The shell's coordinates and velocities, its displacement at the contact (inward, along
+/// the contact normal) and what its damping has taken.
+#[derive(Debug, Clone, Default)]
+pub(super) struct ShellState {
+    pub(super) q: Vec<f64>,
+    pub(super) qd: Vec<f64>,
+    pub(super) r: f64,
+    pub(super) damping: f64,
+}
+
+impl ShellState {
+    /// At rest: the wall is round when the ball arrives.
+    pub(super) fn at_rest(modes: usize) -> Self {
+        ShellState {
+            q: vec![0.0; modes],
+            qd: vec![0.0; modes],
+            ..Self::default()
+        }
+    }
+
+    /// Energy in the modes (unit modal masses), J.
+    pub(super) fn energy(&self, sh: &ShellStep) -> f64 {
+        (0..self.q.len())
+            .map(|j| 0.5 * (self.qd[j].powi(2) + (sh.omega[j] * self.q[j]).powi(2)))
+            .sum()
+    }
+}
+
+/// Where the shell's contact point goes over the step without the end force (free motion
+/// and the start force `n0`), and its compliance to the end force.
+pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
+    let st = &sh.st;
+    let moved: f64 = (0..shell.q.len())
+        .map(|j| sh.phi[j] * (st.cos[j] * shell.q[j] + st.sin_over_omega[j] * shell.qd[j]))
+        .sum();
+    (moved + sh.g_start * n0, sh.g_end)
+}
+
+/// The modes' exact update under the normal force (n0 → n1), and their damping's losses
+/// over the step (Simpson's rule, the mid-step velocities from an exact half step).
+pub(super) fn advance(sh: &ShellStep, state: &mut State, (n0, n1): (f64, f64)) {
+    let shell = &mut state.shell;
+    let st = &sh.st;
+    let rate = |qd: &[f64]| -> f64 {
+        qd.iter()
+            .zip(&sh.omega)
+            .map(|(v, w)| 2.0 * sh.zeta * w * v * v)
+            .sum()
+    };
+    if let Some(hs) = &sh.half {
+        let nm = 0.5 * (n0 + n1);
+        let mid: Vec<f64> = (0..shell.q.len())
+            .map(|j| {
+                hs.minus_omega_sin[j] * shell.q[j]
+                    + hs.a22[j] * shell.qd[j]
+                    + hs.v_start[j] * n0
+                    + hs.v_end[j] * nm
+            })
+            .collect();
+        shell.damping += sh.h / 6.0 * (rate(&shell.qd) + 4.0 * rate(&mid));
+    }
+    for j in 0..shell.q.len() {
+        let (x, xd) = (shell.q[j], shell.qd[j]);
+        shell.q[j] =
+            st.cos[j] * x + st.sin_over_omega[j] * xd + st.q_start[j] * n0 + st.q_end[j] * n1;
+        shell.qd[j] =
+            st.minus_omega_sin[j] * x + st.a22[j] * xd + st.v_start[j] * n0 + st.v_end[j] * n1;
+    }
+    if sh.half.is_some() {
+        shell.damping += sh.h / 6.0 * rate(&shell.qd);
+    }
+    shell.r = dot_n(&sh.phi, &shell.q);
+}
