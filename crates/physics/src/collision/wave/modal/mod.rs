@@ -89,7 +89,7 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     };
     if let Some(sh) = &s.shell {
         let n1 = oblique_forces.map_or(new_force, |f| f.0);
-        shell::advance(sh, state, (n0, n1));
+        shell::advance(sh, &mut state.shell, (n0, n1));
     }
     // the bat is pushed by the ball (no hoop) or by the hoop spring
     let (p0, p1) = match c.hoop {

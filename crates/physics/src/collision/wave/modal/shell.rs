@@ -2,7 +2,6 @@
 //! under the contact's normal force (linear over the step), beside the beam.
 
 use super::setup::{dot_n, ShellStep};
-use super::state::State;
 
 /// The shell's coordinates and velocities, its displacement at the contact (inward, along
 /// the contact normal) and what its damping has taken.
@@ -44,8 +43,7 @@ pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
 
 /// The modes' exact update under the normal force (n0 → n1), and their damping's losses
 /// over the step (Simpson's rule, the mid-step velocities from an exact half step).
-pub(super) fn advance(sh: &ShellStep, state: &mut State, (n0, n1): (f64, f64)) {
-    let shell = &mut state.shell;
+pub(super) fn advance(sh: &ShellStep, shell: &mut ShellState, (n0, n1): (f64, f64)) {
     let st = &sh.st;
     let rate = |qd: &[f64]| -> f64 {
         qd.iter()
