@@ -79,6 +79,8 @@ pub struct BatGeometry {
 impl BatGeometry {
     /// Apply the preset, then the spec's overrides, and check the result.
     pub fn resolve(bat: &BatSpec) -> Result<Self, ModelError> {
+        let expanded = super::hollow_presets::expand(bat);
+        let bat = &expanded;
         let profile = match &bat.profile {
             None => Profile::r161(),
             Some(ProfileSpec::Knots(k)) => Profile::from_knots(k)?,
@@ -376,7 +378,8 @@ impl PresetMaterial {
                 ))
             }
             BatPreset::R161 => (WOOD_DENSITY, WOOD_YOUNGS_MODULUS, None, 0.0),
-            BatPreset::Aluminum => (
+            // expanded to aluminum with their own geometry (`hollow_presets::expand`)
+            BatPreset::Aluminum | BatPreset::AlloyBbcor | BatPreset::CompositeBbcor => (
                 ALUMINUM_DENSITY,
                 ALUMINUM_YOUNGS_MODULUS,
                 Some((ALUMINUM_SHELL, 0.0)),

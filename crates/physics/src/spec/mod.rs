@@ -93,6 +93,14 @@ pub enum BatPreset {
     Aluminum,
     /// R161 with the barrel hollowed to a 1 cm shell from z = 0.55 m, filled with cork (240 kg/m³).
     Corked,
+    /// A single-wall 7050 alloy BBCOR bat: 33 in, 2 5/8-in barrel on the R161's handle, the
+    /// wall 1.5–6.1 mm along the barrel (the design search's; docs/physics.md, "The hollow
+    /// presets"), 30.5 oz. Geometry and wall not those of a measured bat.
+    AlloyBbcor,
+    /// A composite BBCOR bat: the same outer profile, a wall of hoop glass and ±30° carbon
+    /// plies (`bat.shell.layers`), 4.5 mm in the handle and 5.2–5.6 mm in the barrel,
+    /// 30.2 oz. Not a measured bat.
+    CompositeBbcor,
     /// A rigid, immovable wall: the target of ball certification. The ball comes back at
     /// e(v) v, so exit speed / approach speed is the wall COR. Bat fields other than
     /// `preset` do not apply; `impact.z` and `swing` are ignored.
