@@ -84,7 +84,11 @@ pub struct ShellCost {
 
 /// One search of `text` (`MAX` candidates) on `threads` threads: (variables, candidates,
 /// points per candidate, seconds).
-fn timed_search(text: &str, name: &str, threads: usize) -> Result<(usize, usize, usize, f64), String> {
+fn timed_search(
+    text: &str,
+    name: &str,
+    threads: usize,
+) -> Result<(usize, usize, usize, f64), String> {
     let study = crate::study::load_str(text, std::path::Path::new(name), &Default::default())
         .map_err(|e| e.to_string())?;
     let design = crate::optimize::design_of(&study)
