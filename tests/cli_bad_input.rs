@@ -202,7 +202,7 @@ const CASES: &[(&str, &[&str])] = &[
             "`bat.preset`",
             "value: aluminium",
             "did you mean `aluminum`",
-            "allowed: r161, aluminum, corked, wall",
+            "allowed: r161, aluminum, corked, alloy_bbcor, composite_bbcor, wall",
         ],
     ),
     (
