@@ -9,6 +9,7 @@ pub mod cli;
 /// The physics (crates/physics): one fully specified collision in, one `Outcome` out.
 pub use batstudy_physics as model;
 pub mod optimize;
+pub mod profile_export;
 pub mod run;
 pub mod slurm;
 /// The results file (crates/store): HDF5 layout, journal, codecs, reading back and merging;

@@ -276,3 +276,34 @@ def validate(study: StudyLike) -> None:
     """Check a study as ``batstudy validate`` does; returns None or raises
     :class:`StudyError` naming the file, line, field, value and what is allowed."""
     plan(study)
+
+
+def export_profile(
+    results: Union[str, "os.PathLike[str]"],
+    bat: Optional[Union[str, int]] = None,
+    units: str = "m",
+    path: Optional[Union[str, "os.PathLike[str]"]] = None,
+) -> str:
+    """A bat of a results file as a profile CSV, as ``batstudy export-profile`` writes it:
+    ``z_<units>,radius_<units>`` and, for a hollow bat, ``wall_<units>`` (0 where solid),
+    linear between rows; ``bat.profile.csv`` reads it back as the same bat (its comment
+    lines name the material the study must set). ``bat`` is a label as
+    :func:`open_results` lists them in ``/bat`` or an index (may be left out when the file
+    holds one bat); ``units`` is ``"m"``, ``"mm"`` or ``"in"``. Returns the CSV text and,
+    with ``path``, also writes it there (whole or not at all). Raises
+    :class:`ResultsFileError` naming the file and what is allowed."""
+    from ._files import ResultsFileError
+
+    try:
+        text = _native.export_profile(
+            os.fspath(results), None if bat is None else str(bat), units
+        )
+    except ValueError as e:
+        raise ResultsFileError(str(e)) from None
+    if path is not None:
+        target = os.fspath(path)
+        tmp = f"{target}.{os.getpid()}.tmp"
+        with open(tmp, "x", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, target)
+    return text

@@ -427,6 +427,22 @@ fn describe<'py>(
     Ok(d)
 }
 
+/// A bat of a results file as a profile CSV (`batstudy export-profile`): the text. `bat`:
+/// its label or index (may be left out when the file holds one bat); `units`: m, mm or in.
+/// Raises ValueError naming the file and what is allowed.
+#[pyfunction]
+#[pyo3(signature = (results, bat=None, units="m"))]
+fn export_profile(
+    py: Python<'_>,
+    results: PathBuf,
+    bat: Option<String>,
+    units: &str,
+) -> PyResult<String> {
+    let units: batstudy::profile_export::Units = units.parse().map_err(PyValueError::new_err)?;
+    py.detach(|| batstudy::profile_export::profile_csv(&results, bat.as_deref(), units))
+        .map_err(PyValueError::new_err)
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(merge, m)?)?;
@@ -435,6 +451,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(run_study, m)?)?;
     m.add_function(wrap_pyfunction!(optimize_study, m)?)?;
+    m.add_function(wrap_pyfunction!(export_profile, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

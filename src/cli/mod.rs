@@ -14,6 +14,7 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 mod common;
+pub mod export;
 pub mod merge;
 pub mod optimize;
 pub mod plan;
@@ -92,6 +93,9 @@ pub enum Command {
     /// Search a study's design (its `optimize` block) within its rules; store every
     /// candidate in `/optimize` and the study at the best design.
     Optimize(optimize::OptimizeArgs),
+    /// Write a bat of a results file as a profile CSV (outer radius and wall along the bat,
+    /// in m, mm or in) that `bat.profile.csv` reads back as the same bat.
+    ExportProfile(export::ExportArgs),
 }
 
 /// How this process was started, for what it writes that starts batstudy again (the Slurm
@@ -155,6 +159,7 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         Command::Merge(a) => merge::cmd_merge(&a),
         Command::Slurm(a) => slurm::cmd_slurm(&a, invocation),
         Command::Optimize(a) => optimize::cmd_optimize(&a),
+        Command::ExportProfile(a) => export::cmd_export(&a),
         Command::Bench {
             quick,
             threads,

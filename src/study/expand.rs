@@ -447,7 +447,7 @@ fn load_profiles(
     file: &StudyFile,
     base: &Value,
     dims: &[PlanDim],
-) -> Result<HashMap<String, Vec<[f64; 2]>>, StudyError> {
+) -> Result<HashMap<String, super::profile::ProfileTable>, StudyError> {
     let dir = cx.file.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut profiles = HashMap::new();
     let mut load = |f: &str, at: Vec<Seg>| -> Result<(), StudyError> {
@@ -458,7 +458,7 @@ fn load_profiles(
             cx.err(&at, e)
                 .field("bat.profile.csv")
                 .value(f.to_string())
-                .allowed("a readable CSV with header `z,radius` (m) or `slice_end_cm,diameter_mm`, relative to the study file")
+                .allowed("a readable CSV with header `z,radius` (m; or `z_mm,radius_mm`, `z_in,radius_in`; an optional `wall` column) or `slice_end_cm,diameter_mm`, relative to the study file")
         })?;
         profiles.insert(f.to_string(), k);
         Ok(())
@@ -558,7 +558,11 @@ fn distinct_bats(cx: &Ctx, file: &StudyFile, plan: &mut Plan) -> Result<(), Stud
 
 /// A bat's short label: its preset, its own profile, and the bat values its dimensions set.
 fn bat_label(plan: &Plan, m: &[usize], spec: &crate::model::spec::CollisionSpec) -> String {
-    let mut label = format!("{:?}", spec.bat.preset).to_lowercase();
+    // the preset as a study names it (`alloy_bbcor`)
+    let mut label = serde_json::to_value(spec.bat.preset)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default();
     // a profile of the user's own is part of what the bat is
     if spec.bat.profile.is_some() {
         match super::paths::get_path(&plan.value_at(m), "bat.profile.csv") {

@@ -132,12 +132,20 @@ fn study_digest(text: &str, plan: &Plan) -> String {
     h.update(text.as_bytes());
     let mut named: Vec<_> = plan.profiles.iter().collect();
     named.sort_by(|a, b| a.0.cmp(b.0));
-    for (path, knots) in named {
+    for (path, table) in named {
         h.update(b"\0profile\0");
         h.update(path.as_bytes());
         h.update(b"\0");
-        for x in knots.iter().flatten() {
+        for x in table.knots.iter().flatten() {
             h.update(x.to_le_bytes());
+        }
+        // a wall column is part of the file's bat; a file without one hashes as before
+        if let Some((from, wall)) = &table.wall {
+            h.update(b"\0wall\0");
+            h.update(from.to_le_bytes());
+            for x in wall.iter().flatten() {
+                h.update(x.to_le_bytes());
+            }
         }
     }
     hex(&h.finalize())

@@ -115,7 +115,7 @@ pub struct Plan {
     pub(crate) dims: Vec<PlanDim>,
     pub(crate) shape: ResultShape,
     /// Profile CSV paths as written → knots.
-    pub(crate) profiles: HashMap<String, Vec<[f64; 2]>>,
+    pub(crate) profiles: HashMap<String, super::profile::ProfileTable>,
     pub(crate) bat_dims: Vec<usize>,
     pub(crate) bat_of_combo: Vec<u32>,
     pub(crate) bats: Vec<BatChoice>,
@@ -267,15 +267,15 @@ impl Plan {
 
     pub(crate) fn resolve_value(&self, v: &mut Value) -> Result<CollisionSpec, ResolveError> {
         if let Some(Value::String(file)) = super::paths::get_path(v, "bat.profile.csv") {
-            let knots = self
+            let table = self
                 .profiles
                 .get(file)
-                .ok_or_else(|| ResolveError::Profile { file: file.clone() })?;
-            let k: Vec<Value> = knots
-                .iter()
-                .map(|[z, r]| Value::Sequence(vec![Value::from(*z), Value::from(*r)]))
-                .collect();
-            let _ = super::paths::set_path(v, "bat.profile.knots", Value::Sequence(k));
+                .ok_or_else(|| ResolveError::Profile { file: file.clone() })?
+                .clone();
+            let _ = super::paths::set_path(v, "bat.profile.knots", knots_value(&table.knots));
+            if let Some((from, wall)) = &table.wall {
+                wall_from_profile(v, *from, wall)?;
+            }
         }
         // A number that is not finite would become `null` on its way through JSON, and
         // `null` means "the preset's value": a drawn or searched value of inf would run
@@ -449,4 +449,36 @@ pub(crate) fn dim_to_shape(d: &PlanDim, base: &Value) -> Dim {
         size: d.size,
         coords,
     }
+}
+
+/// `[[a, b], ...]` as a YAML value.
+fn knots_value(knots: &[[f64; 2]]) -> Value {
+    Value::Sequence(
+        knots
+            .iter()
+            .map(|[a, b]| Value::Sequence(vec![Value::from(*a), Value::from(*b)]))
+            .collect(),
+    )
+}
+
+/// A profile CSV's wall column as the shell (`bat.shell.from` and `.thickness_knots`),
+/// refused where the study gives the wall too: one wall, from one place.
+fn wall_from_profile(v: &mut Value, from: f64, wall: &[[f64; 2]]) -> Result<(), ResolveError> {
+    for path in [
+        "bat.shell.thickness",
+        "bat.shell.thickness_knots",
+        "bat.shell.from",
+        "bat.bore",
+    ] {
+        if super::paths::get_path(v, path).is_some_and(|x| !x.is_null()) {
+            return Err(ResolveError::Shape {
+                path: path.into(),
+                message: "the profile CSV's wall column gives the hollow part already (set one or the other)".into(),
+                value: None,
+            });
+        }
+    }
+    let _ = super::paths::set_path(v, "bat.shell.from", Value::from(from));
+    let _ = super::paths::set_path(v, "bat.shell.thickness_knots", knots_value(wall));
+    Ok(())
 }

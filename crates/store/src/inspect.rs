@@ -261,3 +261,18 @@ fn inspect_bats(bg: &hdf5::Group, s: &mut String) {
         let _ = writeln!(s, "  … and {} more (group /bat)", labels.len() - 10);
     }
 }
+
+/// Each bat of a results file: its label and its resolved parameters as canonical JSON
+/// (`/bat/bat` and `/bat/spec_json`), in the file's order.
+pub fn bat_specs(path: &Path) -> Result<Vec<(String, String)>, StoreError> {
+    let (f, _, _) = open_checked(path)?;
+    let bg = f.group(l::GROUP_BAT).ctx(path, "open group bat")?;
+    let strings = |name: &str| {
+        bg.dataset(name)
+            .and_then(|d| d.read_raw::<VarLenUnicode>())
+            .map(|v| v.iter().map(|s| s.as_str().to_string()).collect::<Vec<_>>())
+            .ctx(path, "read the bats' labels and specs")
+    };
+    let (labels, specs) = (strings(l::BAT_DIM.name)?, strings(l::BAT_SPEC.name)?);
+    Ok(labels.into_iter().zip(specs).collect())
+}

@@ -8,6 +8,7 @@
 pub mod band_eigen;
 pub mod barrel;
 pub mod beam;
+pub mod export;
 pub mod hollow_presets;
 pub mod laminate;
 pub mod modal;

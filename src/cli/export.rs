@@ -1,0 +1,71 @@
+//! `batstudy export-profile`: a bat of a results file as a profile CSV
+//! (`profile_export`), written whole or not at all.
+
+use super::{EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED};
+use crate::profile_export::{profile_csv, Units};
+use crate::study::error::printable;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, clap::Args)]
+pub struct ExportArgs {
+    /// A results file.
+    pub file: PathBuf,
+    /// Which bat: its label (as `batstudy inspect` lists them) or its index from 0.
+    /// Required when the file holds more than one bat.
+    #[arg(long)]
+    pub bat: Option<String>,
+    /// Units of the CSV's columns.
+    #[arg(long, value_enum, default_value = "m")]
+    pub units: Units,
+    /// Where to write the CSV (default: standard output). Written whole or not at all.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+pub(super) fn cmd_export(a: &ExportArgs) -> i32 {
+    let text = match profile_csv(&a.file, a.bat.as_deref(), a.units) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    match &a.output {
+        None => {
+            print!("{text}");
+            EXIT_OK
+        }
+        Some(path) => match write_whole(path, &text) {
+            Ok(()) => EXIT_OK,
+            Err(e) => {
+                eprintln!(
+                    "error: cannot write {}: {e}",
+                    printable(&path.display().to_string(), false)
+                );
+                EXIT_RUN_FAILED
+            }
+        },
+    }
+}
+
+/// Write `text` to a new temporary file beside `path`, then rename it over `path`: a
+/// reader sees the old file or the whole new one.
+fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = path.with_file_name(name);
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)
+        .and_then(|mut f| {
+            f.write_all(text.as_bytes())?;
+            f.sync_all()
+        })
+        .and_then(|()| std::fs::rename(&tmp, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    written
+}

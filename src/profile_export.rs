@@ -1,0 +1,133 @@
+//! A bat of a results file as a profile CSV (outer radius and wall along the bat) that a
+//! study reads back as the same bat (`bat.profile.csv`): `batstudy export-profile` and the
+//! Python package's `export_profile`.
+
+use crate::model::bat::export::{profile_rows, ProfileRow};
+use crate::model::bat::section::BatGeometry;
+use crate::model::spec::BatSpec;
+use crate::store;
+use crate::study::error::printable;
+use std::path::Path;
+
+/// Units a profile CSV may be written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Units {
+    M,
+    Mm,
+    In,
+}
+
+impl Units {
+    /// The header's suffix and units per metre.
+    fn suffix_and_scale(self) -> (&'static str, f64) {
+        match self {
+            Units::M => ("m", 1.0),
+            Units::Mm => ("mm", 1e3),
+            Units::In => ("in", 1.0 / 0.0254),
+        }
+    }
+}
+
+impl std::str::FromStr for Units {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "m" => Ok(Units::M),
+            "mm" => Ok(Units::Mm),
+            "in" => Ok(Units::In),
+            _ => Err(format!("units {}: allowed m, mm, in", printable(s, false))),
+        }
+    }
+}
+
+/// The CSV of bat `bat` (a label or an index; may be left out when the file holds one bat)
+/// of the results file `file`, in `units`; or what is wrong, naming the file.
+pub fn profile_csv(file: &Path, bat: Option<&str>, units: Units) -> Result<String, String> {
+    let shown = printable(&file.display().to_string(), false).to_string();
+    let bats = store::inspect::bat_specs(file).map_err(|e| e.to_string())?;
+    let (label, spec) = pick(&bats, bat).map_err(|allowed| format!("{shown}: --bat: {allowed}"))?;
+    let stored: serde_json::Value = serde_json::from_str(spec)
+        .map_err(|e| format!("{shown}: the bat's stored spec is not JSON ({e})"))?;
+    let spec: BatSpec = serde_json::from_value(stored["bat"].clone())
+        .map_err(|e| format!("{shown}: the bat's stored spec is not a bat ({e})"))?;
+    if spec.preset.is_rigid_target() {
+        return Err(format!(
+            "{shown}: bat {}: a rigid target has no profile",
+            printable(label, false)
+        ));
+    }
+    let g = BatGeometry::resolve(&spec).map_err(|e| format!("{shown}: {e}"))?;
+    Ok(csv_text(&profile_rows(&g), &g, label, &shown, units))
+}
+
+/// The bat named by `want` (a label or an index), or what is allowed.
+fn pick<'a>(
+    bats: &'a [(String, String)],
+    want: Option<&str>,
+) -> Result<(&'a str, &'a str), String> {
+    let listed = || {
+        bats.iter()
+            .enumerate()
+            .map(|(i, (l, _))| format!("{i}: {}", printable(l, false)))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    let found = match want {
+        None if bats.len() == 1 => Some(&bats[0]),
+        None => None,
+        Some(w) => bats
+            .iter()
+            .find(|(l, _)| l == w)
+            .or_else(|| w.parse::<usize>().ok().and_then(|i| bats.get(i))),
+    };
+    match (found, want) {
+        (Some((l, s)), _) => Ok((l, s)),
+        (None, None) => Err(format!(
+            "the file holds {} bats; name one of {}",
+            bats.len(),
+            listed()
+        )),
+        (None, Some(w)) => Err(format!(
+            "{} is not a bat of the file; allowed: {}",
+            printable(w, false),
+            listed()
+        )),
+    }
+}
+
+/// The CSV: comment lines (the bat, what the CSV leaves to the study), the header, the rows.
+fn csv_text(rows: &[ProfileRow], g: &BatGeometry, label: &str, file: &str, units: Units) -> String {
+    let (u, scale) = units.suffix_and_scale();
+    let hollow = rows.iter().any(|r| r.wall > 0.0);
+    let mut s = format!(
+        "# bat {} of {file}, written by batstudy export-profile\n\
+         # read back with bat.profile.csv; the CSV holds the outer radius{}, not the material:\n\
+         # bat.material.density {} kg/m3, bat.material.youngs_modulus {} Pa{}\n",
+        printable(label, false),
+        if hollow {
+            " and the wall (0: solid)"
+        } else {
+            ""
+        },
+        g.density,
+        g.youngs_modulus,
+        if g.fill_density > 0.0 {
+            format!(", bat.fill.density {} kg/m3", g.fill_density)
+        } else {
+            String::new()
+        }
+    );
+    s.push_str(&format!("z_{u},radius_{u}"));
+    if hollow {
+        s.push_str(&format!(",wall_{u}"));
+    }
+    s.push('\n');
+    for r in rows {
+        s.push_str(&format!("{},{}", r.z * scale, r.radius * scale));
+        if hollow {
+            s.push_str(&format!(",{}", r.wall * scale));
+        }
+        s.push('\n');
+    }
+    s
+}
