@@ -113,7 +113,12 @@ def _progress_bar(
             return
         bar = state.get("bar")
         if bar is None:
-            bar = state["bar"] = tqdm(total=total, unit=unit, desc=desc)
+            # what was done before this call (a resumed run's points) is where the bar
+            # starts, not work done at once; the rate is the run's mean (smoothing 0), not
+            # the last burst's
+            bar = state["bar"] = tqdm(
+                total=total, initial=done, unit=unit, desc=desc, smoothing=0
+            )
         bar.update(done - bar.n)
 
     def close() -> None:

@@ -24,9 +24,10 @@ def optimize(
     """Search the design of ``study`` (a path, YAML text or a dict with an ``optimize``
     block; relative profile paths of text and dicts are taken from the working folder) into
     the results file ``output`` (default: the study's ``output``, else
-    ``results/<name>.h5``) and return the file's ``/optimize`` group as an
-    :class:`xarray.Dataset` (one row per candidate; the best feasible design and its margins
-    in ``.attrs``).
+    ``results/<name>.h5``) and return the file as :func:`open_results` reads it: an
+    :class:`xarray.DataTree` whose ``/optimize`` holds one row per candidate
+    (``candidate × variable``, ``candidate × constraint``) and ``/optimize/best`` the best
+    feasible design, its constraints' values and margins.
 
     The file itself holds the study run at the best design (``/summary``, ``/sweet_spot``,
     ``/bat``) beside ``/optimize``. The search runs in this process as :func:`run` does: a
@@ -38,9 +39,8 @@ def optimize(
     when the search itself fails (3); a search that finds no feasible design, or whose
     final run has failed points, warns (exit status 1). ``quiet=False`` prints the report.
     """
-    import xarray as xr
-
     from . import _native
+    from ._open import open_results
 
     path, text = _study_source(study)
     result, code, message, report = _command(
@@ -54,5 +54,4 @@ def optimize(
         warnings.warn("\n".join(x for x in (message, report.strip()) if x), RuntimeWarning, stacklevel=2)
     elif not quiet and report:
         print(report.strip(), file=sys.stderr)
-    with xr.open_dataset(result, engine="h5netcdf", group="optimize") as ds:
-        return ds.load()
+    return open_results(result)

@@ -24,15 +24,16 @@ def test_optimize_finds_the_centre_of_mass(tmp_path):
     import xarray as xr
 
     out = tmp_path / "best.h5"
-    o = batstudy.optimize(STUDY, out)
+    tree = batstudy.optimize(STUDY, out)
+    o, best = tree["optimize"], tree["optimize/best"]
     with xr.open_dataset(out, engine="h5netcdf", group="bat") as b:
         z_cm = float(b.z_cm[0])
-    assert abs(float(o.attrs["best_design"]) - z_cm) < 1e-4
+    assert abs(float(best.design.sel(variable="impact.z")) - z_cm) < 1e-4
     assert o.sizes["candidate"] == int(o.attrs["evaluations"]) > 5
     assert (o.status.values == 0).all()
     # the file holds the study at the best design too
     with xr.open_dataset(out, engine="h5netcdf", group="summary") as s:
-        assert abs(float(s.exit_speed.max()) - float(o.attrs["best_objective"])) < 1e-12
+        assert abs(float(s.exit_speed.max()) - float(best.objective)) < 1e-12
 
 
 def test_optimize_refuses_a_study_without_the_block(tmp_path):
@@ -53,7 +54,7 @@ def test_a_dict_reads_its_profile_from_the_working_folder(tmp_path, monkeypatch)
         "grid": {"swing.cm_speed": np.array([0])},
         "optimize": {**STUDY["optimize"], "max_evaluations": np.int64(30)},
     }
-    o = batstudy.optimize(study, "out.h5")
+    o = batstudy.optimize(study, "out.h5")["optimize"]
     assert 5 < o.sizes["candidate"] <= 30
     assert (tmp_path / "out.h5").is_file()
 
