@@ -7,7 +7,7 @@ Prints one line per problem and exits 1 if there is any, 0 (after "layout ok") i
 none, and 2 if the file cannot be checked at all (missing, not HDF5, or h5py / xarray /
 h5netcdf not installed).
 
-What is checked (layout_version 4, as docs/layout.md describes it):
+What is checked (layout_version 5, as docs/layout.md describes it):
 
 - root attributes: every documented one is present with its type; `Conventions` is CF-1.8;
   `title` names the study; `study_sha256` is the SHA-256 of `study_yaml` (for a study that names no profile file); `created` is ISO 8601
@@ -56,7 +56,7 @@ import json
 import re
 import sys
 
-LAYOUT_VERSION = 4
+LAYOUT_VERSION = 5
 # longest `long_name` (short, for plot labels; layout 3)
 LONG_NAME_MAX = 40
 

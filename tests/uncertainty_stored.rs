@@ -28,8 +28,8 @@ const LO: f64 = 0.514;
 const HI: f64 = 0.578;
 const N: usize = 256;
 const Z: [f64; 2] = [0.62, 0.70];
-/// The percentiles `/uncertainty` stores, in percent (docs/layout.md).
-const PERCENTILES: [f64; 7] = [2.5, 5.0, 25.0, 50.0, 75.0, 95.0, 97.5];
+/// The quantiles `/uncertainty` stores (docs/layout.md).
+const QUANTILES: [f64; 7] = [0.025, 0.05, 0.25, 0.5, 0.75, 0.95, 0.975];
 
 fn study() -> String {
     format!(
@@ -58,15 +58,15 @@ fn read(f: &hdf5::File, name: &str) -> Vec<f64> {
         .unwrap()
 }
 
-/// `q` (7 percentiles), `mean` and `std` of a + b u, u uniform on [0, 1], within the bands
+/// `q` (7 quantiles), `mean` and `std` of a + b u, u uniform on [0, 1], within the bands
 /// the net property gives.
 fn check(what: &str, q: &[f64], mean: f64, std: f64, (a, b): (f64, f64)) {
     let n = N as f64;
-    for (&got, p) in q.iter().zip(PERCENTILES) {
-        let want = a + b * p / 100.0;
+    for (&got, p) in q.iter().zip(QUANTILES) {
+        let want = a + b * p;
         assert!(
             (got - want).abs() <= 2.0 * b / n,
-            "{what}: percentile {p}: {got} against {want} ± {}",
+            "{what}: quantile {p}: {got} against {want} ± {}",
             2.0 * b / n
         );
     }

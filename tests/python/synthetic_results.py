@@ -204,7 +204,7 @@ def write(path, impact_z=None) -> str:
         f.attrs.update(
             Conventions="CF-1.8", title="batstudy results: synthetic", study_name="synthetic",
             study_description="synthetic stand-in for tests", study_yaml="name: synthetic\nmodel: wave\n",
-            layout_version=4, n_points=int(np.prod(shape)), n_done=int(np.prod(shape)), n_failed=0,
+            layout_version=5, n_points=int(np.prod(shape)), n_done=int(np.prod(shape)), n_failed=0,
             complete=1, shard="",
         )  # fmt: skip
         for gname in ("summary", "sweet_spot", "history"):
@@ -335,7 +335,7 @@ def write_many_histories(path, n_cases: int = 200, n_impacts: int = 200) -> tupl
     t = np.arange(0.0, 2.0e-3, 1.0e-4)
     stored = np.arange(0, n_cases, 2)
     with h5py.File(path, "w") as f:
-        f.attrs.update(study_name="many_histories", layout_version=4)
+        f.attrs.update(study_name="many_histories", layout_version=5)
         s, h = f.create_group("summary"), f.create_group("history")
         for g in (s, h):
             _scale(g, "impact_z", impact_z, "m", "impact position")

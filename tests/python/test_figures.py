@@ -104,7 +104,7 @@ def test_missing_data_is_skipped(tmp_path, capsys):
     ds.to_netcdf(path, engine="h5netcdf", group="summary")
     # what marks a file as batstudy's (another program's HDF5 file is refused)
     with h5py.File(path, "r+") as f:
-        f.attrs["layout_version"] = np.int64(4)
+        f.attrs["layout_version"] = np.int64(5)
     out = tmp_path / "out"
     assert plot.main([str(path), "-o", str(out)]) == 0
     text = capsys.readouterr().out

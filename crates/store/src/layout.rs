@@ -8,7 +8,7 @@ use batstudy_physics::outcome::{
 };
 
 /// Version of the file layout documented in docs/layout.md.
-pub const LAYOUT_VERSION: u32 = 4;
+pub const LAYOUT_VERSION: u32 = 5;
 
 pub const GROUP_SUMMARY: &str = "summary";
 pub const GROUP_ERRORS: &str = "errors";

@@ -75,7 +75,7 @@ pub const RESERVED_NAMES: &[&str] = &[
 /// The names `/uncertainty` gives its variables beside the study's coordinates:
 /// reserved too ([`is_reserved`]); `store::build::uncertainty` writes them.
 pub const UNCERTAINTY_NAMES: &[&str] = &[
-    "percentile",
+    "quantile",
     "exit_speed",
     "exit_speed_mean",
     "exit_speed_std",

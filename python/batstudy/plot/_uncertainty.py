@@ -20,7 +20,7 @@ def uncertainty(path, ax=None):
         pos = w.position.squeeze(drop=True).values
     with xr.open_dataset(path, engine="h5netcdf", group="uncertainty") as u:
         p_above = float(u.bbcor_max_above_limit.squeeze())
-        lo, hi = (float(u.sweet_spot_position.sel(percentile=q).squeeze()) for q in (2.5, 97.5))
+        lo, hi = (float(u.sweet_spot_position.sel(quantile=q).squeeze()) for q in (0.025, 0.975))
     if ax is None:
         _, ax = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
     a, b = ax

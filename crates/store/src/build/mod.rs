@@ -38,5 +38,5 @@ pub use grid::summary_chunk;
 pub use history::{place_history, HistoryTail};
 pub use skeleton::{begin_skeleton, complete_skeleton, create_skeleton, Skeleton};
 pub use spill::remove_stale_spills;
-pub use uncertainty::{statistics, GROUP_UNCERTAINTY, PERCENTILES, UNCERTAINTY_NAMES};
+pub use uncertainty::{statistics, GROUP_UNCERTAINTY, QUANTILES, UNCERTAINTY_NAMES};
 pub use window::Gathered;

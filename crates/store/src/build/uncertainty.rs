@@ -1,5 +1,5 @@
 //! `/uncertainty`: what a `sample` dimension's scatter does to the answers —
-//! percentiles, mean and standard deviation over the sample of the exit speed and BBCOR of
+//! quantiles, mean and standard deviation over the sample of the exit speed and BBCOR of
 //! every point, of the sweet spot's position and exit speed, and of the bat's BBCOR (its
 //! maximum along `impact_z`, parabola-refined) with the probability that it exceeds the
 //! NCAA limit. Read back from the finished `/summary` and `/sweet_spot`, so it is the same
@@ -16,14 +16,14 @@ use std::path::Path;
 
 /// The group's name.
 pub const GROUP_UNCERTAINTY: &str = "uncertainty";
-/// The percentiles stored, in percent.
-pub const PERCENTILES: [f64; 7] = [2.5, 5.0, 25.0, 50.0, 75.0, 95.0, 97.5];
+/// The quantiles stored, as fractions of the sample (xarray's and NumPy's `quantile`).
+pub const QUANTILES: [f64; 7] = [0.025, 0.05, 0.25, 0.5, 0.75, 0.95, 0.975];
 /// The NCAA BBCOR limit the exceedance probability is counted against.
 pub const BBCOR_LIMIT: f64 = 0.50;
 
 pub use crate::results::UNCERTAINTY_NAMES;
 
-/// Percentiles (linear between order statistics, NumPy's default), mean and sample
+/// Quantiles (linear between order statistics, NumPy's default), mean and sample
 /// standard deviation of the finite values; NaN where there are none (std: fewer than 2).
 pub fn statistics(values: &[f64]) -> ([f64; 7], f64, f64) {
     let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
@@ -32,8 +32,8 @@ pub fn statistics(values: &[f64]) -> ([f64; 7], f64, f64) {
         return ([f64::NAN; 7], f64::NAN, f64::NAN);
     }
     v.sort_by(f64::total_cmp);
-    let pct = PERCENTILES.map(|p| {
-        let h = (n - 1) as f64 * p / 100.0;
+    let pct = QUANTILES.map(|p| {
+        let h = (n - 1) as f64 * p;
         let (lo, t) = (h.floor() as usize, h - h.floor());
         match lo + 1 < n {
             true => v[lo] + t * (v[lo + 1] - v[lo]),
@@ -204,8 +204,8 @@ fn bbcor_max(
     Ok((q, above))
 }
 
-/// The group: the study's dims without the sample (coordinates and scales), `percentile`,
-/// and each quantity's percentiles, mean and standard deviation.
+/// The group: the study's dims without the sample (coordinates and scales), `quantile`,
+/// and each quantity's quantiles, mean and standard deviation.
 fn write_group(
     f: &File,
     dims: &[Dim],
@@ -222,13 +222,13 @@ fn write_group(
     let kept_dims: Vec<Dim> = kept.iter().map(|&k| dims[k].clone()).collect();
     let (scales, aux) = study_dims(&g, &kept_dims, &att, out)?;
     let pdef = VarDef {
-        name: "percentile",
-        units: "percent",
-        long_name: "percentile",
-        description: "percentile of the quantity over the sample dimension",
+        name: "quantile",
+        units: "1",
+        long_name: "quantile",
+        description: "quantile of the quantity over the sample dimension: the fraction of the sample at or below it",
     };
-    let pscale = h5u::scale_coord(&g, "percentile", &PERCENTILES, &pdef)
-        .ctx(out, "write the percentile coordinate")?;
+    let pscale = h5u::scale_coord(&g, "quantile", &QUANTILES, &pdef)
+        .ctx(out, "write the quantile coordinate")?;
     let scale_of = |k: usize| &scales[kept.iter().position(|&j| j == k).expect("kept dim")];
     for q in qs {
         let qscales: Vec<&Dataset> = q.dims.iter().map(|&k| scale_of(k)).collect();
@@ -237,12 +237,12 @@ fn write_group(
         let mut with_p = qscales.clone();
         with_p.push(&pscale);
         let mut pshape = shape.clone();
-        pshape.push(PERCENTILES.len());
+        pshape.push(QUANTILES.len());
         let desc = |what: &str| format!("{what} of {} over the sample", q.def.name);
         let parts: [Part; 3] = [
             (
                 OwnedVarDef {
-                    description: desc("percentiles"),
+                    description: desc("quantiles"),
                     ..q.def.clone()
                 },
                 &with_p,
@@ -321,8 +321,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn percentiles_as_numpy() {
-        // numpy.percentile([1, 2, 3, 4, 10], [2.5, 5, 25, 50, 75, 95, 97.5])
+    fn quantiles_as_numpy() {
+        // numpy.quantile([1, 2, 3, 4, 10], [0.025, 0.05, 0.25, 0.5, 0.75, 0.95, 0.975])
         let (p, mean, std) = statistics(&[4.0, 1.0, f64::NAN, 10.0, 3.0, 2.0]);
         let want = [1.1, 1.2, 2.0, 3.0, 4.0, 8.8, 9.4];
         for (a, b) in p.iter().zip(want) {
