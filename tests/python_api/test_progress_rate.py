@@ -3,13 +3,10 @@ points already done are where the bar starts, not work done in the first instant
 showed rates of millions of points per second on short or resumed runs)."""
 
 import re
-import sys
 import time
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "python"))
 pytest.importorskip("tqdm")
 
 
