@@ -141,3 +141,71 @@ def test_mutated_spec_texts_raise_study_errors_and_never_crash():
             outcomes["refused"] += 1
     # both paths exercised (most mutations break a spec; some leave it valid)
     assert outcomes["ok"] >= 5 and outcomes["refused"] >= 100, outcomes
+
+
+# A wave-model study long enough (some seconds on one thread) for a signal to land mid-run.
+LONG_STUDY = {
+    "name": "long",
+    "model": "wave",
+    "base": {"ball": {"speed": 40}},
+    "grid": {"swing.omega": {"range": [-50, 0, 5]}, "impact.z": {"range": [0.40, 0.84, 0.002]}},
+}
+
+
+def test_submitit_requeues_a_preempted_shard_which_resumes_to_the_whole(tmp_path):
+    """The submitit recipe: a `ShardTask` job signalled mid-run (a pre-emption; a time-out is
+    the same signal) is checkpointed and requeued, and the requeued job resumes its shard:
+    the merged shards equal one run, bit for bit."""
+    submitit = pytest.importorskip("submitit")
+    import time
+
+    whole = batstudy.run(LONG_STUDY, output=tmp_path / "whole.h5", progress=False)
+    ex = submitit.LocalExecutor(folder=tmp_path / "logs")
+    ex.update_parameters(timeout_min=10)
+    first = tmp_path / "s1.h5"
+    job = ex.submit(batstudy.ShardTask(LONG_STUDY, (1, 2), first, jobs=1))
+    # signal once the run has written something of its shard
+    deadline = time.time() + 120
+    while not any(p.name.startswith("s1.h5") for p in tmp_path.iterdir()) and time.time() < deadline:
+        time.sleep(0.05)
+    time.sleep(0.5)
+    job._interrupt()
+    parts = [job.result(), batstudy.ShardTask(LONG_STUDY, (2, 2), tmp_path / "s2.h5", jobs=1)()]
+    log = job.stderr() or ""
+    assert "preempted" in log and "Exiting gracefully" in log, log
+    merged = batstudy.merge(tmp_path / "merged.h5", parts)
+    np.testing.assert_array_equal(exit_speeds(merged), exit_speeds(whole))
+
+
+def test_dask_runs_one_shard_per_worker_at_a_time(tmp_path):
+    """The dask recipe: workers that each offer one `shard` resource, tasks that each need
+    it: no worker runs two shards at once (each shard's run uses the worker's cores), and the
+    merged shards equal one run."""
+    distributed = pytest.importorskip("distributed")
+    import time
+
+    def timed(task):
+        start = time.time()
+        path = task()
+        return path, distributed.get_worker().address, start, time.time()
+
+    n = 4
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=2, processes=True, resources={"shard": 1}, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        futures = [
+            client.submit(timed, batstudy.ShardTask(STUDY, (i, n), tmp_path / f"d{i}.h5", jobs=1),
+                          resources={"shard": 1}, pure=False)
+            for i in range(1, n + 1)
+        ]
+        done = client.gather(futures)
+    by_worker = {}
+    for _, worker, start, end in done:
+        by_worker.setdefault(worker, []).append((start, end))
+    for spans in by_worker.values():
+        spans.sort()
+        for (s0, e0), (s1, e1) in zip(spans, spans[1:]):
+            assert s1 >= e0, f"two shards at once on one worker: {spans}"
+    whole = batstudy.run(STUDY, output=tmp_path / "whole.h5", progress=False)
+    merged = batstudy.merge(tmp_path / "merged.h5", [p for p, *_ in done])
+    np.testing.assert_array_equal(exit_speeds(merged), exit_speeds(whole))
