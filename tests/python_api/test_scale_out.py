@@ -172,7 +172,7 @@ def test_submitit_requeues_a_preempted_shard_which_resumes_to_the_whole(tmp_path
     job._interrupt()
     parts = [job.result(), batstudy.ShardTask(LONG_STUDY, (2, 2), tmp_path / "s2.h5", jobs=1)()]
     log = job.stderr() or ""
-    assert "preempted" in log and "Exiting gracefully" in log, log
+    assert "preempted" in log and "Requeued job" in log, log
     merged = batstudy.merge(tmp_path / "merged.h5", parts)
     np.testing.assert_array_equal(exit_speeds(merged), exit_speeds(whole))
 
