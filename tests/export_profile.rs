@@ -11,7 +11,7 @@ mod common;
 
 use batstudy::model::prepare_bat;
 use batstudy::study::{load, LoadOptions};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Bats that exercise every part of the export: a tube whose wall varies and whose handle is
 /// scaled (the blend's parabola), a composite stack, a drilled and cork-filled wood bat.
@@ -27,6 +27,24 @@ const BATS: [(&str, &str); 3] = [
     ),
 ];
 
+/// Write the study `text` as `name.yaml` in `dir` and run it into `name.h5`.
+fn run_study(dir: &Path, name: &str, text: &str) -> (PathBuf, PathBuf) {
+    let (study, out) = (
+        dir.join(format!("{name}.yaml")),
+        dir.join(format!("{name}.h5")),
+    );
+    std::fs::write(&study, text).unwrap();
+    let args = [
+        "run",
+        study.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    common::batstudy_ok(&args);
+    (study, out)
+}
+
 fn properties(study: &Path) -> batstudy::model::outcome::BatProperties {
     let s = load(study, &LoadOptions::default()).unwrap();
     let spec = s.plan.point(0).unwrap().spec;
@@ -40,17 +58,8 @@ fn properties(study: &Path) -> batstudy::model::outcome::BatProperties {
 fn an_exported_profile_reads_back_as_the_same_bat() {
     let dir = tempfile::tempdir().unwrap();
     for (i, (bat, back)) in BATS.iter().enumerate() {
-        let study = dir.path().join(format!("s{i}.yaml"));
         let text = format!("name: s{i}\nbase:\n  bat: {bat}\ngrid:\n  impact.z: [0.7]\n");
-        std::fs::write(&study, text).unwrap();
-        let out = dir.path().join(format!("s{i}.h5"));
-        common::batstudy_ok(&[
-            "run",
-            study.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--quiet",
-        ]);
+        let (study, out) = run_study(dir.path(), &format!("s{i}"), &text);
         let original = properties(&study);
         for units in ["m", "mm", "in"] {
             let csv = dir.path().join(format!("bat{i}_{units}.csv"));
@@ -120,17 +129,8 @@ fn original_material(csv: &str, field: &str) -> f64 {
 #[test]
 fn the_bat_asked_for_must_be_in_the_file() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("two.yaml");
     let text = "name: two\nbase: {}\ngrid:\n  bat.preset: [r161, aluminum]\n  impact.z: [0.7]\n";
-    std::fs::write(&study, text).unwrap();
-    let out = dir.path().join("two.h5");
-    common::batstudy_ok(&[
-        "run",
-        study.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (_, out) = run_study(dir.path(), "two", text);
     let csv = dir.path().join("x.csv");
     for args in [vec![], vec!["--bat", "steel"], vec!["--bat", "7"]] {
         let mut all = vec![

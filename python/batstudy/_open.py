@@ -219,7 +219,12 @@ def _plain(v):
 def _stack(ds: xr.Dataset, stem: str, dim: str) -> xr.DataArray:
     """`stem_0`, `stem_1`, … of `ds` (one per entry of `dim`, each with its own units) as one
     variable along (candidate, `dim`); the units per entry in the coordinate `{dim}_units`."""
-    parts = [ds[f"{stem}_{k}"] for k in range(ds.sizes[dim])]
+    parts = [ds[f"{stem}_{k}"] for k in range(ds.sizes.get(dim, 0))]
+    if not parts:  # a search without constraints: an empty column block
+        empty = np.empty((ds.sizes["candidate"], 0))
+        out = xr.DataArray(empty, dims=("candidate", dim), coords={dim: np.array([], dtype=str)})
+        out.attrs = {"long_name": stem, "description": f"{stem} of each candidate along {dim} (none)"}
+        return out
     out = xr.concat(parts, dim=dim).transpose("candidate", dim)
     out = out.assign_coords({dim: ds[dim].values})
     units = [str(p.attrs.get("units", "")) for p in parts]

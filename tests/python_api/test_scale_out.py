@@ -143,36 +143,30 @@ def test_mutated_spec_texts_raise_study_errors_and_never_crash():
     assert outcomes["ok"] >= 5 and outcomes["refused"] >= 100, outcomes
 
 
-# A wave-model study long enough (some seconds on one thread) for a signal to land mid-run.
+# A wave-model study whose shards take some seconds on one thread, longer than the time-out
+# below leaves them.
 LONG_STUDY = {
     "name": "long",
     "model": "wave",
     "base": {"ball": {"speed": 40}},
-    "grid": {"swing.omega": {"range": [-50, 0, 5]}, "impact.z": {"range": [0.40, 0.84, 0.002]}},
+    "grid": {"swing.omega": {"range": [-50, 0, 1]}, "impact.z": {"range": [0.40, 0.84, 0.0008]}},
 }
 
 
-def test_submitit_requeues_a_preempted_shard_which_resumes_to_the_whole(tmp_path):
-    """The submitit recipe: a `ShardTask` job signalled mid-run (a pre-emption; a time-out is
-    the same signal) is checkpointed and requeued, and the requeued job resumes its shard:
-    the merged shards equal one run, bit for bit."""
+def test_submitit_requeues_a_timed_out_shard_which_resumes_to_the_whole(tmp_path):
+    """The submitit recipe: a `ShardTask` job that times out (the local executor signals it
+    3 s after each start, as Slurm signals a job before its time limit) is checkpointed and
+    requeued, and each requeued job resumes the shard: the merged shards equal one run, bit
+    for bit."""
     submitit = pytest.importorskip("submitit")
-    import time
 
-    whole = batstudy.run(LONG_STUDY, output=tmp_path / "whole.h5", progress=False)
-    ex = submitit.LocalExecutor(folder=tmp_path / "logs")
-    ex.update_parameters(timeout_min=10)
-    first = tmp_path / "s1.h5"
-    job = ex.submit(batstudy.ShardTask(LONG_STUDY, (1, 2), first, jobs=1))
-    # signal once the run has written something of its shard
-    deadline = time.time() + 120
-    while not any(p.name.startswith("s1.h5") for p in tmp_path.iterdir()) and time.time() < deadline:
-        time.sleep(0.05)
-    time.sleep(0.5)
-    job._interrupt()
+    ex = submitit.LocalExecutor(folder=tmp_path / "logs", max_num_timeout=20)
+    ex.update_parameters(timeout_min=0.2, signal_delay_s=9)
+    job = ex.submit(batstudy.ShardTask(LONG_STUDY, (1, 2), tmp_path / "s1.h5", jobs=1))
     parts = [job.result(), batstudy.ShardTask(LONG_STUDY, (2, 2), tmp_path / "s2.h5", jobs=1)()]
-    log = job.stderr() or ""
-    assert "preempted" in log and "Requeued job" in log, log
+    log = job.stdout() or ""
+    assert "timed-out" in log and "Requeued job" in log, log
+    whole = batstudy.run(LONG_STUDY, output=tmp_path / "whole.h5", progress=False)
     merged = batstudy.merge(tmp_path / "merged.h5", parts)
     np.testing.assert_array_equal(exit_speeds(merged), exit_speeds(whole))
 
