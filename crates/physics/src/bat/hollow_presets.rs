@@ -9,7 +9,7 @@
 //! carbon stack between hoop-wound glass plies, as patents describe (fibres near axial
 //! inside, near hoop outside), thick enough to certify after break-in.
 
-use crate::spec::{BatPreset, BatSpec, LayerSpec, MaterialSpec, ProfileSpec, ShellSpec};
+use crate::spec::{BatPreset, BatSpec, LayerSpec, MaterialSpec, ProfileSpec};
 
 /// 33 in, m.
 pub const LENGTH: f64 = 0.8382;
@@ -108,14 +108,4 @@ pub fn expand(bat: &BatSpec) -> BatSpec {
         };
     }
     out
-}
-
-/// The stack a composite preset's spec names, for tests and docs.
-pub fn composite_shell() -> ShellSpec {
-    ShellSpec {
-        from: Some(0.0),
-        thickness_knots: Some(composite_wall()),
-        layers: Some(composite_layers()),
-        ..ShellSpec::default()
-    }
 }

@@ -96,3 +96,34 @@ impl ModalStep {
         s
     }
 }
+
+impl ModalStep {
+    /// Mode j's coordinate and velocity after the step from (x, ẋ) under a force that goes
+    /// linearly from p0 to p1.
+    #[inline]
+    pub(super) fn advance(
+        &self,
+        j: usize,
+        (x, xd): (f64, f64),
+        (p0, p1): (f64, f64),
+    ) -> (f64, f64) {
+        (
+            self.cos[j] * x
+                + self.sin_over_omega[j] * xd
+                + self.q_start[j] * p0
+                + self.q_end[j] * p1,
+            self.minus_omega_sin[j] * x
+                + self.a22[j] * xd
+                + self.v_start[j] * p0
+                + self.v_end[j] * p1,
+        )
+    }
+}
+
+/// Dissipation rate of modal damping ζ, Σ 2ζω q̇², W (unit modal masses).
+pub(super) fn damping_rate(omega: &[f64], zeta: f64, qd: &[f64]) -> f64 {
+    qd.iter()
+        .zip(omega)
+        .map(|(v, w)| 2.0 * zeta * w * v * v)
+        .sum()
+}

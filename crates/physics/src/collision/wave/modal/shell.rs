@@ -1,6 +1,7 @@
 //! The barrel's breathing modes in a modal step: stepped exactly, as the beam's modes are,
 //! under the contact's normal force (linear over the step), beside the beam.
 
+use super::propagator::damping_rate;
 use super::setup::{dot_n, ShellStep};
 
 /// The shell's coordinates and velocities, its displacement at the contact (inward, along
@@ -44,31 +45,16 @@ pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
 /// The modes' exact update under the normal force (n0 → n1), and their damping's losses
 /// over the step (Simpson's rule, the mid-step velocities from an exact half step).
 pub(super) fn advance(sh: &ShellStep, shell: &mut ShellState, (n0, n1): (f64, f64)) {
-    let st = &sh.st;
-    let rate = |qd: &[f64]| -> f64 {
-        qd.iter()
-            .zip(&sh.omega)
-            .map(|(v, w)| 2.0 * sh.zeta * w * v * v)
-            .sum()
-    };
+    let rate = |qd: &[f64]| damping_rate(&sh.omega, sh.zeta, qd);
     if let Some(hs) = &sh.half {
         let nm = 0.5 * (n0 + n1);
         let mid: Vec<f64> = (0..shell.q.len())
-            .map(|j| {
-                hs.minus_omega_sin[j] * shell.q[j]
-                    + hs.a22[j] * shell.qd[j]
-                    + hs.v_start[j] * n0
-                    + hs.v_end[j] * nm
-            })
+            .map(|j| hs.advance(j, (shell.q[j], shell.qd[j]), (n0, nm)).1)
             .collect();
         shell.damping += sh.h / 6.0 * (rate(&shell.qd) + 4.0 * rate(&mid));
     }
     for j in 0..shell.q.len() {
-        let (x, xd) = (shell.q[j], shell.qd[j]);
-        shell.q[j] =
-            st.cos[j] * x + st.sin_over_omega[j] * xd + st.q_start[j] * n0 + st.q_end[j] * n1;
-        shell.qd[j] =
-            st.minus_omega_sin[j] * x + st.a22[j] * xd + st.v_start[j] * n0 + st.v_end[j] * n1;
+        (shell.q[j], shell.qd[j]) = sh.st.advance(j, (shell.q[j], shell.qd[j]), (n0, n1));
     }
     if sh.half.is_some() {
         shell.damping += sh.h / 6.0 * rate(&shell.qd);

@@ -178,10 +178,7 @@ pub(super) fn solve_contact(
 
 /// Dissipation rate of material damping, Σ 2ζω q̇².
 fn damping_rate(s: &Setup, qd: &[f64]) -> f64 {
-    qd.iter()
-        .zip(s.omega)
-        .map(|(v, w)| 2.0 * s.zeta * w * v * v)
-        .sum()
+    super::propagator::damping_rate(s.omega, s.zeta, qd)
 }
 
 /// Material damping's part of the step before the modes move: Simpson's rule over the
@@ -201,10 +198,7 @@ pub(super) fn material_losses_before(s: &Setup, state: &mut State, p0: f64, p1: 
 
 /// Mode j's velocity after a half step under the bat's start and mid forces.
 fn mid_velocity(hs: &ModalStep, state: &State, j: usize, p0: f64, pm: f64) -> f64 {
-    hs.minus_omega_sin[j] * state.q[j]
-        + hs.a22[j] * state.qd[j]
-        + hs.v_start[j] * p0
-        + hs.v_end[j] * pm
+    hs.advance(j, (state.q[j], state.qd[j]), (p0, pm)).1
 }
 
 /// The grip damper's losses before the modes move: its power c·v² by Simpson's rule (the
@@ -248,9 +242,7 @@ pub(super) fn advance_modes(
 ) {
     let st = &s.st;
     for (j, (qj, qdj)) in state.q.iter_mut().zip(state.qd.iter_mut()).enumerate() {
-        let (x, xd) = (*qj, *qdj);
-        *qj = st.cos[j] * x + st.sin_over_omega[j] * xd + st.q_start[j] * p0 + st.q_end[j] * p1;
-        *qdj = st.minus_omega_sin[j] * x + st.a22[j] * xd + st.v_start[j] * p0 + st.v_end[j] * p1;
+        (*qj, *qdj) = st.advance(j, (*qj, *qdj), (p0, p1));
         if let Some(g) = &s.grip {
             *qj += g.st.q_start[j] * d0 + g.st.q_end[j] * d1;
             *qdj += g.st.v_start[j] * d0 + g.st.v_end[j] * d1;
