@@ -8,6 +8,13 @@
 //! for two normal parameters, that of the logarithms for two lognormal ones), and taken back
 //! to each parameter's distribution by its quantile function. Without correlations the
 //! points are the Sobol points themselves, mapped one coordinate at a time.
+//!
+//! `method: saltelli` is Saltelli's design for first- and total-order Sobol indices
+//! (Saltelli 2002; Saltelli et al. 2010, Comput. Phys. Commun. 181, 259): two matrices A and
+//! B of n points each from 2d Sobol dimensions, and for each point i the rows A_i, A_i with
+//! its k-th coordinate from B_i (k = 1 … d), then B_i: n(d + 2) points, in the order SALib's
+//! `sobol.analyze` reads them (second-order terms left out). Its estimators need independent
+//! inputs: no correlations.
 
 use super::source::{keys, Seg};
 use indexmap::IndexMap;
@@ -27,9 +34,12 @@ pub struct SampleBlock {
     /// Dimension name. Default `sample`.
     #[serde(default)]
     pub name: Option<String>,
-    /// Number of points, 1 to 65536 (a power of 2 keeps the Sobol design balanced).
+    /// Number of points, 1 to 65536 (a power of 2 keeps the Sobol design balanced); with
+    /// `method: saltelli` the number of base points, the dimension then holding n(d + 2)
+    /// for d parameters.
     pub n: usize,
-    /// The design: `sobol` (Owen-scrambled Sobol points, the default).
+    /// The design: `sobol` (Owen-scrambled Sobol points, the default), or `saltelli`
+    /// (Saltelli's design for total-order indices, `batstudy.sobol_indices(order="total")`).
     #[serde(default)]
     pub method: SampleMethod,
     /// Seed of the scrambling (0 to 2^32 − 1): another seed, another independent design.
@@ -61,6 +71,9 @@ pub enum SampleMethod {
     /// Owen-scrambled Sobol points (Burley 2020), seeded by `seed`.
     #[default]
     Sobol,
+    /// Saltelli's design from the same points: A, the d rows of A with one column of B, B
+    /// for each base point (n(d + 2) points); independent parameters only.
+    Saltelli,
 }
 
 /// Which measured spread of the preset ball `sample.ball_spread` draws.
@@ -301,18 +314,19 @@ pub fn draw(block: &SampleBlock) -> Result<Vec<Vec<f64>>, SampleError> {
         )
     })?;
     let dists: Vec<&Distribution> = block.params.values().collect();
-    let mut out = vec![Vec::with_capacity(block.n); d];
+    let rows = points(block);
+    let mut out = vec![Vec::with_capacity(rows); d];
     let mut z = vec![0.0; d];
-    for i in 0..block.n {
+    for i in 0..rows {
         for (k, zk) in z.iter_mut().enumerate() {
-            *zk = normal_quantile(uniform(i, k, block.seed));
+            *zk = normal_quantile(design_uniform(block, i, k));
         }
         for k in 0..d {
             // the correlated score: row k of L times z (L lower triangular)
             let s: f64 = (0..=k).map(|j| l[k * d + j] * z[j]).sum();
             // a parameter correlated with none before it keeps its Sobol coordinate itself
             let p = if (0..k).all(|j| l[k * d + j] == 0.0) {
-                uniform(i, k, block.seed)
+                design_uniform(block, i, k)
             } else {
                 normal_cdf(s)
             };
@@ -320,6 +334,28 @@ pub fn draw(block: &SampleBlock) -> Result<Vec<Vec<f64>>, SampleError> {
         }
     }
     Ok(out)
+}
+
+/// The number of points the block draws: n, or n(d + 2) for Saltelli's design.
+pub fn points(block: &SampleBlock) -> usize {
+    match block.method {
+        SampleMethod::Sobol => block.n,
+        SampleMethod::Saltelli => block.n.saturating_mul(block.params.len() + 2),
+    }
+}
+
+/// Coordinate `k` of the design's point `i` on [0, 1): a Sobol point's, or for Saltelli's
+/// design A's or B's (B's are the Sobol dimensions d … 2d − 1 of the same base point).
+fn design_uniform(block: &SampleBlock, i: usize, k: usize) -> f64 {
+    match block.method {
+        SampleMethod::Sobol => uniform(i, k, block.seed),
+        SampleMethod::Saltelli => {
+            let d = block.params.len();
+            let (base, row) = (i / (d + 2), i % (d + 2));
+            let from_b = row == d + 1 || row == k + 1;
+            uniform(base, if from_b { d + k } else { k }, block.seed)
+        }
+    }
 }
 
 /// The Sobol coordinate `k` of point `i`, moved to the middle of its f32 cell so that it is
@@ -330,6 +366,9 @@ fn uniform(i: usize, k: usize, seed: u32) -> f64 {
 }
 
 fn check(block: &SampleBlock) -> Result<(), SampleError> {
+    if block.method == SampleMethod::Saltelli {
+        check_saltelli(block)?;
+    }
     if block.n == 0 || block.n > MAX_SAMPLES {
         return Err(err(
             keys(&["sample", "n"]),
@@ -361,6 +400,37 @@ fn check(block: &SampleBlock) -> Result<(), SampleError> {
                 allowed,
             ));
         }
+    }
+    Ok(())
+}
+
+/// Saltelli's design: independent parameters (its estimators assume them), 2d Sobol
+/// dimensions and at most 65536 points in all.
+fn check_saltelli(block: &SampleBlock) -> Result<(), SampleError> {
+    let d = block.params.len();
+    if !block.correlation.is_empty() || block.ball_spread.is_some() {
+        let what = if block.ball_spread.is_some() {
+            "ball_spread"
+        } else {
+            "correlation"
+        };
+        return Err(err(
+            keys(&["sample", what]),
+            format!("`sample.method: saltelli` needs independent parameters; `sample.{what}` correlates them"),
+            "sample.method",
+            "saltelli".into(),
+            "`sobol` with correlated parameters, or `saltelli` with independent ones",
+        ));
+    }
+    let total = block.n.saturating_mul(d + 2);
+    if 2 * d > MAX_SAMPLE_PARAMS || total > MAX_SAMPLES {
+        return Err(err(
+            keys(&["sample", "n"]),
+            "Saltelli's design is too large".into(),
+            "sample.n",
+            format!("{} base points × ({d} parameters + 2) = {total}", block.n),
+            "n(d + 2) ≤ 65536 points and 2d ≤ 256 parameters",
+        ));
     }
     Ok(())
 }
@@ -444,6 +514,43 @@ mod tests {
                 .collect(),
             correlation: corr,
         }
+    }
+
+    // Saltelli's design (Saltelli et al. 2010, table 1's matrices): for every base point, A,
+    // then A with one coordinate from B, then B; A and B the two halves of one Sobol point
+    #[test]
+    fn saltelli_rows_are_a_then_a_with_one_column_of_b_then_b() {
+        let u = || Distribution::Uniform { min: 0.0, max: 1.0 };
+        let mut b = block(&[("a", u()), ("b", u()), ("c", u())], vec![], 16);
+        b.method = SampleMethod::Saltelli;
+        let v = draw(&b).unwrap();
+        let (d, n) = (3, 16);
+        assert_eq!(v[0].len(), n * (d + 2));
+        for i in 0..n {
+            let row = |r: usize| {
+                [
+                    v[0][i * (d + 2) + r],
+                    v[1][i * (d + 2) + r],
+                    v[2][i * (d + 2) + r],
+                ]
+            };
+            let (a, bb) = (row(0), row(d + 1));
+            assert!((0..d).all(|k| a[k] != bb[k]), "A and B differ everywhere");
+            for k in 0..d {
+                let mut want = a;
+                want[k] = bb[k];
+                assert_eq!(row(k + 1), want, "point {i}, column {k}");
+            }
+        }
+        // correlated parameters have no Saltelli estimator: refused, positioned
+        let corr = vec![Correlation {
+            between: ["a".into(), "b".into()],
+            rho: 0.5,
+        }];
+        let mut c = block(&[("a", u()), ("b", u())], corr, 8);
+        c.method = SampleMethod::Saltelli;
+        let e = draw(&c).unwrap_err();
+        assert_eq!(e.field, "sample.method");
     }
 
     #[test]

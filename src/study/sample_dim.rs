@@ -26,6 +26,7 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
     for path in block.params.keys().filter(|p| !block.spread_path(p)) {
         check_path(cx, path, &keys(&["sample", "params", path]))?;
     }
+    let size = super::sample::points(block);
     let values = draw(block).map_err(|e| {
         cx.err(&e.at, e.message)
             .field(e.field)
@@ -45,7 +46,7 @@ pub(super) fn sample_dim(cx: &Ctx, file: &StudyFile) -> Result<Option<PlanDim>, 
         .collect();
     Ok(Some(PlanDim {
         name: block.name.clone().unwrap_or_else(|| "sample".into()),
-        size: block.n,
+        size,
         params,
         origin: DimOrigin::Sample,
     }))
