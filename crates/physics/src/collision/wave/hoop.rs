@@ -23,20 +23,16 @@ impl Hoop {
 /// The mass–spring hoop of a collision when it is given (`hoop: {frequency, mass}`, the
 /// paper's model); a hoop from the geometry is the shell's modes (`shell_contact`).
 pub fn resolve_hoop(spec: &CollisionSpec) -> Result<Option<Hoop>, ModelError> {
-    let Some(h) = &spec.hoop else {
+    let Some(h) = spec.hoop.as_ref().filter(|h| !h.from_geometry) else {
         return Ok(None);
     };
-    let two_pi = 2.0 * std::f64::consts::PI;
-    if !h.from_geometry {
-        let (Some(f), Some(m)) = (h.frequency, h.mass) else {
-            return Err(ModelError::Unsupported(
-                "hoop needs frequency and mass, or from_geometry: true",
-            ));
-        };
-        return Ok(Some(Hoop {
-            mass: m,
-            stiffness: m * (two_pi * f).powi(2),
-        }));
-    }
-    Ok(None)
+    let (Some(f), Some(m)) = (h.frequency, h.mass) else {
+        return Err(ModelError::Unsupported(
+            "hoop needs frequency and mass, or from_geometry: true",
+        ));
+    };
+    Ok(Some(Hoop {
+        mass: m,
+        stiffness: m * (2.0 * std::f64::consts::PI * f).powi(2),
+    }))
 }
