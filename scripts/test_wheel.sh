@@ -8,15 +8,16 @@
 # ~3 min on 2 cores the first time (HDF5's C build), under a minute after.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/stage.sh
 bash scripts/setup.sh >/dev/null
 
-echo "== Building the wheel (pip wheel .)"
+stage "Building the wheel (pip wheel .)"
 rm -rf target/wheels
 .venv/bin/python -m pip wheel -q --no-deps -w target/wheels .
 wheel=$(ls target/wheels/batstudy-*.whl)
 echo "built $wheel ($(du -h "$wheel" | cut -f1))"
 
-echo "== A fresh venv with the wheel"
+stage "A fresh venv with the wheel"
 rm -rf target/wheel-venv
 python3 -m venv target/wheel-venv
 target/wheel-venv/bin/python -m pip install -q --upgrade pip
@@ -28,7 +29,7 @@ target/wheel-venv/bin/python -m pip install -q "${wheel}[test,notebook]" \
 # The control: the CLI built against the system HDF5 must then fail to start.
 if ! command -v bwrap >/dev/null 2>&1; then
   as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
-  echo "== Installing Debian's bubblewrap (to hide the system HDF5 from the wheel's tests)"
+  stage "Installing Debian's bubblewrap (to hide the system HDF5 from the wheel's tests)"
   as_root apt-get update -qq
   DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq bubblewrap >/dev/null
 fi
@@ -43,7 +44,7 @@ if [ -x target/debug/batstudy ] && without_hdf5 target/debug/batstudy --version 
   exit 1
 fi
 
-echo "== Python API tests and the quickstart notebook (installed package, no system HDF5)"
+stage "Python API tests and the quickstart notebook (installed package, no system HDF5)"
 # From /: nothing of the repository is importable but what the wheel installed.
 repo=$PWD
-without_hdf5 bash -c "cd / && '$repo/target/wheel-venv/bin/python' -m pytest -q -p no:cacheprovider '$repo/tests/python_api'"
+without_hdf5 bash -c "cd / && '$repo/target/wheel-venv/bin/python' -m pytest -q --durations=8 -p no:cacheprovider '$repo/tests/python_api'"
