@@ -45,7 +45,10 @@ impl std::str::FromStr for Units {
 pub fn profile_csv(file: &Path, bat: Option<&str>, units: Units) -> Result<String, String> {
     let shown = printable(&file.display().to_string(), false).to_string();
     let bats = store::inspect::bat_specs(file).map_err(|e| e.to_string())?;
-    let (label, spec) = pick(&bats, bat).map_err(|allowed| format!("{shown}: --bat: {allowed}"))?;
+    let labels: Vec<String> = bats.iter().map(|b| b.0.clone()).collect();
+    let k = store::inspect::pick_bat(&labels, bat)
+        .map_err(|allowed| format!("{shown}: --bat: {allowed}"))?;
+    let (label, spec) = (&bats[k].0, &bats[k].1);
     let stored: serde_json::Value = serde_json::from_str(spec)
         .map_err(|e| format!("{shown}: the bat's stored spec is not JSON ({e})"))?;
     let spec: BatSpec = serde_json::from_value(stored["bat"].clone())
@@ -58,41 +61,6 @@ pub fn profile_csv(file: &Path, bat: Option<&str>, units: Units) -> Result<Strin
     }
     let g = BatGeometry::resolve(&spec).map_err(|e| format!("{shown}: {e}"))?;
     Ok(csv_text(&profile_rows(&g), &g, label, &shown, units))
-}
-
-/// The bat named by `want` (a label or an index), or what is allowed.
-fn pick<'a>(
-    bats: &'a [(String, String)],
-    want: Option<&str>,
-) -> Result<(&'a str, &'a str), String> {
-    let listed = || {
-        bats.iter()
-            .enumerate()
-            .map(|(i, (l, _))| format!("{i}: {}", printable(l, false)))
-            .collect::<Vec<_>>()
-            .join("; ")
-    };
-    let found = match want {
-        None if bats.len() == 1 => Some(&bats[0]),
-        None => None,
-        Some(w) => bats
-            .iter()
-            .find(|(l, _)| l == w)
-            .or_else(|| w.parse::<usize>().ok().and_then(|i| bats.get(i))),
-    };
-    match (found, want) {
-        (Some((l, s)), _) => Ok((l, s)),
-        (None, None) => Err(format!(
-            "the file holds {} bats; name one of {}",
-            bats.len(),
-            listed()
-        )),
-        (None, Some(w)) => Err(format!(
-            "{} is not a bat of the file; allowed: {}",
-            printable(w, false),
-            listed()
-        )),
-    }
 }
 
 /// The CSV: comment lines (the bat, what the CSV leaves to the study), the header, the rows.

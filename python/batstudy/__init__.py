@@ -10,6 +10,9 @@
   and case labels as coordinates, and the stored histories only (see :func:`histories`);
   a file that is not a complete batstudy results file (damaged, or another program's HDF5)
   raises :class:`ResultsFileError`.
+- :func:`bat_card` says what each bat of a results file is, as the trade states it (weight
+  and drop, balance point, swing weights, BBCOR, sweet zone, frequencies, each rule's
+  margin).
 - :func:`ball_rig` gives what a ball certification reports (COR, peak force, contact time,
   dynamic stiffness) from a study of balls fired at ``bat.preset: wall``.
 - :func:`longest_carry` says where a study's ball flies farthest: the impact position and,
@@ -31,6 +34,7 @@ from importlib import import_module as _import_module
 from importlib.util import find_spec as _find_spec
 
 from ._ball_rig import ball_rig
+from ._card import bat_card
 from ._carry import longest_carry
 from ._files import ResultsFileError
 from ._open import histories, open, open_results  # noqa: F401  (open: batstudy.open, not in __all__)
@@ -46,6 +50,7 @@ __all__ = [
     "open_results",
     "histories",
     "ball_rig",
+    "bat_card",
     "longest_carry",
     "report",
     "sobol_indices",

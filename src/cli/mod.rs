@@ -1,5 +1,5 @@
 //! The command line: a thin layer over the library. Each command has its own module
-//! (`run`, `plan`, `validate`, `merge`, `slurm`; `inspect`, `schema` and `bench` are one
+//! (`run`, `plan`, `validate`, `merge`, `slurm`, `optimize`, `export-profile`, `card`; `inspect`, `schema` and `bench` are one
 //! call each, below); its raw flags become one validated settings value before anything
 //! runs or is written, then one library call. `common` holds what several commands share.
 //! Exit codes: 0 all points ok, 1 some points failed
@@ -13,6 +13,7 @@ use crate::study::{self, DEFAULT_MAX_POINTS};
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
+pub mod card;
 mod common;
 pub mod export;
 pub mod merge;
@@ -96,6 +97,10 @@ pub enum Command {
     /// Write a bat of a results file as a profile CSV (outer radius and wall along the bat,
     /// in m, mm or in) that `bat.profile.csv` reads back as the same bat.
     ExportProfile(export::ExportArgs),
+    /// Each bat of a results file as the trade states it: length, weight and drop, balance
+    /// point, swing weights, BBCOR with its ball, sweet zone, bending and hoop frequencies,
+    /// and the margin to each rule.
+    Card(card::CardArgs),
 }
 
 /// How this process was started, for what it writes that starts batstudy again (the Slurm
@@ -160,6 +165,7 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         Command::Slurm(a) => slurm::cmd_slurm(&a, invocation),
         Command::Optimize(a) => optimize::cmd_optimize(&a),
         Command::ExportProfile(a) => export::cmd_export(&a),
+        Command::Card(a) => card::cmd_card(&a),
         Command::Bench {
             quick,
             threads,

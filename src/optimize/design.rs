@@ -8,7 +8,7 @@
 use super::quantity::Quantity;
 use super::rules::{rule_limits, Limit};
 use crate::study::optimize_block::{Aggregate, Bounds, Constraint, Knot, OptimizeBlock};
-use crate::study::paths::{get_path, known_paths, meta, set_path};
+use crate::study::paths::{known_paths, meta, set_path};
 use crate::study::plan::related;
 use crate::study::source::{keys, Seg, SourceMap};
 use crate::study::{Study, StudyError};
@@ -466,10 +466,7 @@ fn check_solid_wood(study: &Study, block: &OptimizeBlock) -> Result<(), StudyErr
     let Ok(spec) = study.plan.resolve(&zero) else {
         return Ok(());
     };
-    let geometry = crate::model::bat::section::BatGeometry::resolve(&spec.bat);
-    let hollow = geometry.is_ok_and(|g| g.shell.is_some() || g.bore.is_some());
-    let wood = spec.bat.preset == crate::model::spec::BatPreset::R161;
-    if hollow || !wood || get_path(study.plan.base(), "bat.fill").is_some_and(|f| !f.is_null()) {
+    if !spec.bat.is_solid_wood() {
         let mut here = at(&["constraints"]);
         here.push(Seg::Index(i));
         return Err(located(

@@ -9,10 +9,9 @@
 
 use super::design::Design;
 use super::quantity::{aggregate, BatQuantity, Quantity, Sweet};
-use super::rules::{protocol_bbcor, INCH, OUNCE};
+use super::rules::protocol_bbcor;
 use crate::model::measures::sweet::find_sweet_spot;
 use crate::model::outcome::Outcome;
-use crate::model::protocol::moment_of_inertia_about;
 use crate::model::spec::CollisionSpec;
 use crate::model::{simulate_target, Target};
 use crate::store::layout::{summary_floats, SUMMARY_FLOATS};
@@ -142,7 +141,7 @@ impl<'a> Evaluator<'a> {
             Quantity::Summary(k) => outcomes.iter().map(|o| summary_floats(o)[k]).collect(),
             Quantity::Sweet(s) => self.sweet_values(s, outcomes),
             Quantity::Bat(BatQuantity::Bbcor) => self.protocol_values(grid),
-            Quantity::Bat(b) => grid.bats.iter().map(|t| bat_value(b, t)).collect(),
+            Quantity::Bat(b) => grid.bats.iter().map(|t| b.of(&t.properties())).collect(),
         };
         aggregate(&values, over)
     }
@@ -202,23 +201,5 @@ impl<'a> Evaluator<'a> {
             }
         }
         out
-    }
-}
-
-/// A bat's own quantity.
-fn bat_value(q: BatQuantity, t: &Target) -> f64 {
-    let p = t.properties();
-    match q {
-        BatQuantity::Mass => p.mass,
-        BatQuantity::Length => p.length,
-        BatQuantity::CentreOfMass => p.z_cm,
-        BatQuantity::MomentOfInertia => p.moment_of_inertia,
-        BatQuantity::MomentOfInertiaKnob6 => p.moment_of_inertia_knob6,
-        BatQuantity::MomentOfInertiaKnob => {
-            moment_of_inertia_about(p.mass, p.z_cm, p.moment_of_inertia, 0.0)
-        }
-        BatQuantity::BarrelDiameter => 2.0 * p.outer_radius.iter().copied().fold(0.0, f64::max),
-        BatQuantity::Drop => p.mass / OUNCE - p.length / INCH,
-        BatQuantity::Bbcor => f64::NAN,
     }
 }

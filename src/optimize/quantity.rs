@@ -2,6 +2,7 @@
 //! quantity along `impact_z` (`sweet_spot.NAME`), or a bat's (`bat.NAME`, including the
 //! certification protocol's BBCOR); their units, and how a grid of values becomes one.
 
+use crate::model::outcome::BatProperties;
 use crate::store::layout::SUMMARY_FLOATS;
 use crate::study::optimize_block::Aggregate;
 
@@ -43,6 +44,24 @@ pub enum Quantity {
     Summary(usize),
     Sweet(Sweet),
     Bat(BatQuantity),
+}
+
+impl BatQuantity {
+    /// Its value for a bat (the BBCOR: the protocol's maximum `/bat` stores, NaN before the
+    /// scan has run).
+    pub fn of(self, p: &BatProperties) -> f64 {
+        match self {
+            BatQuantity::Mass => p.mass,
+            BatQuantity::Length => p.length,
+            BatQuantity::CentreOfMass => p.z_cm,
+            BatQuantity::MomentOfInertia => p.moment_of_inertia,
+            BatQuantity::MomentOfInertiaKnob6 => p.moment_of_inertia_knob6,
+            BatQuantity::MomentOfInertiaKnob => p.moment_of_inertia_knob(),
+            BatQuantity::BarrelDiameter => p.barrel_diameter(),
+            BatQuantity::Drop => p.drop(),
+            BatQuantity::Bbcor => p.metrics.bbcor_max,
+        }
+    }
 }
 
 const SWEET: &[(&str, Sweet, &str)] = &[

@@ -16,15 +16,14 @@
 use super::quantity::{BatQuantity, Quantity};
 use crate::model::measures::metrics::{bbcor_scan_mapped, BbcorShot};
 use crate::model::measures::sweet::find_maximum;
+use crate::model::outcome::{BatProperties, RuleCheck};
+use crate::model::spec::BatSpec;
 use crate::model::spec::CollisionSpec;
 use crate::model::Target;
 use crate::study::optimize_block::{Aggregate, RuleSet};
 use rayon::prelude::*;
 
-/// One inch, m.
-pub const INCH: f64 = 0.0254;
-/// One ounce (avoirdupois), kg.
-pub const OUNCE: f64 = 0.028349523125;
+pub use crate::model::units::{INCH, OUNCE};
 
 /// A constraint: `quantity` (aggregated by `over`) within [min, max].
 #[derive(Debug, Clone, PartialEq)]
@@ -123,6 +122,50 @@ pub fn rule_limits(rules: RuleSet, moi_min: Option<f64>) -> Vec<Limit> {
             bat_limit(BatQuantity::Length, None, Some(42.0 * INCH), MLB),
         ],
     }
+}
+
+/// Every rule set built in, in the order a bat card shows them.
+pub const RULE_SETS: [RuleSet; 2] = [RuleSet::NcaaBbcor, RuleSet::MlbWood];
+
+/// A rule set's name in a study file.
+pub fn rule_set_name(rules: RuleSet) -> &'static str {
+    match rules {
+        RuleSet::NcaaBbcor => "ncaa_bbcor",
+        RuleSet::MlbWood => "mlb_wood",
+    }
+}
+
+/// A bat against every limit of every rule set built in (without the study's `moi_min`,
+/// which depends on the length class): the bat card's verdicts. MLB's "one piece of solid
+/// wood" is a check of its own, valued 1 (yes) or 0 (no). A bat's BBCOR is the maximum of
+/// its protocol scan (`properties.metrics`).
+pub fn rule_checks(p: &BatProperties, spec: &BatSpec) -> Vec<RuleCheck> {
+    let mut out = Vec::new();
+    for rules in RULE_SETS {
+        let name = rule_set_name(rules);
+        for limit in rule_limits(rules, None) {
+            let Quantity::Bat(q) = limit.quantity else {
+                continue;
+            };
+            let value = q.of(p);
+            out.push(RuleCheck {
+                label: format!("{name}: {}", limit.label()),
+                units: limit.quantity.units().to_string(),
+                value,
+                margin: limit.margin(value),
+            });
+        }
+        if rules == RuleSet::MlbWood {
+            let value = if spec.is_solid_wood() { 1.0 } else { 0.0 };
+            out.push(RuleCheck {
+                label: format!("{name}: one piece of solid wood"),
+                units: "1".into(),
+                value,
+                margin: value - 1.0,
+            });
+        }
+    }
+    out
 }
 
 /// The BBCOR protocol on a candidate (`metrics::bbcor_scan_mapped`, the one scan `/bat` stores

@@ -36,6 +36,7 @@ impl Simulator for ModelSimulator {
             };
             properties.metrics = bat_metrics_mapped(prepared, bat, numerics, shot, &parallel)
                 .map_err(|e| e.to_string())?;
+            properties.rule_checks = crate::optimize::rules::rule_checks(&properties, bat);
         }
         Ok((properties, target))
     }

@@ -24,6 +24,7 @@ pub mod plausible;
 pub mod protocol;
 pub mod resolved;
 pub mod spec;
+pub mod units;
 pub mod xorshift;
 
 pub use bat::{prepare_bat, PreparedBat};

@@ -311,6 +311,40 @@ pub struct BatProperties {
     /// Sweet-spot definitions and standard metrics of the bat (centre of percussion, barrel
     /// nodes, BBCOR): filled by `metrics::bat_metrics`, NaN until then.
     pub metrics: crate::outcome::BatMetrics,
+    /// The bat against each rule book's limits: filled by the study layer, which knows the
+    /// rule books (empty until then).
+    pub rule_checks: Vec<RuleCheck>,
+}
+
+impl BatProperties {
+    /// Weight in ounces minus length in inches: the rule books' "drop" (negative for a bat
+    /// lighter in ounces than it is long in inches).
+    pub fn drop(&self) -> f64 {
+        self.mass / crate::units::OUNCE - self.length / crate::units::INCH
+    }
+
+    /// Twice the largest outer radius, m (NaN without a profile).
+    pub fn barrel_diameter(&self) -> f64 {
+        2.0 * self.outer_radius.iter().copied().fold(f64::NAN, f64::max)
+    }
+
+    /// Moment of inertia about the knob, kg·m² (parallel axes).
+    pub fn moment_of_inertia_knob(&self) -> f64 {
+        self.moment_of_inertia + self.mass * self.z_cm * self.z_cm
+    }
+}
+
+/// One limit of a rule book applied to a bat.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuleCheck {
+    /// The rule set and its limit, e.g. `ncaa_bbcor: bat.bbcor <= 0.5`.
+    pub label: String,
+    /// Units of `value` and `margin` (UDUNITS spelling).
+    pub units: String,
+    /// The bat's value of the limited quantity.
+    pub value: f64,
+    /// How far inside the limit the value is (negative: the bat breaks the rule).
+    pub margin: f64,
 }
 
 /// The bat-only sweet-spot definitions and standard metrics of one bat.
@@ -333,6 +367,14 @@ pub struct BatMetrics {
     /// Maximum BBCOR (parabola-refined), and where, m.
     pub bbcor_max: f64,
     pub bbcor_max_position: f64,
+    /// The sweet zone of the BBCOR scan: the barrel from `sweet_zone_start` to
+    /// `sweet_zone_end` (m from the knob) has BBCOR within `sweet::BBCOR_ZONE_DROP` of its
+    /// maximum.
+    pub sweet_zone_start: f64,
+    pub sweet_zone_end: f64,
+    /// The barrel wall's lowest breathing (hoop) mode as a shell, Hz: a property of the
+    /// hollow bat whatever hoop its collisions are given; NaN for a solid bat.
+    pub hoop_mode_frequency: f64,
     /// The ball and hoop the scan fired and gave (`metrics::BbcorShot`), canonical JSON.
     pub bbcor_shot: String,
 }
@@ -349,6 +391,9 @@ impl Default for BatMetrics {
             bbcor: Vec::new(),
             bbcor_max: f64::NAN,
             bbcor_max_position: f64::NAN,
+            sweet_zone_start: f64::NAN,
+            sweet_zone_end: f64::NAN,
+            hoop_mode_frequency: f64::NAN,
             bbcor_shot: String::new(),
         }
     }

@@ -191,7 +191,7 @@ fn dim_labels(g: &hdf5::Group, dim: &str, size: usize) -> Vec<String> {
 
 /// The ball and hoop of a BBCOR scan (`/bat/bbcor_shot`'s JSON) in a few words: the ball's
 /// preset or law, and the hoop.
-fn shot_name(json: &str) -> String {
+pub(crate) fn shot_name(json: &str) -> String {
     let Ok(shot) = serde_json::from_str::<serde_json::Value>(json) else {
         return String::new();
     };
@@ -275,4 +275,38 @@ pub fn bat_specs(path: &Path) -> Result<Vec<(String, String)>, StoreError> {
     };
     let (labels, specs) = (strings(l::BAT_DIM.name)?, strings(l::BAT_SPEC.name)?);
     Ok(labels.into_iter().zip(specs).collect())
+}
+
+/// The bat `want` names (its label, or its index from 0) among a file's `labels`: its index,
+/// or what is allowed. Without `want`, the file's only bat.
+pub fn pick_bat(labels: &[String], want: Option<&str>) -> Result<usize, String> {
+    let listed = || {
+        labels
+            .iter()
+            .enumerate()
+            .map(|(i, l)| format!("{i}: {}", printable(l, false)))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    let found = match want {
+        None if labels.len() == 1 => Some(0),
+        None => None,
+        Some(w) => labels
+            .iter()
+            .position(|l| l == w)
+            .or_else(|| w.parse::<usize>().ok().filter(|&i| i < labels.len())),
+    };
+    match (found, want) {
+        (Some(k), _) => Ok(k),
+        (None, None) => Err(format!(
+            "the file holds {} bats; name one of {}",
+            labels.len(),
+            listed()
+        )),
+        (None, Some(w)) => Err(format!(
+            "{} is not a bat of the file; allowed: {}",
+            printable(w, false),
+            listed()
+        )),
+    }
 }

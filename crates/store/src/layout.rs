@@ -8,7 +8,7 @@ use batstudy_physics::outcome::{
 };
 
 /// Version of the file layout documented in docs/layout.md.
-pub const LAYOUT_VERSION: u32 = 5;
+pub const LAYOUT_VERSION: u32 = 6;
 
 pub const GROUP_SUMMARY: &str = "summary";
 pub const GROUP_ERRORS: &str = "errors";
@@ -801,6 +801,67 @@ pub const BAT_BBCOR_MAX_POS: VarDef = v(
     "impact position of maximum BBCOR, from the knob",
 );
 pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR point", "BBCOR scan point number");
+/// The bat card's quantities (`batstudy card`).
+pub const BAT_DROP: VarDef = v(
+    "drop",
+    "1",
+    "drop",
+    "weight in ounces minus length in inches (the rule books' length-to-weight difference)",
+);
+pub const BAT_BARREL_DIAMETER: VarDef = v(
+    "barrel_diameter",
+    "m",
+    "barrel diameter",
+    "twice the largest outer radius",
+);
+pub const BAT_SWEET_ZONE_START: VarDef = v(
+    "sweet_zone_start",
+    "m",
+    "sweet zone start",
+    "knob-side end of the barrel range whose BBCOR is within 0.01 of bbcor_max, from the knob",
+);
+pub const BAT_SWEET_ZONE_END: VarDef = v(
+    "sweet_zone_end",
+    "m",
+    "sweet zone end",
+    "tip-side end of the barrel range whose BBCOR is within 0.01 of bbcor_max, from the knob",
+);
+pub const BAT_SWEET_ZONE_LENGTH: VarDef = v(
+    "sweet_zone_length",
+    "m",
+    "sweet zone length",
+    "length of the barrel range whose BBCOR is within 0.01 of bbcor_max",
+);
+pub const BAT_HOOP_MODE_FREQ: VarDef = v(
+    "hoop_mode_frequency",
+    "Hz",
+    "hoop frequency",
+    "lowest breathing mode of the barrel wall as a shell (NaN for a solid bat), whatever hoop the collisions use",
+);
+pub const RULE_CHECK_DIM: VarDef = v(
+    "rule_check",
+    "",
+    "rule",
+    "a rule set and one of its limits, e.g. `ncaa_bbcor: bat.bbcor <= 0.5`",
+);
+pub const BAT_RULE_UNITS: VarDef = v(
+    "rule_units",
+    "",
+    "rule units",
+    "units of rule_value and rule_margin for each limit",
+);
+pub const BAT_RULE_VALUE: VarDef = v(
+    "rule_value",
+    "",
+    "rule value",
+    "the bat's value of the limited quantity (units: rule_units)",
+);
+pub const BAT_RULE_MARGIN: VarDef = v(
+    "rule_margin",
+    "",
+    "rule margin",
+    "how far inside the limit the bat is, in rule_units; negative: the bat breaks the rule",
+);
 /// What the numbers of a results file rest on (its CF `references` attribute).
 pub const REFERENCES: &str =
     "the wave model: A. M. Nathan, Am. J. Phys. 68, 979 (2000); the rigid \

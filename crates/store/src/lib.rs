@@ -23,6 +23,7 @@
 
 pub mod build;
 pub mod by_reference;
+pub mod card;
 pub mod check;
 pub mod chunks;
 pub mod dimscale;

@@ -191,6 +191,7 @@ fn properties(geometry: &BatGeometry, beam: &Beam, modes: &ModalBasis) -> BatPro
         mode_frequency: freqs[..n_flex].to_vec(),
         mode_nodes: (0..n_flex).map(|k| modes.nodes(beam, k)).collect(),
         metrics: Default::default(), // filled by metrics::bat_metrics (it simulates)
+        rule_checks: Vec::new(),     // filled by the study layer (it knows the rule books)
     }
 }
 

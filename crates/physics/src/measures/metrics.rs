@@ -35,6 +35,7 @@
 use crate::bat::PreparedBat;
 use crate::collision::simulate::simulate;
 use crate::error::ModelError;
+use crate::measures::sweet::{find_zone, BBCOR_ZONE_DROP};
 use crate::outcome::BatMetrics;
 use crate::protocol::{
     bbcor_from_efficiency, free_effective_mass, moment_of_inertia_about, BBCOR_BALL_SPEED, KNOB6,
@@ -156,8 +157,9 @@ pub fn bat_metrics_mapped(
     let p = bat.properties();
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
     let (bbcor_z, bbcor) = bbcor_scan_mapped(bat, bat_spec, numerics, shot, map)?;
+    let zone = find_zone(&bbcor_z, &bbcor, BBCOR_ZONE_DROP);
     let (bbcor_max_position, bbcor_max) =
-        crate::measures::sweet::find_maximum(&bbcor_z, &bbcor).unwrap_or((f64::NAN, f64::NAN));
+        zone.map_or((f64::NAN, f64::NAN), |z| (z.position, z.peak));
     Ok(BatMetrics {
         pivot: KNOB6,
         centre_of_percussion: centre_of_percussion(p.mass, p.z_cm, p.moment_of_inertia, KNOB6),
@@ -168,8 +170,19 @@ pub fn bat_metrics_mapped(
         bbcor,
         bbcor_max,
         bbcor_max_position,
+        sweet_zone_start: zone.map_or(f64::NAN, |z| z.left),
+        sweet_zone_end: zone.map_or(f64::NAN, |z| z.right),
+        hoop_mode_frequency: lowest_breathing_frequency(bat)?,
         bbcor_shot: shot.json(),
     })
+}
+
+/// The lowest breathing mode of a hollow bat's wall, Hz (NaN for a solid bat).
+fn lowest_breathing_frequency(bat: &PreparedBat) -> Result<f64, ModelError> {
+    Ok(bat
+        .shell_modes()?
+        .and_then(|s| s.modes.first())
+        .map_or(f64::NAN, |m| m.omega / std::f64::consts::TAU))
 }
 
 /// BBCOR along the barrel with the wave model: the bat at rest (ω = 0), the ball

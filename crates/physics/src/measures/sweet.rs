@@ -20,39 +20,70 @@ pub struct SweetSpot {
     pub at_edge: bool,
 }
 
+/// How far below its peak BBCOR may fall within a bat's sweet zone: the barrel length the
+/// trade compares ("sweet-zone length") is where BBCOR is within 0.01 of the bat's best.
+pub const BBCOR_ZONE_DROP: f64 = 0.01;
+
+/// The contiguous range around a curve's maximum where it is within a drop of the maximum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Zone {
+    /// Where the maximum is (parabola-refined), and its value.
+    pub position: f64,
+    pub peak: f64,
+    /// The range's ends, `left ≤ right`, clipped to the sampled range.
+    pub left: f64,
+    pub right: f64,
+    /// The best sample is the first or the last one.
+    pub at_edge: bool,
+}
+
 /// Find the sweet spot of samples `exit_speed[i]` at increasing positions `z[i]`.
 /// Non-finite samples (failed points) are skipped. The maximum is refined by the parabola
 /// through the best sample and its two neighbours; the zone edges by linear interpolation.
 /// Returns None without a finite sample, or when `z` does not increase or the lengths differ.
 pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
-    if z.len() != exit_speed.len() || z.windows(2).any(|w| w[1] <= w[0]) {
+    let zone = find_zone(z, exit_speed, SWEET_ZONE_DROP)?;
+    Some(SweetSpot {
+        position: zone.position,
+        exit_speed: zone.peak,
+        width: zone.right - zone.left,
+        at_edge: zone.at_edge,
+    })
+}
+
+/// The zone of samples `v[i]` at increasing `z[i]` within `drop` of their maximum, as
+/// [`find_sweet_spot`] finds it.
+pub fn find_zone(z: &[f64], v: &[f64], drop: f64) -> Option<Zone> {
+    if z.len() != v.len() || z.windows(2).any(|w| w[1] <= w[0]) {
         return None;
     }
     let (z, v): (Vec<f64>, Vec<f64>) = z
         .iter()
-        .zip(exit_speed)
+        .zip(v)
         .filter(|(a, b)| a.is_finite() && b.is_finite())
         .map(|(a, b)| (*a, *b))
         .unzip();
     let (position, peak, curvature) = refined_maximum(&z, &v)?;
     // The zone grows from the best sample (the refined peak lies next to it).
     let best = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b]))?;
-    let threshold = peak - SWEET_ZONE_DROP;
+    let threshold = peak - drop;
     let at_edge = best == 0 || best + 1 == v.len();
+    let zone = |left: f64, right: f64| Zone {
+        position,
+        peak,
+        left,
+        right,
+        at_edge,
+    };
     if v[best] < threshold {
         // On a grid coarser than the zone, every sample lies more than the drop below the
         // refined peak: interpolating between samples would put the edges outside-in (a
         // negative width). The zone is then the parabola's own, |z − z*| ≤ √(drop / −c),
         // which lies between the best sample's neighbours.
-        let half = curvature.map_or(0.0, |c| (SWEET_ZONE_DROP / -c).sqrt());
+        let half = curvature.map_or(0.0, |c| (drop / -c).sqrt());
         let left = (position - half).max(z[best.saturating_sub(1)]);
         let right = (position + half).min(z[(best + 1).min(z.len() - 1)]);
-        return Some(SweetSpot {
-            position,
-            exit_speed: peak,
-            width: (right - left).max(0.0),
-            at_edge,
-        });
+        return Some(zone(left, right.max(left)));
     }
     let crossing = |i: usize, j: usize| {
         // Linear interpolation between a sample above the threshold (i) and one below (j).
@@ -72,12 +103,7 @@ pub fn find_sweet_spot(z: &[f64], exit_speed: &[f64]) -> Option<SweetSpot> {
     } else {
         z[v.len() - 1]
     };
-    Some(SweetSpot {
-        position,
-        exit_speed: peak,
-        width: right - left,
-        at_edge,
-    })
+    Some(zone(left, right))
 }
 
 /// Maximum of `v` over increasing `z` (finite samples only), refined by the parabola through

@@ -166,6 +166,17 @@ pub struct BatSpec {
     pub beam: BeamTheory,
 }
 
+impl BatSpec {
+    /// One piece of solid wood (what MLB's rule 3.02(a) allows): the wood preset with no
+    /// shell, bore or fill.
+    pub fn is_solid_wood(&self) -> bool {
+        self.preset == BatPreset::R161
+            && self.shell.is_none()
+            && self.bore.is_none()
+            && self.fill.is_none()
+    }
+}
+
 /// Beam theory of the wave model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]

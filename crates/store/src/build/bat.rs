@@ -7,7 +7,7 @@ use crate::error::{H5Ctx, StoreError};
 use crate::layout::stores_modal;
 use crate::layout::{self as l, VarDef};
 use crate::results::StudyInfo;
-use batstudy_physics::outcome::{BatMetrics, BatProperties};
+use batstudy_physics::outcome::{BatMetrics, BatProperties, RuleCheck};
 use hdf5::types::VarLenUnicode;
 use hdf5::Dataset;
 use std::path::Path;
@@ -46,6 +46,8 @@ pub(super) fn write_bats(
     w.modes(&p)?;
     w.profiles(&p)?;
     w.metrics(&p)?;
+    w.card(&p)?;
+    w.rule_checks(&p)?;
     let shapes = match info.history.as_ref().filter(|h| stores_modal(h)) {
         Some(h) => Some(create_shapes(&g, &w.bat, info, h, att, out)?),
         None => None,
@@ -111,9 +113,7 @@ impl BatGroup<'_> {
             (&l::BAT_Z_CM, |p| p.z_cm),
             (&l::BAT_MOI, |p| p.moment_of_inertia),
             (&l::BAT_MOI6, |p| p.moment_of_inertia_knob6),
-            (&l::BAT_MOI_KNOB, |p| {
-                p.moment_of_inertia + p.mass * p.z_cm * p.z_cm
-            }),
+            (&l::BAT_MOI_KNOB, |p| p.moment_of_inertia_knob()),
             (&l::BAT_LENGTH, |p| p.length),
         ];
         for (def, get) in per_bat {
@@ -212,6 +212,65 @@ impl BatGroup<'_> {
         let bb_dim = self.index_scale(&l::BBCOR_DIM, n_bb, 0)?;
         self.var(&l::BAT_BBCOR_Z, vec![nb, n_bb], bz, &[&self.bat, &bb_dim])?;
         self.var(&l::BAT_BBCOR, vec![nb, n_bb], bb, &[&self.bat, &bb_dim])
+    }
+}
+
+impl BatGroup<'_> {
+    /// The bat card's derived quantities: drop, barrel diameter, sweet zone, hoop mode.
+    fn card(&self, p: &[&BatProperties]) -> Result<(), StoreError> {
+        type Getter = fn(&BatProperties) -> f64;
+        let per_bat: [(&VarDef, Getter); 6] = [
+            (&l::BAT_DROP, |p| p.drop()),
+            (&l::BAT_BARREL_DIAMETER, |p| p.barrel_diameter()),
+            (&l::BAT_SWEET_ZONE_START, |p| p.metrics.sweet_zone_start),
+            (&l::BAT_SWEET_ZONE_END, |p| p.metrics.sweet_zone_end),
+            (&l::BAT_SWEET_ZONE_LENGTH, |p| {
+                p.metrics.sweet_zone_end - p.metrics.sweet_zone_start
+            }),
+            (&l::BAT_HOOP_MODE_FREQ, |p| p.metrics.hoop_mode_frequency),
+        ];
+        for (def, get) in per_bat {
+            let values = p.iter().map(|p| get(p)).collect();
+            self.var(def, vec![p.len()], values, &[&self.bat])?;
+        }
+        Ok(())
+    }
+
+    /// Each bat against each rule book's limits (the same limits for every bat, in order).
+    fn rule_checks(&self, p: &[&BatProperties]) -> Result<(), StoreError> {
+        // a wall has none: the labels are those of the bats
+        let first = p
+            .iter()
+            .map(|p| &p.rule_checks[..])
+            .max_by_key(|c| c.len())
+            .unwrap_or(&[]);
+        let labels: Vec<VarLenUnicode> = first.iter().map(|c| h5u::vlstr(&c.label)).collect();
+        let rule = h5u::scale_coord(self.g, l::RULE_CHECK_DIM.name, &labels, &l::RULE_CHECK_DIM)
+            .ctx(self.out, &e("rule_check"))?;
+        let units: Vec<VarLenUnicode> = first.iter().map(|c| h5u::vlstr(&c.units)).collect();
+        let ds = h5u::write_1d(self.g, l::BAT_RULE_UNITS.name, &units)
+            .ctx(self.out, &e("rule_units"))?;
+        describe(&ds, &l::BAT_RULE_UNITS).ctx(self.out, &e("rule_units"))?;
+        self.att.add(&ds, &[&rule]);
+        let n = first.len();
+        let column = |get: fn(&RuleCheck) -> f64| -> Vec<f64> {
+            p.iter()
+                .flat_map(|p| (0..n).map(move |k| p.rule_checks.get(k).map_or(f64::NAN, get)))
+                .collect()
+        };
+        let shape = vec![p.len(), n];
+        self.var(
+            &l::BAT_RULE_VALUE,
+            shape.clone(),
+            column(|c| c.value),
+            &[&self.bat, &rule],
+        )?;
+        self.var(
+            &l::BAT_RULE_MARGIN,
+            shape,
+            column(|c| c.margin),
+            &[&self.bat, &rule],
+        )
     }
 }
 
