@@ -7,7 +7,7 @@ Prints one line per problem and exits 1 if there is any, 0 (after "layout ok") i
 none, and 2 if the file cannot be checked at all (missing, not HDF5, or h5py / xarray /
 h5netcdf not installed).
 
-What is checked (layout_version 5, as docs/layout.md describes it):
+What is checked (layout_version 6, as docs/layout.md describes it):
 
 - root attributes: every documented one is present with its type; `Conventions` is CF-1.8;
   `title` names the study; `study_sha256` is the SHA-256 of `study_yaml` (for a study that names no profile file); `created` is ISO 8601
@@ -56,7 +56,7 @@ import json
 import re
 import sys
 
-LAYOUT_VERSION = 5
+LAYOUT_VERSION = 6
 # longest `long_name` (short, for plot labels; layout 3)
 LONG_NAME_MAX = 40
 
@@ -115,8 +115,14 @@ BAT = {
     "bbcor_ball_speed": (("bat",), "m/s"), "bbcor_z": (("bat", "bbcor_point"), "m"),
     "bbcor": (("bat", "bbcor_point"), "1"), "bbcor_max": (("bat",), "1"),
     "bbcor_max_position": (("bat",), "m"), "bbcor_shot": (("bat",), ""),
+    "drop": (("bat",), "1"), "barrel_diameter": (("bat",), "m"),
+    "sweet_zone_start": (("bat",), "m"), "sweet_zone_end": (("bat",), "m"),
+    "sweet_zone_length": (("bat",), "m"), "hoop_mode_frequency": (("bat",), "Hz"),
+    "rule_units": (("rule_check",), ""),
+    # each limit in its own units (attribute units_from: rule_units)
+    "rule_value": (("bat", "rule_check"), None), "rule_margin": (("bat", "rule_check"), None),
 }
-BAT_DIMS = ["bat", "mode", "node", "profile_point", "bbcor_point"]
+BAT_DIMS = ["bat", "mode", "node", "profile_point", "bbcor_point", "rule_check"]
 
 # UDUNITS-style: "1", or unit symbols with optional integer powers, joined by space, '.', '*'
 # or '/': "m/s", "kg m^2", "kg/m^3", "N s", "rad/s".
@@ -262,6 +268,11 @@ class Checker:
             if self.is_text(ds):
                 if "units" in ds.attrs:
                     self.bad(where, "text variable with a `units` attribute (text has none)")
+            elif "units" not in ds.attrs and "units_from" in ds.attrs:
+                # each row in its own units, named by a text variable of the group
+                src = self.text(ds.attrs["units_from"])
+                if src not in g or not self.is_text(g[src]):
+                    self.bad(where, f"units_from {src!r} is not a text variable of the group")
             elif "units" not in ds.attrs:
                 self.bad(where, "no `units` attribute")
             elif units is None:

@@ -57,6 +57,7 @@ def bat_card(tree, bat=None):
     beside: ``length_in``, ``mass_oz``, ``balance_point_in``, the swing weights in
     ``oz in^2``, ``barrel_diameter_in``, ``sweet_zone_length_in``.
 
+    One bat's card has no ``bat`` dimension (its label is a scalar coordinate).
     ``tree`` is what :func:`batstudy.open_results` returns. A file written before bats had
     cards raises ``ValueError`` (run the study again).
     """
@@ -87,12 +88,12 @@ def bat_card(tree, bat=None):
     if bat is not None:
         labels = [str(b) for b in card["bat"].values]
         if bat in labels:
-            card = card.isel(bat=[labels.index(bat)])
+            card = card.isel(bat=labels.index(bat))
         elif isinstance(bat, int) or (isinstance(bat, str) and bat.isdigit()):
             k = int(bat)
             if not 0 <= k < len(labels):
                 raise ValueError(f"bat {bat!r} is not a bat of the file; it has {len(labels)}")
-            card = card.isel(bat=[k])
+            card = card.isel(bat=k)
         else:
             raise ValueError(f"bat {bat!r} is not a bat of the file; allowed: {labels}")
     return card

@@ -89,7 +89,46 @@ def collect(tree: xr.DataTree) -> dict:
                          for k in ("position", "exit_speed", "width") if k in sweet}  # fmt: skip
     data["histories"] = histories(tree, dims, controls)
     data["time_ms"] = history_time(tree)
+    data["cards"] = card_rows(tree)
     return data
+
+
+def card_rows(tree: xr.DataTree) -> list[dict]:
+    """Each bat's card (:func:`batstudy.bat_card`) as rows of text; none for a file written
+    before bats had cards."""
+    from ._card import bat_card
+
+    try:
+        card = bat_card(tree)
+    except ValueError:
+        return []
+
+    def num(x, digits):
+        return "–" if not np.isfinite(x) else f"{x:.{digits}f}"
+
+    out = []
+    for k, label in enumerate(card["bat"].values):
+        c = card.isel(bat=k)
+        v = {name: float(c[name]) for name in c.data_vars if c[name].ndim == 0 and c[name].dtype.kind == "f"}
+        rows = [
+            ["length", f"{num(v['length'], 4)} m ({num(v['length_in'], 2)} in)"],
+            ["mass", f"{num(v['mass'], 4)} kg ({num(v['mass_oz'], 2)} oz), drop {num(v['drop'], 2)}"],
+            ["balance point", f"{num(v['balance_point'], 4)} m ({num(v['balance_point_in'], 2)} in) from the knob"],
+            ["MOI about the knob", f"{num(v['moment_of_inertia_knob'], 4)} kg m² ({num(v['moment_of_inertia_knob_oz_in2'], 0)} oz in²)"],
+            ["MOI about 6 in", f"{num(v['moment_of_inertia_knob6'], 4)} kg m² ({num(v['moment_of_inertia_knob6_oz_in2'], 0)} oz in²)"],
+            ["barrel diameter", f"{num(v['barrel_diameter'], 5)} m ({num(v['barrel_diameter_in'], 3)} in)"],
+            ["BBCOR", f"{num(v['bbcor_max'], 4)} at {num(v['bbcor_max_position'], 4)} m"],
+            ["sweet zone", f"{num(v['sweet_zone_length'], 4)} m ({num(v['sweet_zone_length_in'], 2)} in), "
+                           f"{num(v['sweet_zone_start'], 4)}–{num(v['sweet_zone_end'], 4)} m"],
+            ["bending mode 1", f"{num(v['bending_frequency'], 0)} Hz"],
+            ["hoop mode", f"{num(v['hoop_mode_frequency'], 0)} Hz" if np.isfinite(v["hoop_mode_frequency"]) else "none (solid)"],
+        ]  # fmt: skip
+        rules = [[text_of(r), num(float(c["rule_value"].isel(rule_check=j)), 6), text_of(c["rule_units"].values[j]),
+                  num(float(c["rule_margin"].isel(rule_check=j)), 6),
+                  "passes" if bool(c["rule_passes"].isel(rule_check=j)) else "FAILS"]
+                 for j, r in enumerate(card["rule_check"].values)]  # fmt: skip
+        out.append({"label": text_of(label), "rows": rows, "rules": rules})
+    return out
 
 
 def histories(tree: xr.DataTree, dims: list[str], controls: list[dict]) -> list[dict]:
@@ -142,6 +181,9 @@ PAGE = """<!DOCTYPE html>
  .numbers { font-family: monospace; margin: .3em 0 1em 0; }
  .plot { width: 100%; max-width: 1000px; height: 430px; }
  h2 { font-size: 1.1em; margin-top: 1.5em; }
+ h3 { font-size: 1em; margin: 1em 0 .3em 0; }
+ table.card { border-collapse: collapse; font-size: .9em; }
+ table.card td, table.card th { padding: .1em .8em .1em 0; text-align: left; }
 </style>
 <script>__PLOTLY__</script>
 </head><body>
@@ -151,6 +193,8 @@ PAGE = """<!DOCTYPE html>
 <div class="numbers">sweet spot: <span id="sweet-position">–</span> m,
  exit speed <span id="sweet-exit">–</span> m/s, width <span id="sweet-width">–</span> m</div>
 <div id="exit" class="plot"></div>
+<h2>The bats</h2>
+<div id="cards"></div>
 <h2>Force histories (points that recorded one)</h2>
 <div class="controls"><label>history <select id="history"></select></label></div>
 <div id="force" class="plot"></div>
@@ -230,10 +274,25 @@ function drawBending() {
   Plotly.react("bending", [{ x: b.z, y: b.mm[k], mode: "lines", name: "displacement" }],
     { xaxis: { title: { text: "z (m from the knob)" } }, yaxis: { title: { text: "displacement (mm)" }, range: [-top, top] }, margin: { t: 20 } });
 }
+function drawCards() {  // every string as text, never as markup
+  const box = document.getElementById("cards");
+  if (!DATA.cards.length) { box.textContent = "This file has no bat card (written by an older batstudy)."; return; }
+  DATA.cards.forEach(c => {
+    const h = document.createElement("h3"); h.textContent = c.label; box.appendChild(h);
+    const t = document.createElement("table"); t.className = "card";
+    const row = (cells, tag) => { const tr = document.createElement("tr");
+      cells.forEach(x => { const td = document.createElement(tag); td.textContent = x; tr.appendChild(td); }); t.appendChild(tr); };
+    c.rows.forEach(r => row(r, "td"));
+    row(["rule", "value", "units", "margin", "verdict"], "th");
+    c.rules.forEach(r => row(r, "td"));
+    box.appendChild(t);
+  });
+}
 hsel.addEventListener("change", drawHistory);
 document.getElementById("frame").addEventListener("input", drawBending);
 drawExit();
 drawHistory();
+drawCards();
 </script>
 </body></html>
 """

@@ -62,6 +62,7 @@ def test_the_explorer_works_in_a_browser(tmp_path):
     with h5py.File(SMOKE, "r") as f:
         exit_speed = f["summary/exit_speed"][()]  # (model, swing_omega, impact_z, case)
         position = f["sweet_spot/position"][()]  # (model, swing_omega, case)
+        bats = [b.decode() for b in f["bat/bat"][()]]
     errors, requests = [], []
     with browser_page(errors, requests) as page:
         page.goto(page_path.as_uri())
@@ -83,6 +84,9 @@ def test_the_explorer_works_in_a_browser(tmp_path):
         page.fill("#frame", "20")
         page.dispatch_event("#frame", "input")
         assert "t = " in page.text_content("#frame-time")
+        # every bat's card, under its label
+        assert page.evaluate("[...document.querySelectorAll('#cards h3')].map(h => h.textContent)") == bats
+        assert "sweet zone" in page.text_content("#cards") and "ncaa_bbcor" in page.text_content("#cards")
     assert not errors, errors
     assert not requests, f"the page reached the network: {requests}"
 

@@ -259,18 +259,17 @@ impl BatGroup<'_> {
                 .collect()
         };
         let shape = vec![p.len(), n];
-        self.var(
-            &l::BAT_RULE_VALUE,
-            shape.clone(),
-            column(|c| c.value),
-            &[&self.bat, &rule],
-        )?;
-        self.var(
-            &l::BAT_RULE_MARGIN,
-            shape,
-            column(|c| c.margin),
-            &[&self.bat, &rule],
-        )
+        let getters: [(&VarDef, fn(&RuleCheck) -> f64); 2] = [
+            (&l::BAT_RULE_VALUE, |c| c.value),
+            (&l::BAT_RULE_MARGIN, |c| c.margin),
+        ];
+        for (def, get) in getters {
+            self.var(def, shape.clone(), column(get), &[&self.bat, &rule])?;
+            // each limit in its own units: one `units` attribute cannot say them
+            let ds = self.g.dataset(def.name).ctx(self.out, &e(def.name))?;
+            h5u::attr_str(&ds, "units_from", l::BAT_RULE_UNITS.name).ctx(self.out, &e(def.name))?;
+        }
+        Ok(())
     }
 }
 
