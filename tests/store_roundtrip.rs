@@ -57,6 +57,7 @@ fn bat(label: &str, n_modes: usize) -> BatVariant {
             mode_frequency: (1..=n_modes).map(|k| 170.0 * (k * k) as f64).collect(),
             mode_nodes: (1..=n_modes).map(|k| grid(0.1, 0.7, k + 1)).collect(),
             metrics: Default::default(),
+            rule_checks: Vec::new(),
         },
         shapes: None,
     }

@@ -96,7 +96,7 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
     .map(column);
     let moi_knob = column(l::BAT_MOI_KNOB.name)?;
     let modes = floats(l::BAT_MODE_FREQ.name)?;
-    let per = if n == 0 { 0 } else { modes.len() / n };
+    let per = modes.len().checked_div(n).unwrap_or(0);
     let shots = texts(l::BAT_BBCOR_SHOT.name)?;
     let rule_labels = texts(l::RULE_CHECK_DIM.name)?;
     let rule_units = texts(l::BAT_RULE_UNITS.name)?;

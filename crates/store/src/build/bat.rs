@@ -259,7 +259,8 @@ impl BatGroup<'_> {
                 .collect()
         };
         let shape = vec![p.len(), n];
-        let getters: [(&VarDef, fn(&RuleCheck) -> f64); 2] = [
+        type Getter = fn(&RuleCheck) -> f64;
+        let getters: [(&VarDef, Getter); 2] = [
             (&l::BAT_RULE_VALUE, |c| c.value),
             (&l::BAT_RULE_MARGIN, |c| c.margin),
         ];
