@@ -42,7 +42,7 @@ fi
 
 stage "Python tests"
 BATSTUDY_BIN="$PWD/target/debug/batstudy" SMOKE_H5="$PWD/target/smoke/smoke.h5" \
-  .venv/bin/python -m pytest -q --durations=12 tests/python
+  .venv/bin/python -m pytest -q -n auto --durations=12 tests/python
 
 # The wheel, built and installed in a fresh venv, and the API tests + notebook
 # against it (BATSTUDY_WHEEL_TEST=0 skips it: ~3 min the first time, for the HDF5 build).

@@ -11,16 +11,37 @@ cd "$(dirname "$0")/.."
 source scripts/stage.sh
 bash scripts/setup.sh >/dev/null
 
-stage "Building the wheel (pip wheel .)"
+# The fresh venv and the wheel's dependencies (pyproject.toml's, with the test and notebook
+# extras) are installed while the wheel builds: pip waits on files, the build on the cores.
+rm -rf target/wheel-venv target/wheel-deps.log
+python3 -m venv target/wheel-venv
+wheel_deps() {
+  target/wheel-venv/bin/python -m pip install -q --upgrade pip &&
+    target/wheel-venv/bin/python -m pip install -q \
+      $(.venv/bin/python - <<'PY'
+import tomllib
+p = tomllib.load(open("pyproject.toml", "rb"))["project"]
+extras = p["optional-dependencies"]
+deps = p["dependencies"] + [d for e in ("test", "notebook", "plot") for d in extras[e]]
+print(" ".join(d for d in deps if not d.startswith("batstudy")))
+PY
+      ) -c scripts/requirements.txt -c scripts/constraints-wheel.txt
+}
+wheel_deps > target/wheel-deps.log 2>&1 &
+deps_pid=$!
+
+stage "Building the wheel (pip wheel .), the venv's dependencies alongside"
 rm -rf target/wheels
 .venv/bin/python -m pip wheel -q --no-deps -w target/wheels .
 wheel=$(ls target/wheels/batstudy-*.whl)
 echo "built $wheel ($(du -h "$wheel" | cut -f1))"
 
 stage "A fresh venv with the wheel"
-rm -rf target/wheel-venv
-python3 -m venv target/wheel-venv
-target/wheel-venv/bin/python -m pip install -q --upgrade pip
+if ! wait "$deps_pid"; then
+  cat target/wheel-deps.log >&2
+  echo "test_wheel: installing the wheel's dependencies failed" >&2
+  exit 1
+fi
 target/wheel-venv/bin/python -m pip install -q "${wheel}[test,notebook]" \
   -c scripts/requirements.txt -c scripts/constraints-wheel.txt
 

@@ -214,8 +214,21 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
     assert!(!verdict(cards[1], "one piece of solid wood"));
     assert!(cards[0].contains("none (a solid bat)"));
     assert!(cards[1].contains("breathing mode"));
-    // one bat by label; an unknown one is refused with the labels allowed (exit 2)
+    // the table: a row per bat under two header lines, the rules kept as the cards count them
     let _g = spawn_guard();
+    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
+        .args(["compare", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let table = String::from_utf8(o.stdout).unwrap();
+    assert!(o.status.success(), "{table}");
+    let rows: Vec<&str> = table.lines().skip(2).collect();
+    assert_eq!(rows.len(), 2, "{table}");
+    for (row, card) in rows.iter().zip(&cards) {
+        let kept = card.matches("passes").count();
+        assert!(row.contains(&format!(" {kept}/6 ")), "{row}\n{card}");
+    }
+    // one bat by label; an unknown one is refused with the labels allowed (exit 2)
     let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
         .args(["card", out.to_str().unwrap(), "--bat", "1"])
         .output()

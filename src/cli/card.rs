@@ -1,7 +1,8 @@
-//! `batstudy card`: each bat of a results file as the trade states it (`store::card`).
+//! `batstudy card`: each bat of a results file as the trade states it; `batstudy compare`:
+//! the bats in one table (`store::card`).
 
 use super::{EXIT_BAD_INPUT, EXIT_OK};
-use crate::store::card::{bat_cards, render};
+use crate::store::card::{bat_cards, render, render_table};
 use crate::store::inspect::pick_bat;
 use crate::study::error::printable;
 use std::path::PathBuf;
@@ -14,6 +15,26 @@ pub struct CardArgs {
     /// Default: every bat of the file.
     #[arg(long)]
     pub bat: Option<String>,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct CompareArgs {
+    /// A results file.
+    pub file: PathBuf,
+}
+
+/// `batstudy compare`: every bat of the file in one table, a row per bat.
+pub(super) fn cmd_compare(a: &CompareArgs) -> i32 {
+    match bat_cards(&a.file) {
+        Ok(cards) => {
+            print!("{}", render_table(&cards));
+            EXIT_OK
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_BAD_INPUT
+        }
+    }
 }
 
 pub(super) fn cmd_card(a: &CardArgs) -> i32 {

@@ -1,5 +1,5 @@
 //! The command line: a thin layer over the library. Each command has its own module
-//! (`run`, `plan`, `validate`, `merge`, `slurm`, `optimize`, `export-profile`, `card`; `inspect`, `schema` and `bench` are one
+//! (`run`, `plan`, `validate`, `merge`, `slurm`, `optimize`, `export-profile`, `card`, `compare`; `inspect`, `schema` and `bench` are one
 //! call each, below); its raw flags become one validated settings value before anything
 //! runs or is written, then one library call. `common` holds what several commands share.
 //! Exit codes: 0 all points ok, 1 some points failed
@@ -101,6 +101,10 @@ pub enum Command {
     /// point, swing weights, BBCOR with its ball, sweet zone, bending and hoop frequencies,
     /// and the margin to each rule.
     Card(card::CardArgs),
+    /// Every bat of a results file in one table, a row per bat, in the trade's units (oz,
+    /// in, oz in^2): weight and drop, balance point, swing weights, diameter, BBCOR, sweet
+    /// zone, bending and hoop frequencies, the rules kept.
+    Compare(card::CompareArgs),
 }
 
 /// How this process was started, for what it writes that starts batstudy again (the Slurm
@@ -166,6 +170,7 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         Command::Optimize(a) => optimize::cmd_optimize(&a),
         Command::ExportProfile(a) => export::cmd_export(&a),
         Command::Card(a) => card::cmd_card(&a),
+        Command::Compare(a) => card::cmd_compare(&a),
         Command::Bench {
             quick,
             threads,

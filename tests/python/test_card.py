@@ -57,3 +57,29 @@ def test_a_file_without_a_card_is_refused(tmp_path):
     tree = batstudy.open_results(synthetic_results.write(tmp_path / "old.h5"))
     with pytest.raises(ValueError, match="older batstudy"):
         batstudy.bat_card(tree)
+
+
+@pytest.mark.skipif(not SMOKE, reason="SMOKE_H5 not set (scripts/test.sh sets it)")
+def test_the_comparison_figure_draws_every_bat_and_its_sweet_zone():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import batstudy.plot
+
+    tree = batstudy.open_results(SMOKE)
+    card = batstudy.bat_card(tree)
+    axes = batstudy.plot.compare(tree, model="wave", swing_omega=0.0)
+    assert len(axes) == 3
+    n = card.sizes["bat"]
+    # BBCOR along the barrel: a line per bat (the fixed-end bat has no free-bat scan, an empty one)
+    assert len(axes[0].lines) == n
+    # each sweet zone shaded where the card puts it
+    zones = sorted((p.get_x(), p.get_x() + p.get_width()) for p in axes[0].patches)
+    want = sorted(zip(card["sweet_zone_start"].values, card["sweet_zone_end"].values))
+    want = [w for w in want if np.isfinite(w).all()]
+    np.testing.assert_allclose(zones, want)
+    # the lab exit speed against impact position: each bat's curve is the file's
+    summary = tree["summary"].to_dataset().sel(model="wave", swing_omega=0.0)
+    line = axes[1].lines[0]
+    first = summary["exit_speed_lab"].where(summary["bat_index"] == 0, drop=True)
+    np.testing.assert_array_equal(line.get_ydata(), first.isel(case=0).values)

@@ -248,3 +248,57 @@ fn render_one(c: &BatCard, s: &mut String) {
         );
     }
 }
+
+/// The cards as one table, a row per bat, in the trade's units (`batstudy compare`): the bats'
+/// numbers side by side, each bat's rules as how many it keeps and the first it breaks.
+pub fn render_table(cards: &[BatCard]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:>3} {:>7} {:>6} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6} {:>6} {:>5}  bat",
+        "#",
+        "oz",
+        "drop",
+        "bal.in",
+        "knob",
+        "6in",
+        "diam",
+        "BBCOR",
+        "zone",
+        "bend",
+        "hoop",
+        "rules"
+    );
+    let _ = writeln!(
+        s,
+        "{:>3} {:>7} {:>6} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6} {:>6} {:>5}",
+        "", "", "", "", "oz in^2", "oz in^2", "in", "", "in", "Hz", "Hz", "kept"
+    );
+    for (i, c) in cards.iter().enumerate() {
+        let kept = c.rules.iter().filter(|r| r.margin >= 0.0).count();
+        let broken = c.rules.iter().find(|r| r.margin < 0.0);
+        let unknown = c.rules.iter().find(|r| r.margin.is_nan());
+        let _ = writeln!(
+            s,
+            "{i:>3} {:>7.2} {:>+6.2} {:>7.2} {:>8.0} {:>8.0} {:>6.3} {:>7.4} {:>6.2} {:>6.0} {:>6.0} {:>5}  {}{}",
+            c.mass / OUNCE,
+            c.drop,
+            c.balance_point / INCH,
+            c.moment_of_inertia_knob / OUNCE_SQUARE_INCH,
+            c.moment_of_inertia_knob6 / OUNCE_SQUARE_INCH,
+            c.barrel_diameter / INCH,
+            c.bbcor_max,
+            (c.sweet_zone_end - c.sweet_zone_start) / INCH,
+            c.bending_frequency,
+            c.hoop_mode_frequency,
+            format!("{kept}/{}", c.rules.len()),
+            printable(&c.label, false),
+            match (broken, unknown) {
+                (Some(r), _) => format!(" (breaks {})", printable(&r.label, false)),
+                (None, Some(r)) => format!(" (cannot judge {})", printable(&r.label, false)),
+                (None, None) => String::new(),
+            },
+        );
+    }
+    s
+}

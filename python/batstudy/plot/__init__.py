@@ -9,6 +9,8 @@ Any file, in a notebook or a script (each returns the matplotlib axes it drew on
 - :func:`history`: stored histories against time: ``history(path, "force", impact_z=0.6)``;
 - :func:`displacement`: the bat's displacement along its length at several times;
 - :func:`bat_profiles`: the profiles of the study's bats;
+- :func:`compare`: the bats side by side: BBCOR along the barrel with each sweet zone, the
+  lab exit speed and the vibration left in the bat against impact position;
 - :func:`uncertainty`: a `sample` study's BBCOR over the sample and its sweet spot's wander;
   :func:`search`: a design search's candidates (`/optimize`).
 
@@ -27,6 +29,7 @@ try:
 except ImportError as err:  # the optional dependency: say how to get it
     raise ImportError("batstudy.plot needs matplotlib: pip install 'batstudy[plot]'") from err
 
+from ._compare import compare
 from ._curves import (
     Curve,
     Results,
@@ -45,7 +48,7 @@ from ._paper import FIGURES, MAX_FRAMES, OTHER_FIGURES
 from ._views import bat_profiles, displacement, exit_speed, history, sweet_spots
 
 __all__ = [
-    "exit_speed", "sweet_spots", "history", "displacement", "bat_profiles", "figures", "main",
+    "exit_speed", "sweet_spots", "history", "displacement", "bat_profiles", "compare", "figures", "main",
     "FIGURES", "OTHER_FIGURES", "ALL_FIGURES", "MAX_FRAMES", "file_name",
     "Results", "Curve", "Skip", "select", "one_factor", "differing", "same",
     "remove_rigid", "rigid_projection", "excess_speed",
