@@ -134,3 +134,41 @@ fn corking_gives_no_batted_ball_speed_with_a_measured_swing_exponent() {
         - best_batted_ball_speed(&test_bat(), &fixed);
     assert!(loss < -MPH, "fixed swing: {:+.2} mph", loss / MPH);
 }
+
+/// A batter's study warns, naming the bat, where the swing law is extrapolated: a bat whose
+/// swing weight lies outside the span of the bats it was measured with (docs/physics.md,
+/// "The batter"); the R161 itself is inside.
+#[test]
+fn a_run_warns_where_the_swing_law_is_extrapolated() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("s.yaml");
+    std::fs::write(
+        &study,
+        "name: s\nmodel: rigid\nbase:\n  bat: {preset: r161}\n  ball: {preset: mlb}\n  \
+         batter: {pitch_speed: 40.2, bat_speed: 31.3, reference_moi: 0.319}\n\
+         grid:\n  impact.z: [0.70]\n  bat.material.density: [649, 1000]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("s.h5");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_batstudy"))
+        .args([
+            "run",
+            study.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "-q",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let warnings: Vec<&str> = err
+        .lines()
+        .filter(|l| l.starts_with("warning: bat"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{err}");
+    assert!(
+        warnings[0].contains("density=1000") && warnings[0].contains("extrapolated"),
+        "{err}"
+    );
+}

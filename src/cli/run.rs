@@ -326,6 +326,7 @@ where
     );
     let (bats, begun) = crate::run::prepare_bats_alongside(sim, plan, &pool, begin);
     preparing.finish_and_clear();
+    swing_law_warnings(plan, &bats.variants);
     let history = settings.study.history_request(bats.max_length());
     let info = settings.study.info(bats.variants.clone(), history.clone());
     let sink = open(&settings.output, &info, settings.existing, begun)?;
@@ -341,6 +342,21 @@ where
     )
     .map_err(|e| RunFailure::new(EXIT_RUN_FAILED, run_failed_text(settings, &e.to_string())))?;
     Ok((report, started.elapsed()))
+}
+
+/// A study with a batter: a warning for each bat the swing law is extrapolated to.
+fn swing_law_warnings(plan: &crate::study::Plan, bats: &[crate::results::BatVariant]) {
+    let batter = crate::study::paths::get_path(plan.base(), "batter");
+    if batter.is_none_or(|b| b.is_null()) {
+        return;
+    }
+    for b in bats {
+        let moi6 = b.properties.moment_of_inertia_knob6;
+        if let Some(why) = crate::model::spec::swing_law_extrapolated(moi6) {
+            let label = crate::study::error::printable(&b.label, false);
+            eprintln!("warning: bat {label}: {why}");
+        }
+    }
 }
 
 /// The message of a run that failed midway (I/O): its cause, a full disk named as such,

@@ -39,6 +39,37 @@ pub struct BatterSpec {
     pub pivot: f64,
 }
 
+/// The swing weights the swing law was measured near: moments of inertia about the point
+/// 6 in from the knob, kg·m², of the bats real batters swing, 5 000–11 000 oz·in²: adult
+/// baseball bats 8 000–10 000 oz·in², light fast-pitch bats down to about 5 000 (Washington
+/// State University's Sports Science Laboratory, read), a 34-in BBCOR bat 11 000 (a bat
+/// maker's figure, second-hand). The measurements' own spans were not found in a primary
+/// source (docs/physics.md, "The batter"); outside this span the law is extrapolated.
+pub const SWING_LAW_MOI6: [f64; 2] = [
+    5000.0 * crate::units::OUNCE_SQUARE_INCH,
+    11000.0 * crate::units::OUNCE_SQUARE_INCH,
+];
+
+/// Why the swing law is extrapolated for a bat of this moment of inertia about the 6-in
+/// point (kg·m²), or `None` within [`SWING_LAW_MOI6`].
+pub fn swing_law_extrapolated(moment_of_inertia_knob6: f64) -> Option<String> {
+    let [lo, hi] = SWING_LAW_MOI6;
+    let oz_in2 = |i: f64| i / crate::units::OUNCE_SQUARE_INCH;
+    (moment_of_inertia_knob6.is_finite() && !(lo..=hi).contains(&moment_of_inertia_knob6)).then(
+        || {
+            format!(
+                "its swing weight, {:.3} kg m^2 ({:.0} oz in^2) about the 6-in point, lies outside \
+                 the {:.0}-{:.0} oz in^2 of the bats the swing-speed law was measured with: its \
+                 swing speed is extrapolated",
+                moment_of_inertia_knob6,
+                oz_in2(moment_of_inertia_knob6),
+                oz_in2(lo),
+                oz_in2(hi)
+            )
+        },
+    )
+}
+
 fn default_bat_speed_at() -> f64 {
     0.7112
 }
@@ -103,4 +134,22 @@ fn default_humidity() -> f64 {
 }
 fn default_height() -> f64 {
     crate::flight::DEFAULT_CONTACT_HEIGHT_M
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_swing_laws_span_is_the_trades_in_si() {
+        // 1 oz in^2 = 0.028349523125 kg × 0.0254² m² (the avoirdupois ounce and the inch)
+        let oz_in2 = 0.028349523125 * 0.0254 * 0.0254;
+        assert!((SWING_LAW_MOI6[0] - 5000.0 * oz_in2).abs() < 1e-15);
+        assert!((SWING_LAW_MOI6[1] - 0.2012).abs() < 1e-4);
+        // the R161 (0.1905 kg m^2 about 6 in) is inside; a 1 000 kg/m^3 R161 (0.2935) is not
+        assert!(swing_law_extrapolated(0.1905).is_none());
+        let why = swing_law_extrapolated(0.2935).unwrap();
+        assert!(why.contains("(16047 oz in^2)"), "{why}");
+        assert!(swing_law_extrapolated(f64::NAN).is_none());
+    }
 }

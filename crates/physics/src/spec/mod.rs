@@ -11,7 +11,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 mod batter;
-pub use batter::{BatterSpec, FlightSpec};
+pub use batter::{swing_law_extrapolated, BatterSpec, FlightSpec, SWING_LAW_MOI6};
 pub mod ball_law;
 pub use ball_law::{BallLaw, BallLawKind, BallPreset, Loading};
 
