@@ -36,16 +36,27 @@ fn results_of(study: &str) -> (tempfile::TempDir, std::path::PathBuf) {
     (dir, out)
 }
 
-/// `batstudy inspect FILE`'s standard output (it must succeed).
-fn inspect(out: &std::path::Path) -> String {
+/// `batstudy COMMAND FILE ARGS…` run to its end (children only under [`spawn_guard`]).
+fn command(cmd: &str, out: &std::path::Path, args: &[&str]) -> std::process::Output {
     let _g = spawn_guard();
-    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
-        .args(["inspect", out.to_str().unwrap()])
+    Command::new(env!("CARGO_BIN_EXE_batstudy"))
+        .args([cmd, out.to_str().unwrap()])
+        .args(args)
         .output()
-        .unwrap();
+        .unwrap()
+}
+
+/// `batstudy COMMAND FILE`'s standard output (it must succeed).
+fn stdout_of(cmd: &str, out: &std::path::Path) -> String {
+    let o = command(cmd, out, &[]);
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(o.status.success(), "{text}");
     text
+}
+
+/// `batstudy inspect FILE`'s standard output (it must succeed).
+fn inspect(out: &std::path::Path) -> String {
+    stdout_of("inspect", out)
 }
 
 #[test]
@@ -119,14 +130,7 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
          grid:\n  impact.z: [0.70]\n\
          points:\n  name: case\n  sets:\n    - {hoop: null}\n    - {bat.preset: alloy_bbcor}\n",
     );
-    let _g = spawn_guard();
-    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
-        .args(["card", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    let text = String::from_utf8(o.stdout).unwrap();
-    assert!(o.status.success(), "{text}");
-    drop(_g);
+    let text = stdout_of("card", &out);
     let (mass, length, drop) = (
         bat_floats(&out, "mass"),
         bat_floats(&out, "length"),
@@ -215,13 +219,7 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
     assert!(cards[0].contains("none (a solid bat)"));
     assert!(cards[1].contains("breathing mode"));
     // the table: a row per bat under two header lines, the rules kept as the cards count them
-    let _g = spawn_guard();
-    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
-        .args(["compare", out.to_str().unwrap()])
-        .output()
-        .unwrap();
-    let table = String::from_utf8(o.stdout).unwrap();
-    assert!(o.status.success(), "{table}");
+    let table = stdout_of("compare", &out);
     let rows: Vec<&str> = table.lines().skip(2).collect();
     assert_eq!(rows.len(), 2, "{table}");
     for (row, card) in rows.iter().zip(&cards) {
@@ -238,10 +236,7 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
         String::from_utf8(o.stdout).unwrap(),
         format!("{}\n", cards[1].trim_end())
     );
-    let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
-        .args(["card", out.to_str().unwrap(), "--bat", "nope"])
-        .output()
-        .unwrap();
+    let o = command("card", &out, &["--bat", "nope"]);
     let err = String::from_utf8(o.stderr).unwrap();
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
