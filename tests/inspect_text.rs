@@ -130,76 +130,8 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
          grid:\n  impact.z: [0.70]\n\
          points:\n  name: case\n  sets:\n    - {hoop: null}\n    - {bat.preset: alloy_bbcor}\n",
     );
+    the_cards_numbers_follow_their_definitions(&out);
     let text = stdout_of("card", &out);
-    let (mass, length, drop) = (
-        bat_floats(&out, "mass"),
-        bat_floats(&out, "length"),
-        bat_floats(&out, "drop"),
-    );
-    let (zcm, knob, knob6) = (
-        bat_floats(&out, "z_cm"),
-        bat_floats(&out, "moment_of_inertia_knob"),
-        bat_floats(&out, "moment_of_inertia_knob6"),
-    );
-    for b in 0..2 {
-        // The rule books' drop: ounces (28.349523125 g, avoirdupois) minus inches (25.4 mm).
-        let want = mass[b] / 0.028349523125 - length[b] / 0.0254;
-        assert!(
-            (drop[b] - want).abs() < 1e-9,
-            "bat {b}: {} vs {want}",
-            drop[b]
-        );
-        // Parallel axes (Steiner): I_knob − I_6in = M (z_cm² − (z_cm − 6 in)²).
-        let steiner = mass[b] * (zcm[b].powi(2) - (zcm[b] - 0.1524).powi(2));
-        assert!(
-            (knob[b] - knob6[b] - steiner).abs() < 1e-9 * knob[b],
-            "bat {b}"
-        );
-    }
-    // The sweet zone: where the stored scan, read linearly between its points, is 0.01 below
-    // the peak (the trade's "sweet-zone length"), around the peak.
-    let (peak, at) = (
-        bat_floats(&out, "bbcor_max"),
-        bat_floats(&out, "bbcor_max_position"),
-    );
-    let (start, end) = (
-        bat_floats(&out, "sweet_zone_start"),
-        bat_floats(&out, "sweet_zone_end"),
-    );
-    let (scan_z, scan) = (bat_floats(&out, "bbcor_z"), bat_floats(&out, "bbcor"));
-    let n = scan_z.len() / 2;
-    for b in 0..2 {
-        let (z, v) = (&scan_z[b * n..(b + 1) * n], &scan[b * n..(b + 1) * n]);
-        let read = |x: f64| {
-            let k = z.iter().rposition(|&zk| zk <= x).unwrap().min(z.len() - 2);
-            v[k] + (v[k + 1] - v[k]) * (x - z[k]) / (z[k + 1] - z[k])
-        };
-        assert!(
-            start[b] < at[b] && at[b] < end[b],
-            "bat {b}: {start:?} {at:?} {end:?}"
-        );
-        for edge in [start[b], end[b]] {
-            assert!(
-                (read(edge) - (peak[b] - 0.01)).abs() < 1e-9,
-                "bat {b} at {edge}"
-            );
-        }
-        // a real bat's: a few inches (Russell's sweet-zone maps; here 1–6 in)
-        assert!((0.025..0.15).contains(&(end[b] - start[b])), "bat {b}");
-    }
-    // The card's hoop mode is the wall's lowest breathing mode the collisions used; a solid
-    // bat has none.
-    let hoop = bat_floats(&out, "hoop_mode_frequency");
-    let used = {
-        let _g = no_spawns();
-        let f = hdf5::File::open(&out).unwrap();
-        f.dataset("summary/hoop_mode_frequency")
-            .unwrap()
-            .read_raw::<f64>()
-            .unwrap()
-    };
-    assert!(hoop[0].is_nan() && used[0].is_nan(), "{hoop:?} {used:?}");
-    assert_eq!(hoop[1], used[1]);
     // The rules: the rule books' own numbers, and the verdicts they give.
     for line in [
         "ncaa_bbcor: bat.barrel_diameter <= 0.066675", // 2 5/8 in (NCAA Rule 1-12)
@@ -243,4 +175,78 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
         err.contains("nope is not a bat of the file") && err.contains("0: "),
         "{err}"
     );
+}
+
+/// The card's numbers in `/bat` against their definitions: drop, the parallel axes, the
+/// sweet zone's ends on the stored scan, the hoop mode the collisions used (bats 0 and 1).
+fn the_cards_numbers_follow_their_definitions(out: &std::path::Path) {
+    let (mass, length, drop) = (
+        bat_floats(out, "mass"),
+        bat_floats(out, "length"),
+        bat_floats(out, "drop"),
+    );
+    let (zcm, knob, knob6) = (
+        bat_floats(out, "z_cm"),
+        bat_floats(out, "moment_of_inertia_knob"),
+        bat_floats(out, "moment_of_inertia_knob6"),
+    );
+    for b in 0..2 {
+        // The rule books' drop: ounces (28.349523125 g, avoirdupois) minus inches (25.4 mm).
+        let want = mass[b] / 0.028349523125 - length[b] / 0.0254;
+        assert!(
+            (drop[b] - want).abs() < 1e-9,
+            "bat {b}: {} vs {want}",
+            drop[b]
+        );
+        // Parallel axes (Steiner): I_knob − I_6in = M (z_cm² − (z_cm − 6 in)²).
+        let steiner = mass[b] * (zcm[b].powi(2) - (zcm[b] - 0.1524).powi(2));
+        assert!(
+            (knob[b] - knob6[b] - steiner).abs() < 1e-9 * knob[b],
+            "bat {b}"
+        );
+    }
+    // The sweet zone: where the stored scan, read linearly between its points, is 0.01 below
+    // the peak (the trade's "sweet-zone length"), around the peak.
+    let (peak, at) = (
+        bat_floats(out, "bbcor_max"),
+        bat_floats(out, "bbcor_max_position"),
+    );
+    let (start, end) = (
+        bat_floats(out, "sweet_zone_start"),
+        bat_floats(out, "sweet_zone_end"),
+    );
+    let (scan_z, scan) = (bat_floats(out, "bbcor_z"), bat_floats(out, "bbcor"));
+    let n = scan_z.len() / 2;
+    for b in 0..2 {
+        let (z, v) = (&scan_z[b * n..(b + 1) * n], &scan[b * n..(b + 1) * n]);
+        let read = |x: f64| {
+            let k = z.iter().rposition(|&zk| zk <= x).unwrap().min(z.len() - 2);
+            v[k] + (v[k + 1] - v[k]) * (x - z[k]) / (z[k + 1] - z[k])
+        };
+        assert!(
+            start[b] < at[b] && at[b] < end[b],
+            "bat {b}: {start:?} {at:?} {end:?}"
+        );
+        for edge in [start[b], end[b]] {
+            assert!(
+                (read(edge) - (peak[b] - 0.01)).abs() < 1e-9,
+                "bat {b} at {edge}"
+            );
+        }
+        // a real bat's: a few inches (Russell's sweet-zone maps; here 1–6 in)
+        assert!((0.025..0.15).contains(&(end[b] - start[b])), "bat {b}");
+    }
+    // The card's hoop mode is the wall's lowest breathing mode the collisions used; a solid
+    // bat has none.
+    let hoop = bat_floats(out, "hoop_mode_frequency");
+    let used = {
+        let _g = no_spawns();
+        let f = hdf5::File::open(out).unwrap();
+        f.dataset("summary/hoop_mode_frequency")
+            .unwrap()
+            .read_raw::<f64>()
+            .unwrap()
+    };
+    assert!(hoop[0].is_nan() && used[0].is_nan(), "{hoop:?} {used:?}");
+    assert_eq!(hoop[1], used[1]);
 }
