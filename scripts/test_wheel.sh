@@ -17,7 +17,7 @@ rm -rf target/wheel-venv target/wheel-deps.log
 python3 -m venv target/wheel-venv
 wheel_deps() {
   target/wheel-venv/bin/python -m pip install -q --upgrade pip &&
-    target/wheel-venv/bin/python -m pip install -q --no-compile \
+    target/wheel-venv/bin/python -m pip install -q \
       $(.venv/bin/python - <<'PY'
 import tomllib
 p = tomllib.load(open("pyproject.toml", "rb"))["project"]
