@@ -36,15 +36,68 @@ pub fn batstudy_ok(args: &[&str]) {
     );
 }
 
-/// Every stored record of a results file, as exact text (Debug of f64 is its shortest
-/// round-trip form): two files with equal lists hold the same data.
+/// Every stored record of a results file: its place, id and bat, and a hash of its outcome
+/// as exact text (Debug of f64 is its shortest round-trip form): two files with equal lists
+/// hold the same data.
 pub fn stored_records(path: &std::path::Path) -> Vec<String> {
     batstudy::store::read_results(path)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
         .records
         .iter()
-        .map(|r| format!("{} {} {} {:?}", r.index, r.id, r.bat, r.result))
+        .map(|r| {
+            // The outcome's scalars as exact text (Debug of f64 is its shortest round-trip
+            // form, -0 and NaN included), its histories as their values' bits: the texts of
+            // every history value of a file were most of the time of the tests that use this.
+            let mut digest = std::hash::DefaultHasher::new();
+            let mut result = r.result.clone();
+            if let Ok(outcome) = &mut result {
+                if let Some(history) = outcome.history.take() {
+                    hash_history(&history, &mut digest);
+                }
+            }
+            std::hash::Hash::hash(&format!("{result:?}"), &mut digest);
+            let digest = std::hash::Hasher::finish(&digest);
+            format!("{} {} {} {digest:016x}", r.index, r.id, r.bat)
+        })
         .collect()
+}
+
+/// Every value of a history, by its bits (the destructuring names every field, so that a new
+/// one cannot be left out).
+fn hash_history(history: &batstudy_physics::outcome::History, digest: &mut impl std::hash::Hasher) {
+    use batstudy_physics::outcome::{History, ModalHistory};
+    let History {
+        force,
+        compression,
+        ball_velocity,
+        displacement,
+        rigid_translation,
+        rigid_rotation,
+        hoop_displacement,
+        modal:
+            ModalHistory {
+                modes,
+                coordinate,
+                bat_load,
+                static_shape,
+            },
+    } = history;
+    digest.write_usize(*modes);
+    for values in [
+        force,
+        compression,
+        ball_velocity,
+        displacement,
+        rigid_translation,
+        rigid_rotation,
+        hoop_displacement,
+        coordinate,
+        bat_load,
+        static_shape,
+    ] {
+        digest.write_usize(values.len());
+        values.iter().for_each(|x| digest.write_u64(x.to_bits()));
+    }
 }
 
 extern "C" {

@@ -152,7 +152,7 @@ pub(crate) fn flat_slabs(shape: &[usize], target: usize) -> Vec<(Vec<usize>, Vec
     slabs
 }
 
-fn read_slab<T: hdf5::H5Type>(
+fn read_slab<T: hdf5::H5Type + Clone>(
     ds: &hdf5::Dataset,
     start: &[usize],
     count: &[usize],
@@ -162,11 +162,22 @@ fn read_slab<T: hdf5::H5Type>(
     if start.is_empty() {
         return ds.read_raw::<T>().ctx(path, &what);
     }
-    Ok(ds
+    let slab = ds
         .read_slice::<T, _, ndarray::IxDyn>(block(start, count))
-        .ctx(path, &what)?
-        .into_iter()
-        .collect())
+        .ctx(path, &what)?;
+    // A slab read is a fresh array in row-major order: its buffer is the flat order, taken
+    // whole (iterating an n-dimensional array element by element was most of a file's read).
+    let n = slab.len();
+    if !slab.is_standard_layout() {
+        return Ok(slab.iter().cloned().collect());
+    }
+    match slab.into_raw_vec_and_offset() {
+        (data, Some(0) | None) if data.len() == n => Ok(data),
+        (data, offset) => {
+            let start = offset.unwrap_or(0);
+            Ok(data[start..start + n].to_vec())
+        }
+    }
 }
 
 /// Hand every present point of a results file to `each`, in flat-index order, one at a
