@@ -125,6 +125,37 @@ fn bad_optimize_blocks() {
         "`mlb_wood` needs a bat of one piece of solid wood",
         "value: aluminum",
     ]);
+    // a profile a lathe can turn: a span the knots' bounds allow to rise, a curvature > 0
+    let profile = "optimize:\n  objective: {maximize: exit_speed}\n  profile:\n    z: [0.0, 0.3, 0.6, 0.84]\n\
+                   \x20   radius: [0.012, {min: 0.02, max: 0.03}, 0.018, 0.03]\n";
+    check(
+        "optimize",
+        &format!("{profile}    shape: {{rising: [0.1, 0.84]}}\n"),
+        &[
+            "bad.yaml:10:13",
+            "optimize.profile.shape.rising",
+            "the radius cannot rise from knot 1 (z = 0.3 m, at least 0.02 m) to knot 2",
+            "value: [0.1, 0.84]",
+        ],
+    );
+    check(
+        "optimize",
+        &format!("{profile}    shape: {{rising: [0.5, 0.9]}}\n"),
+        &[
+            "bad rising span",
+            "value: [0.5, 0.9]",
+            "<= 0.84 (the last knot)",
+        ],
+    );
+    check(
+        "optimize",
+        &format!("{profile}    shape: {{max_curvature: -1}}\n"),
+        &[
+            "optimize.profile.shape.max_curvature",
+            "value: -1",
+            "allowed: a curvature > 0",
+        ],
+    );
     // validate finds the same
     check(
         "validate",

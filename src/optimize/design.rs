@@ -5,6 +5,7 @@
 
 #![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
 
+use super::profile_shape::{self, Shape};
 use super::quantity::Quantity;
 use super::rules::{rule_limits, Limit};
 use crate::study::optimize_block::{Aggregate, Bounds, Constraint, Knot, OptimizeBlock};
@@ -46,6 +47,9 @@ pub struct Design {
     /// The profile's knot positions, fixed radii and fixed wall thicknesses (NaN where a
     /// variable; no thicknesses: the study's shell).
     profile: Option<ProfileValues>,
+    /// The shape a profile keeps (`optimize.profile.shape`): None, radii free in their
+    /// bounds and linear between knots.
+    shape: Option<Shape>,
 }
 
 impl Design {
@@ -66,20 +70,114 @@ impl Design {
                     _ => {}
                 }
             }
+            let as_knots = |values: &[f64]| match self.shape {
+                Some(_) => knot_list(&profile_shape::turned(z, values)),
+                None => knots(z, values),
+            };
             let mut m = Mapping::new();
-            m.insert("knots".into(), knots(z, &r));
+            m.insert("knots".into(), as_knots(&r));
             let _ = set_path(&mut v, "bat.profile", Value::Mapping(m));
             if let Some(t) = t {
-                let _ = set_path(&mut v, "bat.shell.thickness_knots", knots(z, &t));
+                let _ = set_path(&mut v, "bat.shell.thickness_knots", as_knots(&t));
             }
         }
         v
     }
 
-    /// The start design.
+    /// The start design: the start of every variable (with a profile shape, the start
+    /// fractions placed as every candidate's are).
     pub fn start(&self) -> Vec<f64> {
-        self.variables.iter().map(|v| v.start).collect()
+        self.from_unit(&self.start_unit())
     }
+
+    /// The start design as a point of the unit cube: each variable's start scaled by its
+    /// bounds, or, with a profile shape, the free knots' places that give their start values
+    /// (the nearest that keep the shape).
+    pub fn start_unit(&self) -> Vec<f64> {
+        let unit = |v: &Variable| (v.start - v.min) / (v.max - v.min);
+        let mut u: Vec<f64> = self.variables.iter().map(unit).collect();
+        if let (Some(shape), Some((z, radius, wall))) = (&self.shape, &self.profile) {
+            self.start_places(z, radius, false, shape, &mut u);
+            if let Some(wall) = wall {
+                self.start_places(z, wall, true, &shape.without_rise(), &mut u);
+            }
+        }
+        u
+    }
+
+    /// The places of one list's free knots (radii or walls) that give their start values.
+    fn start_places(&self, z: &[f64], fixed: &[f64], wall: bool, shape: &Shape, u: &mut [f64]) {
+        let (bounds, start) = self.knot_bounds(fixed, wall, |_, v| v.start);
+        let t = profile_shape::fractions(z, &bounds, &start, shape);
+        for (v, ui) in self.variables.iter().zip(u.iter_mut()) {
+            if let (Some(k), true) = (v.knot, v.wall == wall) {
+                *ui = t[k];
+            }
+        }
+    }
+
+    /// One list's knots as bounds (a fixed knot's a point) and, per knot, `of` its variable
+    /// (by the variable's index; 0 for a fixed knot).
+    fn knot_bounds(
+        &self,
+        fixed: &[f64],
+        wall: bool,
+        of: impl Fn(usize, &Variable) -> f64,
+    ) -> (Vec<(f64, f64)>, Vec<f64>) {
+        let mut bounds: Vec<(f64, f64)> = fixed.iter().map(|&r| (r, r)).collect();
+        let mut values = vec![0.0; fixed.len()];
+        for (i, v) in self.variables.iter().enumerate() {
+            if let (Some(k), true) = (v.knot, v.wall == wall) {
+                (bounds[k], values[k]) = ((v.min, v.max), of(i, v));
+            }
+        }
+        (bounds, values)
+    }
+
+    /// The design of a point `u` of the unit cube (each coordinate clamped to [0, 1]): each
+    /// variable at that fraction of its bounds, or, with a profile shape, each free knot at
+    /// that fraction of what its bounds and the shape leave it.
+    pub fn from_unit(&self, u: &[f64]) -> Vec<f64> {
+        let mut x: Vec<f64> = (self.variables.iter().zip(u))
+            .map(|(v, &t)| v.min + (v.max - v.min) * t.clamp(0.0, 1.0))
+            .collect();
+        if let (Some(shape), Some((z, radius, wall))) = (&self.shape, &self.profile) {
+            self.place_knots(z, radius, false, shape, u, &mut x);
+            if let Some(wall) = wall {
+                self.place_knots(z, wall, true, &shape.without_rise(), u, &mut x);
+            }
+        }
+        x
+    }
+
+    /// The free knots' values of one list (radii or wall thicknesses), placed by `shape`
+    /// from their fractions in `u`, written into the design `x`.
+    fn place_knots(
+        &self,
+        z: &[f64],
+        fixed: &[f64],
+        wall: bool,
+        shape: &Shape,
+        u: &[f64],
+        x: &mut [f64],
+    ) {
+        let (bounds, t) = self.knot_bounds(fixed, wall, |i, _| u[i]);
+        let placed = profile_shape::place(z, &bounds, &t, shape);
+        for (v, xi) in self.variables.iter().zip(x.iter_mut()) {
+            if let (Some(k), true) = (v.knot, v.wall == wall) {
+                *xi = placed[k];
+            }
+        }
+    }
+}
+
+/// Knots `[[z, r], ...]` as a value.
+fn knot_list(k: &[[f64; 2]]) -> Value {
+    Value::Sequence(
+        k.iter()
+            .map(|&[z, r]| Value::Sequence(vec![Value::from(z), Value::from(r)]))
+            .collect(),
+    )
 }
 
 /// `[[z, r], ...]` as a value.
@@ -148,6 +246,10 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
         Some(p) => Some(profile_variables(study, p, &mut variables)?),
         None => None,
     };
+    let shape = match &block.profile {
+        Some(p) => shape_of(study, p, &variables)?,
+        None => None,
+    };
     if variables.is_empty() {
         return Err(located(study, &at(&["variables"]), "the optimize block has no design variable".into())
             .field("optimize.variables")
@@ -180,6 +282,7 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
         limits,
         block,
         profile,
+        shape,
     };
     check_start(study, &design)?;
     Ok(Some(design))
@@ -319,6 +422,71 @@ fn profile_variables(
         })?),
     };
     Ok((p.z.clone(), radius, wall))
+}
+
+/// `profile.shape`, checked: a rising span inside the profile whose knots' bounds allow a
+/// rise, a curvature bound > 0.
+fn shape_of(
+    study: &Study,
+    p: &crate::study::optimize_block::ProfileDesign,
+    vars: &[Variable],
+) -> Result<Option<Shape>, StudyError> {
+    let Some(s) = p.shape else { return Ok(None) };
+    let bad = |part: &str, msg: String, value: String, allowed: &str| {
+        located(study, &at(&["profile", "shape", part]), msg)
+            .field(format!("optimize.profile.shape.{part}"))
+            .value(value)
+            .allowed(allowed.to_string())
+    };
+    if let Some(k) = s.max_curvature.filter(|k| !(k.is_finite() && *k > 0.0)) {
+        return Err(bad(
+            "max_curvature",
+            "bad curvature bound".into(),
+            k.to_string(),
+            "a curvature > 0, 1/m",
+        ));
+    }
+    let shape = Shape {
+        rising: s.rising,
+        max_curvature: s.max_curvature,
+    };
+    let Some([a, b]) = s.rising else {
+        return Ok(Some(shape));
+    };
+    let last = p.z.last().copied().unwrap_or(0.0);
+    if !(a.is_finite() && b.is_finite() && 0.0 <= a && a < b && b <= last) {
+        return Err(bad(
+            "rising",
+            "bad rising span".into(),
+            format!("[{a}, {b}]"),
+            &format!("[z_start, z_end] with 0 <= z_start < z_end <= {last} (the last knot), m"),
+        ));
+    }
+    let mut bounds: Vec<(f64, f64)> = p
+        .radius
+        .iter()
+        .map(|k| match k {
+            Knot::Fixed(r) => (*r, *r),
+            Knot::Free(b) => (b.min, b.max),
+        })
+        .collect();
+    for v in vars.iter().filter(|v| !v.wall) {
+        if let Some(k) = v.knot {
+            bounds[k] = (v.min, v.max);
+        }
+    }
+    profile_shape::check_rise(&p.z, &bounds, &shape).map_err(|(k, j)| {
+        bad(
+            "rising",
+            format!(
+                "the radius cannot rise from knot {k} (z = {} m, at least {} m) to knot {j} (z = {} m, at most {} m)",
+                p.z[k], bounds[k].0, p.z[j], bounds[j].1
+            ),
+            format!("[{a}, {b}]"),
+            "a span over which no knot's lower bound exceeds a later knot's upper bound",
+        )
+    })?;
+    Ok(Some(shape))
 }
 
 /// A profile's fixed values (NaN where a variable), its variables pushed to `vars`; the

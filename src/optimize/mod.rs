@@ -12,6 +12,7 @@
 
 pub mod design;
 pub mod evaluate;
+pub mod profile_shape;
 pub mod quantity;
 pub mod rules;
 pub mod search;

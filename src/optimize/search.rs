@@ -103,12 +103,7 @@ pub fn penalized(design: &Design, u: &[f64], e: &Evaluation, scale: f64) -> f64 
 
 /// The design within the bounds of a scaled point.
 pub fn unscale(design: &Design, u: &[f64]) -> Vec<f64> {
-    design
-        .variables
-        .iter()
-        .zip(u)
-        .map(|(v, &x)| v.min + (v.max - v.min) * x.clamp(0.0, 1.0))
-        .collect()
+    design.from_unit(u)
 }
 
 /// What a search has done so far.
@@ -226,11 +221,7 @@ impl CostFunction for Problem<'_> {
 /// The first simplex: the start and one step along each scaled variable (backwards where
 /// a step forwards would leave the box).
 fn simplex(design: &Design) -> Vec<Vec<f64>> {
-    let u0: Vec<f64> = design
-        .variables
-        .iter()
-        .map(|v| (v.start - v.min) / (v.max - v.min))
-        .collect();
+    let u0 = design.start_unit();
     let mut s = vec![u0.clone()];
     for k in 0..u0.len() {
         let mut u = u0.clone();

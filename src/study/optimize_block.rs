@@ -86,6 +86,26 @@ pub struct ProfileDesign {
     /// knots (`bat.shell.thickness_knots` of every candidate). Default: the study's shell.
     #[serde(default)]
     pub thickness: Option<Vec<Knot>>,
+    /// A profile a lathe can turn: every candidate's radii (and wall thicknesses) are the
+    /// shape-preserving cubic (PCHIP) through its knots, sampled every 5 mm, the radii never
+    /// falling over `rising` and the knots' curvature at most `max_curvature`. Default: none
+    /// (the radii free within their bounds, linear between knots).
+    #[serde(default)]
+    pub shape: Option<ProfileShape>,
+}
+
+/// The shape every candidate profile keeps (`optimize.profile.shape`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileShape {
+    /// `[z_start, z_end]`, m from the knob: the radius never falls from one knot to the next
+    /// within this span (the taper and the barrel). Default: no such span.
+    #[serde(default)]
+    pub rising: Option<[f64; 2]>,
+    /// The largest curvature |d²r/dz²| of the parabola through any three neighbouring knots,
+    /// 1/m (> 0). Default: unbounded.
+    #[serde(default)]
+    pub max_curvature: Option<f64>,
 }
 
 /// How a quantity over the study's grid becomes one number.

@@ -15,6 +15,7 @@ pub mod modal;
 pub mod motion;
 pub mod prepared;
 pub mod profile;
+pub mod profile_spline;
 pub mod section;
 pub mod shapes;
 pub mod shell;
