@@ -59,6 +59,11 @@ fn best(text: &str) -> (f64, Vec<f64>, Vec<f64>) {
 
 /// z_cm and the closed-form best lever arm l*.
 fn closed_form() -> (f64, f64) {
+    closed_form_at(V)
+}
+
+/// z_cm and the closed-form best lever arm l* for a ball at speed `v`.
+fn closed_form_at(v: f64) -> (f64, f64) {
     let s = load_str(&study(""), Path::new("best.yaml"), &LoadOptions::default()).unwrap();
     let spec = s.plan.point(0).unwrap().spec;
     let p = Target::prepare(&spec.bat, &spec.numerics)
@@ -68,7 +73,7 @@ fn closed_form() -> (f64, f64) {
         spec.ball.mass / p.mass,
         spec.ball.mass / p.moment_of_inertia,
     );
-    let l = (b * V - (b * b * V * V + OMEGA * OMEGA * b * (1.0 + a)).sqrt()) / (OMEGA * b);
+    let l = (b * v - (b * b * v * v + OMEGA * OMEGA * b * (1.0 + a)).sqrt()) / (OMEGA * b);
     (p.z_cm, l)
 }
 
@@ -105,4 +110,85 @@ fn a_constraint_is_honoured_and_the_optimum_sits_on_it() {
         z_cm + l / 2.0
     );
     assert!(margins[0] < 1e-3 * limit, "not on the limit: {margins:?}");
+}
+
+/// The study with the ball's speed drawn: 64 speeds, uniform over 30–50 m/s.
+fn sampled(extra: &str) -> String {
+    let text = study(extra).replace(&format!("  ball: {{speed: {V}}}\n"), "");
+    assert!(!text.contains("speed: 40"));
+    format!("{text}sample: {{n: 64, seed: 7, params: {{ball.speed: {{uniform: {{min: 30, max: 50}}}}}}}}\n")
+}
+
+/// The drawn speeds of a sampled study.
+fn drawn_speeds(text: &str) -> Vec<f64> {
+    let s = load_str(text, Path::new("best.yaml"), &LoadOptions::default()).unwrap();
+    (0..s.plan.n_points())
+        .map(|i| s.plan.point(i).unwrap().spec.ball.speed)
+        .collect()
+}
+
+/// Robust design against the same closed form: at a given lever arm the exit speed is
+/// linear in the ball's speed, so its mean over a sample of speeds is the exit speed at the
+/// sample's mean speed v̄, and the best point for the mean is l*(v̄).
+#[test]
+fn the_best_point_for_a_samples_mean_is_the_closed_form_at_its_mean_speed() {
+    let text = sampled("");
+    let v = drawn_speeds(&text);
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    let (z_cm, l) = closed_form_at(mean);
+    let (z, _, _) = best(&text);
+    eprintln!(
+        "best impact point {z:.6} m, closed form at v = {mean:.4} m/s: {:.6} m",
+        z_cm + l
+    );
+    assert!((z - (z_cm + l)).abs() < 1e-4, "{z} vs {}", z_cm + l);
+}
+
+/// A probability constraint, counted: P(approach speed ≤ c) ≥ 0.9 over the sample, with c
+/// set so that it binds half way to the unconstrained optimum. The approach speed is
+/// v − ω l, so the bound holds for a point exactly when its speed is at most c + ω l; the
+/// optimum is the largest l for which 58 of the 64 drawn speeds (⌈0.9 × 64⌉) are.
+#[test]
+fn a_probability_constraint_holds_for_the_share_of_the_sample_it_names() {
+    let v = drawn_speeds(&sampled(""));
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    let (z_cm, l_best) = closed_form_at(mean);
+    let mut sorted = v.clone();
+    sorted.sort_by(f64::total_cmp);
+    let v58 = sorted[57];
+    let c = v58 - OMEGA * l_best / 2.0;
+    let extra =
+        format!("  constraints:\n    - {{quantity: approach_speed, max: {c}, probability: 0.9}}\n");
+    let (z, values, margins) = best(&sampled(&extra));
+    let l = z - z_cm;
+    let share = v.iter().filter(|&&vi| vi - OMEGA * l <= c).count();
+    eprintln!(
+        "best {z:.6} m; {share} of 64 points within the bound; margin {:.3e}",
+        margins[0]
+    );
+    assert!(
+        share >= 58,
+        "only {share} of 64 points keep approach speed <= {c}"
+    );
+    assert!(margins[0] >= 0.0 && values[0] <= c);
+    assert!((l - l_best / 2.0).abs() < 1e-3, "{l} vs {}", l_best / 2.0);
+}
+
+/// CMA-ES (`method: cma_es`) finds the same closed-form point, and the same seed asks for the
+/// same candidates (its record replays).
+#[test]
+fn cma_es_finds_the_rigid_bats_best_impact_point() {
+    let (z_cm, l) = closed_form();
+    let text = study("").replace(
+        "  max_evaluations: 300\n",
+        "  max_evaluations: 300\n  method: cma_es\n  seed: 3\n",
+    );
+    assert!(text.contains("cma_es"));
+    let (z, _, _) = best(&text);
+    eprintln!(
+        "CMA-ES: best impact point {z:.6} m, closed form {:.6} m",
+        z_cm + l
+    );
+    assert!((z - (z_cm + l)).abs() < 1e-4, "{z} vs {}", z_cm + l);
+    assert_eq!(best(&text).0.to_bits(), z.to_bits());
 }

@@ -156,6 +156,32 @@ fn bad_optimize_blocks() {
             "allowed: a curvature > 0",
         ],
     );
+    // a probability: one bound, no `over`, 0 < p <= 1; a quantile's fraction likewise
+    let c = format!("{o}    impact.z: {{min: 0.4, max: 0.8}}\n  constraints:\n");
+    check(
+        "optimize",
+        &format!("{c}    - {{quantity: exit_speed, min: 20, probability: 1.5}}\n"),
+        &[
+            "optimize.constraints[0].probability",
+            "value: 1.5",
+            "allowed: a probability 0 < p <= 1",
+        ],
+    );
+    check(
+        "optimize",
+        &format!("{c}    - {{quantity: exit_speed, min: 20, max: 40, probability: 0.9}}\n"),
+        &["has one bound", "allowed: `min` or `max`, not both"],
+    );
+    check(
+        "optimize",
+        &format!("{c}    - {{quantity: exit_speed, min: 20, over: mean, probability: 0.9}}\n"),
+        &["has no `over`", "allowed: either `probability` or `over`"],
+    );
+    check(
+        "optimize",
+        "optimize:\n  objective: {maximize: exit_speed, over: {quantile: 0}}\n  variables:\n    impact.z: {min: 0.4, max: 0.8}\n",
+        &["optimize.objective.over.quantile", "value: 0", "allowed: a fraction 0 < q <= 1"],
+    );
     // validate finds the same
     check(
         "validate",

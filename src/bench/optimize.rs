@@ -1,7 +1,9 @@
 //! `optimize`: how many design candidates per second this machine evaluates on
 //! a 6-variable profile search (the wood barrel of `studies/design_wood.yaml`, cut to a
-//! fixed number of candidates), on every core, as `batstudy optimize` runs it; and a hollow
-//! barrel's search with its shell modes against the same without them.
+//! fixed number of candidates), on every core, as `batstudy optimize` runs it; a hollow
+//! barrel's search with its shell modes against the same without them; and the wood search
+//! made robust (over a sample of 64 billets and ball lots), with the share of a candidate
+//! that goes to preparing its bats.
 
 use serde::Serialize;
 use std::io::Write;
@@ -58,6 +60,17 @@ optimize:
     - {rules: ncaa_bbcor, moi_min: 0.14}
 ";
 
+/// The robust search: the wood profile over a sample of 64 billets (density as
+/// `studies/design_wood_robust.yaml` draws it) and ball lots, every sampled point a bat of
+/// its own.
+const ROBUST_SAMPLE: &str = "sample:
+  n: 64
+  seed: 56
+  ball_spread: lot
+  params:
+    bat.material.density: {normal: {mean: 649, sd: 64.9, min: 590, max: 670}}
+";
+
 /// What the search did.
 #[derive(Debug, Clone, Serialize)]
 pub struct OptimizeBench {
@@ -70,6 +83,22 @@ pub struct OptimizeBench {
     pub evaluations_per_second: f64,
     /// A hollow barrel's candidate with the breathing modes over one without them.
     pub shell: ShellCost,
+    /// The wood search over a sample of billets and balls.
+    pub robust: RobustCost,
+}
+
+/// A robust design's candidate: its rate and where its time goes.
+#[derive(Debug, Clone, Serialize)]
+pub struct RobustCost {
+    pub candidates: usize,
+    /// Collisions per candidate (grid × sample).
+    pub points_per_candidate: usize,
+    pub seconds: f64,
+    pub evaluations_per_second: f64,
+    /// Preparing one candidate's distinct bats (their modes), on every core, s.
+    pub seconds_preparing_bats: f64,
+    /// That over a candidate's whole time.
+    pub preparation_share: f64,
 }
 
 /// The price of the barrel's shell modes in a design search.
@@ -132,8 +161,62 @@ fn shell_cost(candidates: usize, threads: usize) -> Result<ShellCost, String> {
     })
 }
 
+/// The robust search (`candidates` of them), and the preparation of its start design's bats
+/// alone.
+fn robust_cost(candidates: usize, threads: usize) -> Result<RobustCost, String> {
+    let text = STUDY.replace("MAX", &candidates.to_string()) + ROBUST_SAMPLE;
+    let (_, done, points, seconds) = timed_search(&text, "bench_robust.yaml", threads)?;
+    let prepare = preparation_seconds(&text, threads)?;
+    let per_candidate = seconds / done.max(1) as f64;
+    Ok(RobustCost {
+        candidates: done,
+        points_per_candidate: points,
+        seconds,
+        evaluations_per_second: done as f64 / seconds,
+        seconds_preparing_bats: prepare,
+        preparation_share: prepare / per_candidate,
+    })
+}
+
+/// Seconds to prepare the distinct bats of the study's start design on `threads` threads.
+fn preparation_seconds(text: &str, threads: usize) -> Result<f64, String> {
+    use rayon::prelude::*;
+    let study = crate::study::load_str(
+        text,
+        std::path::Path::new("bench_robust.yaml"),
+        &Default::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    let design = crate::optimize::design_of(&study)
+        .map_err(|e| e.to_string())?
+        .ok_or("no optimize block")?;
+    let base = design.apply(&design.start(), study.plan.base());
+    let mut bats = std::collections::BTreeMap::new();
+    for flat in 0..study.plan.n_points() {
+        let m = study.plan.shape().unravel(flat);
+        let spec = study
+            .plan
+            .resolve_over(&base, &m)
+            .map_err(|e| e.to_string())?;
+        let key = crate::study::plan::bat_key(&spec.bat, &spec.numerics);
+        bats.entry(key).or_insert((spec.bat, spec.numerics));
+    }
+    let pool = crate::run::build_pool(threads).map_err(|e| e.to_string())?;
+    let t0 = std::time::Instant::now();
+    let prepared: Result<Vec<_>, _> = pool.install(|| {
+        bats.values()
+            .collect::<Vec<_>>()
+            .par_iter()
+            .map(|(bat, numerics)| crate::model::Target::prepare(bat, numerics))
+            .collect()
+    });
+    prepared.map_err(|e| e.to_string())?;
+    Ok(t0.elapsed().as_secs_f64())
+}
+
 /// Run the search (`candidates` of them) on `threads` threads, and the hollow barrel's with
-/// and without its shell.
+/// and without its shell, and the robust search (a tenth as many candidates, at least the 7
+/// of its first simplex).
 pub fn bench_optimize(candidates: usize, threads: usize) -> Result<OptimizeBench, String> {
     let text = STUDY.replace("MAX", &candidates.to_string());
     let (variables, done, points, seconds) = timed_search(&text, "bench_optimize.yaml", threads)?;
@@ -145,6 +228,7 @@ pub fn bench_optimize(candidates: usize, threads: usize) -> Result<OptimizeBench
         seconds,
         evaluations_per_second: done as f64 / seconds,
         shell: shell_cost(candidates, threads)?,
+        robust: robust_cost((candidates / 10).max(7), threads)?,
     })
 }
 
@@ -160,6 +244,17 @@ pub fn print(out: &mut dyn Write, b: &OptimizeBench) {
         out,
         "  a hollow barrel's candidate with its shell modes: {:.2}x one without ({} candidates: {:.2} s with, {:.2} s without)",
         c.ratio, c.candidates, c.seconds_with_shell, c.seconds_without
+    );
+    let _ = writeln!(
+        out,
+        "  a hollow barrel's design: {:.1} candidates/s with its shell modes",
+        c.candidates as f64 / c.seconds_with_shell
+    );
+    let r = &b.robust;
+    let _ = writeln!(
+        out,
+        "  a robust wood design over 64 billets and balls ({} collisions a candidate): {:.2} candidates/s ({} in {:.2} s); preparing a candidate's bats {:.3} s, {:.0} % of it",
+        r.points_per_candidate, r.evaluations_per_second, r.candidates, r.seconds, r.seconds_preparing_bats, 100.0 * r.preparation_share
     );
     let _ = out.flush();
 }

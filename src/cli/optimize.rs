@@ -15,6 +15,7 @@ use crate::store::optimize::{
     journal_path, write_optimize, CandidateRow, ConstraintInfo, OptimizeJournal, OptimizeTable,
     VariableInfo, FAILED, FEASIBLE, INFEASIBLE,
 };
+use crate::study::optimize_block::OptimizeMethod;
 use crate::study::output::Existing;
 use crate::study::{self, LoadOptions, Study, StudyError, DEFAULT_MAX_POINTS};
 use clap::Args;
@@ -373,7 +374,10 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
         });
     let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
     OptimizeTable {
-        method: "nelder_mead (argmin 0.11)".into(),
+        method: match design.block.method {
+            OptimizeMethod::NelderMead => "nelder_mead (argmin 0.11)".into(),
+            OptimizeMethod::CmaEs => format!("cma_es (seed {})", design.block.seed),
+        },
         objective: design.objective.quantity.name().into(),
         objective_units: design.objective.quantity.units().into(),
         sense: if design.objective.maximize {
@@ -382,7 +386,7 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
             "minimize"
         }
         .into(),
-        over: format!("{:?}", design.objective.over).to_lowercase(),
+        over: design.objective.over.name(),
         stopped: match stopped {
             Some(Stop::Budget) => "max_evaluations",
             Some(Stop::Interrupted) => "interrupted",

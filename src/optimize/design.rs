@@ -212,15 +212,6 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
     let Some(block) = study.file.optimize.clone() else {
         return Ok(None);
     };
-    if study.file.sample.is_some() {
-        return Err(located(
-            study,
-            &keys(&["sample"]),
-            "a study cannot both sample and optimize".into(),
-        )
-        .field("sample")
-        .allowed("either a `sample` block or an `optimize` block"));
-    }
     if block.max_evaluations == 0 || block.max_evaluations > 100_000 {
         return Err(located(
             study,
@@ -570,6 +561,12 @@ fn objective_of(study: &Study, block: &OptimizeBlock) -> Result<Objective, Study
         at(&["objective", key]),
         &format!("optimize.objective.{key}"),
     )?;
+    check_over(
+        study,
+        &at(&["objective", "over"]),
+        "optimize.objective",
+        o.over,
+    )?;
     Ok(Objective {
         quantity,
         maximize,
@@ -611,17 +608,75 @@ fn limits_of(study: &Study, block: &OptimizeBlock) -> Result<Vec<Limit>, StudyEr
                     quantity,
                     min: b.min,
                     max: b.max,
-                    over: b.over.unwrap_or(if b.max.is_some() {
-                        Aggregate::Max
-                    } else {
-                        Aggregate::Min
-                    }),
+                    over: bound_over(study, &here, &field, b)?,
                     source: "study".into(),
                 });
             }
         }
     }
     Ok(out)
+}
+
+/// How a bound's quantity over the grid becomes one number: `over` as written, a
+/// probability's quantile (P(Q ≤ b) ≥ p is the p-quantile ≤ b; P(Q ≥ a) ≥ p the upper
+/// p-quantile ≥ a), or the worst case.
+fn bound_over(
+    study: &Study,
+    here: &[Seg],
+    field: &str,
+    b: &crate::study::optimize_block::QuantityBound,
+) -> Result<Aggregate, StudyError> {
+    let bad = |msg: &str, value: String, allowed: &str| {
+        located(study, here, msg.to_string())
+            .field(format!("{field}.probability"))
+            .value(value)
+            .allowed(allowed.to_string())
+    };
+    if let Some(over) = b.over {
+        check_over(study, here, field, over)?;
+    }
+    let Some(p) = b.probability else {
+        let worst = if b.max.is_some() {
+            Aggregate::Max
+        } else {
+            Aggregate::Min
+        };
+        return Ok(b.over.unwrap_or(worst));
+    };
+    if !(p > 0.0 && p <= 1.0) {
+        return Err(bad(
+            "bad probability",
+            p.to_string(),
+            "a probability 0 < p <= 1",
+        ));
+    }
+    match (b.min, b.max, b.over) {
+        (_, _, Some(_)) => Err(bad(
+            "a constraint with a `probability` has no `over`",
+            p.to_string(),
+            "either `probability` or `over`",
+        )),
+        (Some(_), Some(_), _) => Err(bad(
+            "a constraint with a `probability` has one bound",
+            p.to_string(),
+            "`min` or `max`, not both (two constraints for two bounds)",
+        )),
+        (None, Some(_), _) => Ok(Aggregate::Quantile(p)),
+        _ => Ok(Aggregate::UpperQuantile(p)),
+    }
+}
+
+/// A quantile's fraction within (0, 1].
+fn check_over(study: &Study, here: &[Seg], field: &str, over: Aggregate) -> Result<(), StudyError> {
+    match over {
+        Aggregate::Quantile(q) if !(q > 0.0 && q <= 1.0) => {
+            Err(located(study, here, "bad quantile".into())
+                .field(format!("{field}.over.quantile"))
+                .value(q.to_string())
+                .allowed("a fraction 0 < q <= 1"))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// `mlb_wood`: one piece of solid wood, so no shell, bore or fill anywhere.

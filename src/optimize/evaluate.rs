@@ -111,28 +111,52 @@ impl<'a> Evaluator<'a> {
                 .map_err(|e| format!("point {flat}: {e}"))?;
             specs.push(spec);
         }
-        let bats = specs
-            .iter()
-            .map(|s| self.bat(s))
-            .collect::<Result<Vec<_>, _>>()?;
+        let bats = self.bats(&specs)?;
         Ok(Grid { specs, bats })
     }
 
-    /// The prepared bat of a point, from the cache or prepared now.
-    fn bat(&self, spec: &CollisionSpec) -> Result<Arc<Target>, String> {
-        let key = crate::study::plan::bat_key(&spec.bat, &spec.numerics);
-        if let Some(t) = self.bats.lock().expect("bat cache").0.get(&key) {
-            return Ok(Arc::clone(t));
+    /// The prepared bat of every point: from the cache, or prepared now, the distinct new
+    /// bats on every core (a sample of billets is a new bat at every sampled point), and
+    /// kept in the order they first appear (so the cache is the same whatever the threads).
+    fn bats(&self, specs: &[CollisionSpec]) -> Result<Vec<Arc<Target>>, String> {
+        let keys: Vec<String> = specs
+            .par_iter()
+            .map(|s| crate::study::plan::bat_key(&s.bat, &s.numerics))
+            .collect();
+        let mut new: Vec<usize> = Vec::new();
+        {
+            let cache = self.bats.lock().expect("bat cache");
+            let mut seen = std::collections::HashSet::new();
+            for (i, k) in keys.iter().enumerate() {
+                if !cache.0.contains_key(k) && seen.insert(k) {
+                    new.push(i);
+                }
+            }
         }
-        let t = Arc::new(Target::prepare(&spec.bat, &spec.numerics).map_err(|e| e.to_string())?);
+        let prepared: Vec<_> = new
+            .par_iter()
+            .map(|&i| Target::prepare(&specs[i].bat, &specs[i].numerics).map(Arc::new))
+            .collect();
+        let prepared = prepared
+            .into_iter()
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| e.to_string())?;
+        let mut fresh: HashMap<&String, Arc<Target>> = HashMap::new();
         let mut cache = self.bats.lock().expect("bat cache");
-        if cache.1.len() >= CACHE_BATS {
-            let old = cache.1.remove(0);
-            cache.0.remove(&old);
+        for (&i, t) in new.iter().zip(prepared) {
+            fresh.insert(&keys[i], Arc::clone(&t));
+            if cache.1.len() >= CACHE_BATS {
+                let old = cache.1.remove(0);
+                cache.0.remove(&old);
+            }
+            cache.0.insert(keys[i].clone(), t);
+            cache.1.push(keys[i].clone());
         }
-        cache.0.insert(key.clone(), Arc::clone(&t));
-        cache.1.push(key);
-        Ok(t)
+        Ok(keys
+            .iter()
+            .map(|k| fresh.get(k).or_else(|| cache.0.get(k)).map(Arc::clone))
+            .collect::<Option<Vec<_>>>()
+            .expect("every bat prepared"))
     }
 
     /// One quantity over the grid, aggregated.
@@ -189,17 +213,19 @@ impl<'a> Evaluator<'a> {
         out
     }
 
-    /// The protocol's BBCOR of each distinct bat of the grid (with its first point's ball
-    /// and hoop).
+    /// The protocol's BBCOR of each distinct bat and ball of the grid (a sample of balls
+    /// certifies the bat with each of them), the scans on every core.
     fn protocol_values(&self, grid: &Grid) -> Vec<f64> {
-        let mut seen: Vec<*const Target> = Vec::new();
-        let mut out = Vec::new();
-        for (s, t) in grid.specs.iter().zip(&grid.bats) {
-            if !seen.contains(&Arc::as_ptr(t)) {
-                seen.push(Arc::as_ptr(t));
-                out.push(protocol_bbcor(s, t));
-            }
-        }
-        out
+        let mut seen: std::collections::HashSet<(*const Target, String)> = Default::default();
+        let distinct: Vec<(&CollisionSpec, &Arc<Target>)> = grid
+            .specs
+            .iter()
+            .zip(&grid.bats)
+            .filter(|(s, t)| seen.insert((Arc::as_ptr(t), format!("{:?}", s.ball))))
+            .collect();
+        distinct
+            .par_iter()
+            .map(|(s, t)| protocol_bbcor(s, t))
+            .collect()
     }
 }

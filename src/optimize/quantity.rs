@@ -148,7 +148,23 @@ pub fn aggregate(values: &[f64], over: Aggregate) -> f64 {
         Aggregate::Mean => finite.sum::<f64>() / n as f64,
         Aggregate::Min => finite.fold(f64::INFINITY, f64::min),
         Aggregate::Max => finite.fold(f64::NEG_INFINITY, f64::max),
+        Aggregate::Quantile(q) => order_statistic(finite, n, fraction_count(q, n)),
+        Aggregate::UpperQuantile(p) => order_statistic(finite, n, n + 1 - fraction_count(p, n)),
     }
+}
+
+/// ⌈q n⌉ within 1..=n: how many of n values make at least a fraction q of them. The product
+/// is rounded to 12 digits first, so that 0.95 × 20 counts 19, not 20.
+fn fraction_count(q: f64, n: usize) -> usize {
+    let qn = (q * n as f64 * 1e12).round() / 1e12;
+    (qn.ceil() as usize).clamp(1, n)
+}
+
+/// The k-th smallest (1-based) of n values.
+fn order_statistic(values: impl Iterator<Item = f64>, n: usize, k: usize) -> f64 {
+    let mut v: Vec<f64> = values.collect();
+    v.sort_by(f64::total_cmp);
+    v[k.clamp(1, n) - 1]
 }
 
 #[cfg(test)]
@@ -164,5 +180,37 @@ mod tests {
         assert_eq!(aggregate(&[1.0, f64::NAN, 3.0], Aggregate::Mean), 2.0);
         assert_eq!(aggregate(&[1.0, 3.0], Aggregate::Min), 1.0);
         assert!(aggregate(&[f64::NAN], Aggregate::Max).is_nan());
+    }
+
+    /// The quantiles by their definitions, counted: Q(q) is the smallest value with at least
+    /// a fraction q of the values at or below it, the upper one the largest with at least a
+    /// fraction p at or above it; so P(X ≤ b) ≥ p exactly when Q(p) ≤ b, and P(X ≥ a) ≥ p
+    /// exactly when the upper quantile is ≥ a.
+    #[test]
+    fn quantiles_are_what_they_count() {
+        let mut seed = 0x2545_F491_u64;
+        for n in 1..40usize {
+            let values: Vec<f64> = (0..n)
+                .map(|_| {
+                    seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+                    ((seed >> 33) % 17) as f64 // ties on purpose
+                })
+                .collect();
+            for p in [0.05, 0.1, 0.5, 0.9, 0.95, 1.0, 1.0 / 3.0] {
+                let share = |f: &dyn Fn(f64) -> bool| {
+                    values.iter().filter(|&&x| f(x)).count() as f64 / n as f64
+                };
+                let q = aggregate(&values, Aggregate::Quantile(p));
+                assert!(share(&|x| x <= q) >= p - 1e-12, "n {n} p {p}");
+                for &b in values.iter().filter(|&&b| b < q) {
+                    assert!(share(&|x| x <= b) < p - 1e-12, "n {n} p {p}: {b} would do");
+                }
+                let u = aggregate(&values, Aggregate::UpperQuantile(p));
+                assert!(share(&|x| x >= u) >= p - 1e-12, "n {n} p {p}");
+                for &a in values.iter().filter(|&&a| a > u) {
+                    assert!(share(&|x| x >= a) < p - 1e-12, "n {n} p {p}: {a} would do");
+                }
+            }
+        }
     }
 }

@@ -40,6 +40,17 @@ impl Limit {
     /// A label, e.g. `bat.bbcor <= 0.5`.
     pub fn label(&self) -> String {
         let name = self.quantity.name();
+        match (
+            self.min.map(bound_text),
+            self.max.map(bound_text),
+            self.over,
+        ) {
+            (None, Some(b), Aggregate::Quantile(p)) => return format!("P({name} <= {b}) >= {p}"),
+            (Some(a), None, Aggregate::UpperQuantile(p)) => {
+                return format!("P({name} >= {a}) >= {p}")
+            }
+            _ => {}
+        }
         match (self.min.map(bound_text), self.max.map(bound_text)) {
             (Some(a), Some(b)) => format!("{a} <= {name} <= {b}"),
             (Some(a), None) => format!("{name} >= {a}"),

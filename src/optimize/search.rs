@@ -4,7 +4,9 @@
 //! box. Why Nelder–Mead: a handful of variables, an objective that is smooth but has no
 //! gradient we could compute, and one evaluation at a time after the first simplex, which
 //! keeps a search deterministic and its record replayable; argmin is the maintained
-//! optimisation crate of the Rust ecosystem (MIT/Apache-2.0).
+//! optimisation crate of the Rust ecosystem (MIT/Apache-2.0). `method: cma_es` runs CMA-ES
+//! (`super::cmaes`) on the same scaled variables and the same penalised cost instead: the
+//! start design first, then λ designs a generation.
 //!
 //! **Resume by replay.** The search is deterministic: run again, it asks for the same
 //! candidates in the same order. Every candidate evaluated is recorded (the caller's
@@ -16,8 +18,10 @@
 //! answered from the candidates already evaluated, without a new evaluation or record, and
 //! does not count against `max_evaluations`.
 
+use super::cmaes::Cmaes;
 use super::design::Design;
 use super::evaluate::Evaluation;
+use crate::study::optimize_block::OptimizeMethod;
 use argmin::core::{CostFunction, Error, Executor};
 use argmin::solver::neldermead::NelderMead;
 use std::collections::HashMap;
@@ -30,6 +34,9 @@ use std::sync::Mutex;
 pub const PENALTY: f64 = 100.0;
 /// The first simplex's step along each scaled variable.
 pub const SIMPLEX_STEP: f64 = 0.1;
+/// CMA-ES's first step size along each scaled variable (a third of the box: Hansen's advice
+/// of about a third of the range the optimum may lie in).
+pub const CMA_ES_STEP: f64 = 0.3;
 /// What a failed candidate costs the search (worse than any feasible one).
 const FAILED: f64 = 1e6;
 
@@ -133,6 +140,15 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
+    /// Whether the search has been stopped (budget, Ctrl-C, the record).
+    fn has_stopped(&self) -> bool {
+        self.progress
+            .lock()
+            .expect("search state")
+            .stopped
+            .is_some()
+    }
+
     /// Stop the search. argmin unwraps the costs of its first simplex, so within it the
     /// stop is a cost no vertex can beat, and argmin's first step then meets the error.
     fn halt(&self, why: Stop) -> Result<f64, Error> {
@@ -262,20 +278,49 @@ pub fn search(
             seen: HashMap::new(),
         }),
     };
+    match design.block.method {
+        OptimizeMethod::NelderMead => nelder_mead(design, &problem),
+        OptimizeMethod::CmaEs => cma_es(design, &problem),
+    }
+    let p = problem.progress.into_inner().expect("search state");
+    Outcome {
+        candidates: p.candidates,
+        stopped: p.stopped,
+        replayed: p.replayed,
+    }
+}
+
+/// argmin's Nelder–Mead from the first simplex.
+fn nelder_mead(design: &Design, problem: &Problem) {
     let solver = NelderMead::new(simplex(design))
         .with_sd_tolerance(design.block.tolerance)
         .expect("a tolerance >= 0");
     let iters = 10 * design.block.max_evaluations as u64;
     // argmin's own stop (converged, max_iters) or ours (an error from `cost`, recorded in
     // the state): what was evaluated is the answer either way
-    let _ = Executor::new(&problem, solver)
+    let _ = Executor::new(problem, solver)
         .configure(|s| s.max_iters(iters))
         .run();
-    let p = problem.progress.into_inner().expect("search state");
-    Outcome {
-        candidates: p.candidates,
-        stopped: p.stopped,
-        replayed: p.replayed,
+}
+
+/// CMA-ES from the start design (evaluated first: it sets the objective's scale), a
+/// generation at a time, until the budget, a stop, or its spread falls below the tolerance.
+fn cma_es(design: &Design, problem: &Problem) {
+    let start = design.start_unit();
+    let mut es = Cmaes::new(&start, CMA_ES_STEP, design.block.seed);
+    if problem.cost(&start).is_err() || problem.has_stopped() {
+        return;
+    }
+    while es.spread() >= design.block.tolerance {
+        let generation = es.ask();
+        let mut costs = Vec::with_capacity(generation.len());
+        for u in &generation {
+            match problem.cost(u) {
+                Ok(c) if !problem.has_stopped() => costs.push(c),
+                _ => return,
+            }
+        }
+        es.tell(&generation, &costs);
     }
 }
 

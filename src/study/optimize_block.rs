@@ -12,15 +12,21 @@ use serde::Deserialize;
 #[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OptimizeBlock {
-    /// The optimiser: `nelder_mead` (argmin's Nelder–Mead simplex, the default).
+    /// The optimiser: `nelder_mead` (argmin's Nelder–Mead simplex, the default) or `cma_es`
+    /// (the covariance matrix adaptation evolution strategy).
     #[serde(default)]
     pub method: OptimizeMethod,
+    /// The seed of `cma_es`'s random numbers (the same seed asks for the same candidates).
+    /// Default 1.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
     /// Most candidates evaluated (1 to 100000). Default 300.
     #[serde(default = "default_max_evaluations")]
     pub max_evaluations: usize,
     /// Stop when the standard deviation over the simplex of what the search minimises (the
     /// objective over its magnitude at the start design, plus the penalties) falls below
-    /// this. Default 1e-6.
+    /// this (`cma_es`: when its step size along its longest axis, in the variables scaled to
+    /// [0, 1], does). Default 1e-6.
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
     /// Numeric parameters varied: dotted path → `{min, max, start}` (`start` defaults to
@@ -42,6 +48,9 @@ pub struct OptimizeBlock {
 fn default_max_evaluations() -> usize {
     300
 }
+fn default_seed() -> u64 {
+    1
+}
 fn default_tolerance() -> f64 {
     1e-6
 }
@@ -53,6 +62,10 @@ pub enum OptimizeMethod {
     /// Nelder–Mead simplex (argmin), on the variables scaled to [0, 1] by their bounds.
     #[default]
     NelderMead,
+    /// CMA-ES (Hansen's (μ/μ_w, λ) strategy), on the same scaled variables: for rugged or
+    /// noisy objectives; seeded by `seed`.
+    #[serde(rename = "cma_es")]
+    CmaEs,
 }
 
 /// Bounds of a design variable.
@@ -109,7 +122,7 @@ pub struct ProfileShape {
 }
 
 /// How a quantity over the study's grid becomes one number.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Aggregate {
     /// The mean over the grid's points (or curves, for sweet-spot quantities).
@@ -118,6 +131,50 @@ pub enum Aggregate {
     Min,
     /// The largest value.
     Max,
+    /// `{quantile: q}` (0 < q ≤ 1): the smallest value v with at least a fraction q of the
+    /// values at or below it (the inverse of the values' distribution function; over a
+    /// `sample`, e.g. the exit speed 95 % of the sampled balls reach is `{quantile: 0.05}`).
+    Quantile(f64),
+    /// The largest value v with at least a fraction p of the values at or above it: how a
+    /// constraint `{min: a, probability: p}` is checked (not written in a study).
+    #[serde(skip)]
+    #[schemars(skip)]
+    UpperQuantile(f64),
+}
+
+/// `mean`, `min`, `max` or `{quantile: q}` (a YAML map, as the schema says; the YAML
+/// library would otherwise want a tag).
+impl<'de> Deserialize<'de> for Aggregate {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let v = serde_json::Value::deserialize(d)?;
+        let quantile = v
+            .as_object()
+            .filter(|m| m.len() == 1)
+            .and_then(|m| m.get("quantile"));
+        match (v.as_str(), quantile.and_then(|q| q.as_f64())) {
+            (Some("mean"), _) => Ok(Aggregate::Mean),
+            (Some("min"), _) => Ok(Aggregate::Min),
+            (Some("max"), _) => Ok(Aggregate::Max),
+            (None, Some(q)) => Ok(Aggregate::Quantile(q)),
+            _ => Err(D::Error::custom(format!(
+                "`over` is `mean`, `min`, `max` or `{{quantile: q}}`, not {v}"
+            ))),
+        }
+    }
+}
+
+impl Aggregate {
+    /// Its name as stored (`mean`, `min`, `max`, `quantile 0.05`, `upper quantile 0.95`).
+    pub fn name(&self) -> String {
+        match self {
+            Aggregate::Mean => "mean".into(),
+            Aggregate::Min => "min".into(),
+            Aggregate::Max => "max".into(),
+            Aggregate::Quantile(q) => format!("quantile {q}"),
+            Aggregate::UpperQuantile(p) => format!("upper quantile {p}"),
+        }
+    }
 }
 
 /// The objective: exactly one of `maximize` and `minimize`, naming a quantity.
@@ -195,6 +252,11 @@ pub struct QuantityBound {
     pub max: Option<f64>,
     #[serde(default)]
     pub over: Option<Aggregate>,
+    /// The bound need hold only with at least this probability (0 < p ≤ 1) over the study's
+    /// points (e.g. a `sample` of balls and billets): `{quantity: bat.bbcor, max: 0.50,
+    /// probability: 0.95}` is P(BBCOR ≤ 0.50) ≥ 0.95. One bound only, and no `over`.
+    #[serde(default)]
+    pub probability: Option<f64>,
 }
 
 /// The rule sets built in.
