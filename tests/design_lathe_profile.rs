@@ -15,16 +15,8 @@ use batstudy_physics::bat::profile_spline::{
 };
 use std::path::Path;
 
-/// A small generator of its own (xorshift64*), so the cases do not depend on a crate.
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+mod common;
+use common::Rng;
 
 /// Random knots: n positions from 0 with gaps in [0.02, 0.12] m, radii rising (or, with
 /// `rising` false, free) from 0.012 m.

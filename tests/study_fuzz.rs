@@ -14,20 +14,8 @@ use batstudy::study::{load_str, LoadOptions};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 
-/// xorshift64*: a small, seeded generator (reproducible across platforms).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
+mod common;
+use common::Rng;
 
 /// Snippets that stress the parser's edges: special floats, huge and negative numbers,
 /// wrong types, YAML structure characters, unknown and known keys.
