@@ -96,24 +96,40 @@ impl Design {
     pub fn start_unit(&self) -> Vec<f64> {
         let unit = |v: &Variable| (v.start - v.min) / (v.max - v.min);
         let mut u: Vec<f64> = self.variables.iter().map(unit).collect();
-        if let (Some(shape), Some((z, radius, wall))) = (&self.shape, &self.profile) {
-            self.start_places(z, radius, false, shape, &mut u);
-            if let Some(wall) = wall {
-                self.start_places(z, wall, true, &shape.without_rise(), &mut u);
-            }
+        for (z, fixed, wall, shape) in self.shaped_lists() {
+            let (bounds, start) = self.knot_bounds(fixed, wall, |_, v| v.start);
+            let places = profile_shape::fractions(z, &bounds, &start, &shape);
+            self.write_knots(wall, &places, &mut u);
         }
         u
     }
 
-    /// The places of one list's free knots (radii or walls) that give their start values.
-    fn start_places(&self, z: &[f64], fixed: &[f64], wall: bool, shape: &Shape, u: &mut [f64]) {
-        let (bounds, start) = self.knot_bounds(fixed, wall, |_, v| v.start);
-        let t = profile_shape::fractions(z, &bounds, &start, shape);
-        for (v, ui) in self.variables.iter().zip(u.iter_mut()) {
-            if let (Some(k), true) = (v.knot, v.wall == wall) {
-                *ui = t[k];
-            }
+    /// The design of a point `u` of the unit cube (each coordinate clamped to [0, 1]): each
+    /// variable at that fraction of its bounds, or, with a profile shape, each free knot at
+    /// that fraction of what its bounds and the shape leave it.
+    pub fn from_unit(&self, u: &[f64]) -> Vec<f64> {
+        let mut x: Vec<f64> = (self.variables.iter().zip(u))
+            .map(|(v, &t)| v.min + (v.max - v.min) * t.clamp(0.0, 1.0))
+            .collect();
+        for (z, fixed, wall, shape) in self.shaped_lists() {
+            let (bounds, places) = self.knot_bounds(fixed, wall, |i, _| u[i]);
+            let values = profile_shape::place(z, &bounds, &places, &shape);
+            self.write_knots(wall, &values, &mut x);
         }
+        x
+    }
+
+    /// With a profile shape, the knot lists it shapes: (positions, fixed values, whether the
+    /// list is the wall's, the shape it keeps; a wall's thickness need not rise).
+    fn shaped_lists(&self) -> Vec<(&[f64], &[f64], bool, Shape)> {
+        let (Some(shape), Some((z, radius, wall))) = (self.shape, &self.profile) else {
+            return Vec::new();
+        };
+        let mut lists = vec![(z.as_slice(), radius.as_slice(), false, shape)];
+        if let Some(wall) = wall {
+            lists.push((z.as_slice(), wall.as_slice(), true, shape.without_rise()));
+        }
+        lists
     }
 
     /// One list's knots as bounds (a fixed knot's a point) and, per knot, `of` its variable
@@ -134,38 +150,11 @@ impl Design {
         (bounds, values)
     }
 
-    /// The design of a point `u` of the unit cube (each coordinate clamped to [0, 1]): each
-    /// variable at that fraction of its bounds, or, with a profile shape, each free knot at
-    /// that fraction of what its bounds and the shape leave it.
-    pub fn from_unit(&self, u: &[f64]) -> Vec<f64> {
-        let mut x: Vec<f64> = (self.variables.iter().zip(u))
-            .map(|(v, &t)| v.min + (v.max - v.min) * t.clamp(0.0, 1.0))
-            .collect();
-        if let (Some(shape), Some((z, radius, wall))) = (&self.shape, &self.profile) {
-            self.place_knots(z, radius, false, shape, u, &mut x);
-            if let Some(wall) = wall {
-                self.place_knots(z, wall, true, &shape.without_rise(), u, &mut x);
-            }
-        }
-        x
-    }
-
-    /// The free knots' values of one list (radii or wall thicknesses), placed by `shape`
-    /// from their fractions in `u`, written into the design `x`.
-    fn place_knots(
-        &self,
-        z: &[f64],
-        fixed: &[f64],
-        wall: bool,
-        shape: &Shape,
-        u: &[f64],
-        x: &mut [f64],
-    ) {
-        let (bounds, t) = self.knot_bounds(fixed, wall, |i, _| u[i]);
-        let placed = profile_shape::place(z, &bounds, &t, shape);
-        for (v, xi) in self.variables.iter().zip(x.iter_mut()) {
+    /// Per-knot values of one list written to its free knots' variables in `out`.
+    fn write_knots(&self, wall: bool, per_knot: &[f64], out: &mut [f64]) {
+        for (v, o) in self.variables.iter().zip(out.iter_mut()) {
             if let (Some(k), true) = (v.knot, v.wall == wall) {
-                *xi = placed[k];
+                *o = per_knot[k];
             }
         }
     }
@@ -182,11 +171,8 @@ fn knot_list(k: &[[f64; 2]]) -> Value {
 
 /// `[[z, r], ...]` as a value.
 fn knots(z: &[f64], r: &[f64]) -> Value {
-    let k = z.iter().zip(r);
-    Value::Sequence(
-        k.map(|(&z, &r)| Value::Sequence(vec![Value::from(z), Value::from(r)]))
-            .collect(),
-    )
+    let k: Vec<[f64; 2]> = z.iter().zip(r).map(|(&z, &r)| [z, r]).collect();
+    knot_list(&k)
 }
 
 /// A located error in the `optimize` block.
