@@ -16,6 +16,7 @@ use std::path::PathBuf;
 pub mod card;
 mod common;
 pub mod export;
+pub mod fly;
 pub mod merge;
 pub mod optimize;
 pub mod plan;
@@ -105,6 +106,11 @@ pub enum Command {
     /// in, oz in^2): weight and drop, balance point, swing weights, diameter, BBCOR, sweet
     /// zone, bending and hoop frequencies, the rules kept.
     Compare(card::CompareArgs),
+    /// One batted ball's flight on its own, as Nathan's trajectory calculator takes it: exit
+    /// speed, launch angle, spin and the air (SI, or with a unit: `100mph`, `28deg`,
+    /// `2500rpm`, `3ft`, `70F`); prints the carry, apex and hang time, and writes the
+    /// trajectory as a CSV with `--trajectory`.
+    Fly(fly::FlyArgs),
 }
 
 /// How this process was started, for what it writes that starts batstudy again (the Slurm
@@ -171,6 +177,7 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         Command::ExportProfile(a) => export::cmd_export(&a),
         Command::Card(a) => card::cmd_card(&a),
         Command::Compare(a) => card::cmd_compare(&a),
+        Command::Fly(a) => fly::cmd_fly(&a),
         Command::Bench {
             quick,
             threads,

@@ -1,0 +1,217 @@
+//! `batstudy fly`: one batted ball's flight on its own (`model::flight::fly`), given as
+//! Nathan's trajectory calculator takes it (exit speed, launch angle, spin, the air): the
+//! carry, apex and hang time printed, the trajectory written as a CSV when asked.
+//!
+//! Every value is SI unless it carries a unit: `100mph`, `28deg`, `2500rpm`, `3ft`, `70F`,
+//! `21C`, `29.92inHg`.
+
+use super::{EXIT_BAD_INPUT, EXIT_OK};
+use crate::model::flight::{self, Atmosphere, FlightError, FlightOptions, Launch, FOOT};
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct FlyArgs {
+    /// Exit speed: m/s, or `mph`.
+    #[arg(long, value_parser = speed, allow_hyphen_values = true)]
+    pub exit_speed: f64,
+    /// Launch angle above the horizontal: rad, or `deg`.
+    #[arg(long, value_parser = angle, allow_hyphen_values = true)]
+    pub launch_angle: f64,
+    /// Backspin (negative: topspin): rad/s, or `rpm`.
+    #[arg(long, value_parser = spin, default_value = "0", allow_hyphen_values = true)]
+    pub backspin: f64,
+    /// Sidespin, positive curving toward the left-field side: rad/s, or `rpm`.
+    #[arg(long, value_parser = spin, default_value = "0", allow_hyphen_values = true)]
+    pub sidespin: f64,
+    /// Spray angle from straight-away centre field, positive toward right field: rad, or
+    /// `deg`.
+    #[arg(long, value_parser = angle, default_value = "0", allow_hyphen_values = true)]
+    pub spray_angle: f64,
+    /// Height of the contact point: m, or `ft`. Default 3 ft.
+    #[arg(long, value_parser = length, default_value = "0.9144")]
+    pub height: f64,
+    /// Air temperature: K, or `F`, `C`. Default 70 F.
+    #[arg(long, value_parser = temperature, allow_hyphen_values = true)]
+    pub temperature: Option<f64>,
+    /// Elevation of the field above sea level: m, or `ft`.
+    #[arg(long, value_parser = length, default_value = "0", allow_hyphen_values = true)]
+    pub elevation: f64,
+    /// Relative humidity, 0 to 1.
+    #[arg(long, default_value_t = 0.5)]
+    pub humidity: f64,
+    /// Barometric pressure reduced to sea level: Pa, or `inHg`. Default 29.92 inHg.
+    #[arg(long, value_parser = pressure)]
+    pub pressure: Option<f64>,
+    /// Wind toward centre field (a tail wind; negative: in the batter's face): m/s, or `mph`.
+    #[arg(long, value_parser = speed, default_value = "0", allow_hyphen_values = true)]
+    pub tail_wind: f64,
+    /// Write the trajectory to this CSV: time, position and velocity at every step, SI.
+    #[arg(long)]
+    pub trajectory: Option<PathBuf>,
+}
+
+/// A number with an optional unit suffix, times the unit's factor plus its offset.
+fn with_units(s: &str, units: &[(&str, f64, f64)], what: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let (number, (factor, offset)) = units
+        .iter()
+        .find_map(|(u, f, o)| t.strip_suffix(u).map(|n| (n, (*f, *o))))
+        .unwrap_or((t, (1.0, 0.0)));
+    let names: Vec<&str> = units
+        .iter()
+        .map(|u| u.0)
+        .filter(|u| !u.is_empty())
+        .collect();
+    match number.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x * factor + offset),
+        _ => Err(format!(
+            "`{s}` is not {what}: a number in SI units, or with one of {}",
+            names.join(", ")
+        )),
+    }
+}
+
+fn speed(s: &str) -> Result<f64, String> {
+    with_units(
+        s,
+        &[("mph", flight::MPH, 0.0), ("m/s", 1.0, 0.0)],
+        "a speed",
+    )
+}
+
+fn angle(s: &str) -> Result<f64, String> {
+    let deg = std::f64::consts::PI / 180.0;
+    with_units(s, &[("deg", deg, 0.0), ("rad", 1.0, 0.0)], "an angle")
+}
+
+fn spin(s: &str) -> Result<f64, String> {
+    with_units(
+        s,
+        &[("rpm", flight::RPM, 0.0), ("rad/s", 1.0, 0.0)],
+        "a spin",
+    )
+}
+
+fn length(s: &str) -> Result<f64, String> {
+    with_units(s, &[("ft", FOOT, 0.0), ("m", 1.0, 0.0)], "a length")
+}
+
+fn temperature(s: &str) -> Result<f64, String> {
+    let f = flight::fahrenheit_to_kelvin(0.0);
+    let c = flight::celsius_to_kelvin(0.0);
+    let units = [("F", 5.0 / 9.0, f), ("C", 1.0, c), ("K", 1.0, 0.0)];
+    with_units(s, &units, "a temperature")
+}
+
+fn pressure(s: &str) -> Result<f64, String> {
+    // 1 inHg = 3386.389 Pa (NIST SP 811, at 0 °C)
+    with_units(
+        s,
+        &[("inHg", 3386.389, 0.0), ("Pa", 1.0, 0.0)],
+        "a pressure",
+    )
+}
+
+/// The launch and the air the arguments describe.
+fn inputs(a: &FlyArgs) -> (Launch, Atmosphere) {
+    let launch = Launch {
+        spray_angle_rad: a.spray_angle,
+        sidespin_rad_s: a.sidespin,
+        height_m: a.height,
+        ..Launch::new(a.exit_speed, a.launch_angle, a.backspin)
+    };
+    let standard = Atmosphere::default();
+    let atm = Atmosphere {
+        temperature_k: a.temperature.unwrap_or(standard.temperature_k),
+        sea_level_pressure_pa: a.pressure.unwrap_or(standard.sea_level_pressure_pa),
+        elevation_m: a.elevation,
+        relative_humidity: a.humidity,
+        wind_m_s: [0.0, a.tail_wind, 0.0],
+    };
+    (launch, atm)
+}
+
+pub(super) fn cmd_fly(a: &FlyArgs) -> i32 {
+    let (launch, atm) = inputs(a);
+    let opts = FlightOptions {
+        record_trajectory: a.trajectory.is_some(),
+        ..FlightOptions::default()
+    };
+    let f = match flight::fly(launch, &atm, &opts) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {}", flag_of(&e));
+            return EXIT_BAD_INPUT;
+        }
+    };
+    if let Some(path) = &a.trajectory {
+        if let Err(e) = write_trajectory(path, &f.trajectory) {
+            eprintln!("error: {}: {e}", path.display());
+            return super::EXIT_RUN_FAILED;
+        }
+    }
+    println!(
+        "carry {:.2} m ({:.1} ft) from the contact point; apex {:.2} m ({:.1} ft) at {:.3} s; \
+         hang time {:.3} s; lands at x = {:.2} m, y = {:.2} m (x toward right field, y to centre)",
+        f.carry_m,
+        f.carry_m / FOOT,
+        f.apex_m,
+        f.apex_m / FOOT,
+        f.apex_time_s,
+        f.hang_time_s,
+        f.landing_m[0],
+        f.landing_m[1]
+    );
+    EXIT_OK
+}
+
+/// A flight's error in the command's words: the flag of the input out of its range.
+fn flag_of(e: &FlightError) -> String {
+    const FLAGS: &[(&str, &str)] = &[
+        ("launch.speed_m_s", "--exit-speed"),
+        ("launch.launch_angle_rad", "--launch-angle"),
+        ("launch.spray_angle_rad", "--spray-angle"),
+        ("launch.backspin_rad_s", "--backspin"),
+        ("launch.sidespin_rad_s", "--sidespin"),
+        ("launch.height_m", "--height"),
+        ("atmosphere.temperature_k", "--temperature"),
+        ("atmosphere.sea_level_pressure_pa", "--pressure"),
+        ("atmosphere.elevation_m", "--elevation"),
+        ("atmosphere.relative_humidity", "--humidity"),
+        ("atmosphere.wind_m_s", "--tail-wind"),
+    ];
+    match e {
+        FlightError::OutOfRange {
+            name,
+            value,
+            allowed,
+        } => match FLAGS.iter().find(|(n, _)| n == name) {
+            Some((_, flag)) => {
+                format!("{flag}: {value} (SI) is outside the allowed range {allowed}")
+            }
+            None => e.to_string(),
+        },
+        _ => e.to_string(),
+    }
+}
+
+/// The trajectory as CSV, written beside `path` and renamed onto it when whole.
+fn write_trajectory(path: &std::path::Path, samples: &[flight::Sample]) -> std::io::Result<()> {
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(".partial");
+    let partial = path.with_file_name(name);
+    let mut out = std::io::BufWriter::new(std::fs::File::create(&partial)?);
+    writeln!(out, "# batstudy fly: the ball's flight; x toward right field, y toward centre field, z up, from the ground below the contact point")?;
+    writeln!(out, "t_s,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s")?;
+    for s in samples {
+        let [vx, vy, vz] = s.velocity_m_s;
+        writeln!(
+            out,
+            "{},{},{},{},{vx},{vy},{vz}",
+            s.t_s, s.x_m, s.y_m, s.z_m
+        )?;
+    }
+    out.into_inner()?.sync_all()?;
+    std::fs::rename(&partial, path)
+}

@@ -1,0 +1,141 @@
+//! `batstudy fly`: a batted ball's flight on its own, from the command line, in SI or with
+//! the field's units.
+//!
+//! Reference: A. M. Nathan's trajectory calculator's own output (mosaicCalc `Fly_ball`):
+//! 103 mph, 27.5°, 2500 rpm of backspin from 3 ft; 70 °F, 50 % RH, 29.92 inHg, 15 ft of
+//! elevation. Its table crosses the ground 419.49 ft from contact after 5.520 s and peaks at
+//! 92.04 ft. Band, set beforehand: ±1 % each (the workbook's first-order 0.01-s step and its
+//! drag factor 0.3 % larger are about a foot each; `tests/physics_flight.rs`).
+
+mod common;
+
+use common::batstudy_command as batstudy;
+
+/// The command's stdout, stderr and exit code.
+fn fly(args: &[&str]) -> (String, String, Option<i32>) {
+    let mut all = vec!["fly"];
+    all.extend_from_slice(args);
+    let out = batstudy(&all)
+        .stdout(std::process::Stdio::piped())
+        .output()
+        .unwrap();
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+        out.status.code(),
+    )
+}
+
+/// The number after `word` in the printed line.
+fn after(text: &str, word: &str) -> f64 {
+    let rest = &text[text
+        .find(word)
+        .unwrap_or_else(|| panic!("{word} in {text}"))
+        + word.len()..];
+    rest.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+const FT: f64 = 0.3048;
+
+#[test]
+fn the_calculators_fly_ball_in_the_fields_units() {
+    let (out, err, code) = fly(&[
+        "--exit-speed=103mph",
+        "--launch-angle=27.5deg",
+        "--backspin=2500rpm",
+        "--elevation=15ft",
+        "--temperature=70F",
+        "--pressure=29.92inHg",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let (carry, apex, hang) = (
+        after(&out, "carry"),
+        after(&out, "apex"),
+        after(&out, "hang time"),
+    );
+    eprintln!("{out}");
+    assert!(
+        (carry / FT / 419.49 - 1.0).abs() < 0.01,
+        "carry {} ft",
+        carry / FT
+    );
+    assert!(
+        (apex / FT / 92.04 - 1.0).abs() < 0.01,
+        "apex {} ft",
+        apex / FT
+    );
+    assert!((hang / 5.520 - 1.0).abs() < 0.01, "hang {hang} s");
+    // the same ball in SI: 103 mph = 46.04512 m/s, 27.5° = 0.4799655 rad, 2500 rpm =
+    // 261.7994 rad/s, 15 ft = 4.572 m, 70 °F = 294.2611 K, 29.92 inHg = 101320.8 Pa
+    let (si, _, _) = fly(&[
+        "--exit-speed=46.04512",
+        "--launch-angle=0.47996554",
+        "--backspin=261.79939",
+        "--elevation=4.572",
+        "--temperature=294.26111",
+        "--pressure=101320.76",
+    ]);
+    assert!((after(&si, "carry") - carry).abs() < 0.01, "{si} vs {out}");
+}
+
+/// The trajectory CSV starts at the contact height at t = 0 and ends on the ground at the
+/// hang time, where the carry is; time rises; the header names the columns in SI.
+#[test]
+fn the_trajectory_is_written_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("t.csv");
+    let (out, err, code) = fly(&[
+        "--exit-speed=45",
+        "--launch-angle=0.45",
+        "--backspin=250",
+        "--trajectory",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("t_s"))
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(text.contains("t_s,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s"));
+    assert!(rows.len() > 40, "{} rows", rows.len());
+    assert_eq!(rows[0][0], 0.0);
+    assert!((rows[0][3] - 3.0 * FT).abs() < 1e-12);
+    assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]));
+    let last = rows.last().unwrap();
+    assert!(last[3].abs() < 1e-9, "ends at z = {}", last[3]);
+    assert!((last[0] - after(&out, "hang time")).abs() < 1e-3);
+    assert!((last[1].hypot(last[2]) - after(&out, "carry")).abs() < 1e-2);
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "only the CSV"
+    );
+}
+
+/// Bad input: exit 2, the flag named, its value and what is allowed; nothing written.
+#[test]
+fn bad_input_names_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("t.csv");
+    let csv = csv.to_str().unwrap();
+    let (_, err, code) = fly(&[
+        "--exit-speed=300mph",
+        "--launch-angle=0.4",
+        "--trajectory",
+        csv,
+    ]);
+    assert_eq!(code, Some(2));
+    assert!(
+        err.contains("--exit-speed: 134.112") && err.contains("[0, 100] m/s"),
+        "{err}"
+    );
+    let (_, err, code) = fly(&["--exit-speed=40", "--launch-angle=28degs"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("28degs") && err.contains("deg, rad"), "{err}");
+    let (_, err, code) = fly(&["--exit-speed=40", "--launch-angle=0.4", "--humidity=1.5"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("--humidity: 1.5"), "{err}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
