@@ -18,6 +18,9 @@
 - :func:`longest_carry` says where a study's ball flies farthest: the impact position and,
   over a swept ``impact.offset``, the offset (a study with a ``flight``).
 - :func:`report` writes a results file's explorer, one HTML file.
+- :func:`fly` flies one batted ball on its own (exit speed, launch angle, spin, the air) and
+  returns its trajectory as a Dataset; :mod:`batstudy.units` converts mph, ft, rpm and
+  degrees to SI.
 - :func:`optimize` searches a study's design (its ``optimize`` block) within its rules;
   :func:`sobol_indices` gives the global sensitivity of a ``sample`` study's answers.
 - :mod:`batstudy.plot` draws the paper's figures, or any figure of a results file
@@ -56,6 +59,7 @@ __all__ = [
     "sobol_indices",
     "optimize",
     "export_profile",
+    "fly",
     "ShardTask",
     "StudyError",
     "RunError",
@@ -72,6 +76,8 @@ _ON_FIRST_USE = {
     "validate": "._api",
     "optimize": "._optimize",
     "export_profile": "._api",
+    "fly": "._fly",
+    "units": ".units",
     "ShardTask": "._scale_out",
     "StudyError": "._api",
     "RunError": "._api",
@@ -84,14 +90,14 @@ def __getattr__(name: str):
     module = _ON_FIRST_USE.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    if module != ".plot" and _find_spec("._native", __name__) is None:
+    if module not in (".plot", ".units") and _find_spec("._native", __name__) is None:
         raise ImportError(
             f"batstudy.{name} needs the native module batstudy._native, which this copy of batstudy "
             "does not have (a source tree: build and install the wheel with `pip install .`); "
             "open_results, histories, report and batstudy.plot work without it"
         )
     imported = _import_module(module, __name__)
-    value = imported if module == ".plot" else getattr(imported, name)
+    value = imported if module in (".plot", ".units") else getattr(imported, name)
     globals()[name] = value
     return value
 

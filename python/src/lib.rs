@@ -2,6 +2,8 @@
 //! (`python/batstudy/`) turns these plain results into NumPy arrays, exceptions, a progress
 //! bar and xarray trees; nothing here draws or prints.
 
+mod fly;
+
 use batstudy::cli::{self, RunArgs};
 use batstudy::model::outcome::Outcome;
 use batstudy::run::{self, PointCounter};
@@ -452,6 +454,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_study, m)?)?;
     m.add_function(wrap_pyfunction!(optimize_study, m)?)?;
     m.add_function(wrap_pyfunction!(export_profile, m)?)?;
+    m.add_function(wrap_pyfunction!(fly::fly, m)?)?;
+    m.add_function(wrap_pyfunction!(fly::standard_air, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
