@@ -192,3 +192,61 @@ fn cma_es_finds_the_rigid_bats_best_impact_point() {
     assert!((z - (z_cm + l)).abs() < 1e-4, "{z} vs {}", z_cm + l);
     assert_eq!(best(&text).0.to_bits(), z.to_bits());
 }
+
+/// A two-objective search against the same closed form: exit speed (maximised) against
+/// the approach speed v − ω l (minimised), which grows toward the barrel. Every point from
+/// the handle end of the bounds (z = 0.40 m, the least approach speed) to the best point
+/// z_cm + l* trades one for the other, and every point beyond l* is worse in both: the
+/// front is [0.40, z_cm + l*]. The ε-constraint searches end on their caps c_k, at
+/// z_k = z_cm + (c_k − v)/(−ω), evenly spaced in approach speed between the two ends.
+#[test]
+fn a_pareto_front_is_the_closed_forms_trade_off() {
+    use batstudy::optimize::pareto::{front, search_pareto};
+    let (z_cm, l) = closed_form();
+    let z_best = z_cm + l;
+    let text = study("  pareto: {minimize: approach_speed, points: 5}\n");
+    let s = load_str(&text, Path::new("front.yaml"), &LoadOptions::default()).unwrap();
+    let design = design_of(&s).unwrap().unwrap();
+    let ev = Evaluator::new(&s, &design);
+    let out = search_pareto(
+        &design,
+        &|x| ev.evaluate(x),
+        &|_| Ok(()),
+        Vec::new(),
+        &AtomicBool::new(false),
+    );
+    let on = front(&design, &out.candidates);
+    let z: Vec<f64> = out.candidates.iter().map(|c| c.x[0]).collect();
+    let on_front: Vec<f64> = z
+        .iter()
+        .zip(&on)
+        .filter(|(_, &f)| f)
+        .map(|(&z, _)| z)
+        .collect();
+    eprintln!(
+        "{} candidates, {} on the front, z in [{:.4}, {:.4}], best {z_best:.4}",
+        z.len(),
+        on_front.len(),
+        on_front.iter().copied().fold(f64::INFINITY, f64::min),
+        on_front.iter().copied().fold(0.0, f64::max)
+    );
+    assert!(
+        on_front
+            .iter()
+            .all(|&zf| (0.40..=z_best + 1e-3).contains(&zf)),
+        "{on_front:?}"
+    );
+    let approach = |z: f64| V - OMEGA * (z - z_cm);
+    let near = |target: f64| on_front.iter().any(|&zf| (zf - target).abs() < 1e-3);
+    assert!(near(0.40) && near(z_best), "the anchors: {on_front:?}");
+    for k in 1..4 {
+        let cap = approach(0.40) + (approach(z_best) - approach(0.40)) * k as f64 / 4.0;
+        let zk = z_cm + (cap - V) / -OMEGA;
+        assert!(near(zk), "cap {k}: z {zk:.4} not on the front {on_front:?}");
+    }
+    // no design evaluated twice across the five searches
+    let mut bits: Vec<u64> = z.iter().map(|z| z.to_bits()).collect();
+    bits.sort_unstable();
+    bits.dedup();
+    assert_eq!(bits.len(), z.len());
+}

@@ -67,9 +67,25 @@ fn search_record(path: &Path) -> Vec<String> {
 
 #[test]
 fn a_killed_search_resumes_to_the_same_record() {
+    killed_and_resumed(STUDY, 13);
+}
+
+/// A two-objective search (three searches sharing what they evaluated) killed in its second
+/// search resumes to the same record, its front included.
+#[test]
+fn a_killed_pareto_search_resumes_to_the_same_record() {
+    let text = STUDY.replace("max_evaluations: 80", "max_evaluations: 30")
+        + "  pareto: {minimize: bat.moment_of_inertia_knob6, points: 3}\n";
+    assert!(text.contains("max_evaluations: 30"));
+    killed_and_resumed(&text, 40);
+}
+
+/// `text` searched whole, and killed once `lines` candidates are in its journal then
+/// resumed: the same `/optimize` and the same results.
+fn killed_and_resumed(text: &str, lines: usize) {
     let dir = tempfile::tempdir().unwrap();
     let study = dir.path().join("s.yaml");
-    std::fs::write(&study, STUDY).unwrap();
+    std::fs::write(&study, text).unwrap();
     let (full, cut) = (dir.path().join("full.h5"), dir.path().join("cut.h5"));
     let s = study.to_str().unwrap();
     batstudy_ok(&[
@@ -97,14 +113,14 @@ fn a_killed_search_resumes_to_the_same_record() {
     .spawn()
     .unwrap();
     let t0 = Instant::now();
-    while journal_lines(&cut) < 13 && t0.elapsed() < Duration::from_secs(120) {
+    while journal_lines(&cut) < lines && t0.elapsed() < Duration::from_secs(120) {
         std::thread::sleep(Duration::from_millis(5));
     }
     child.kill().unwrap();
     let _ = child.wait();
     let kept = journal_lines(&cut);
     assert!(
-        kept >= 13 && !cut.exists(),
+        kept >= lines && !cut.exists(),
         "killed too late: {kept} lines, finished {}",
         cut.exists()
     );

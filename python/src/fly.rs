@@ -56,9 +56,8 @@ pub fn fly<'py>(
     d.set_item("apex_time", f.apex_time_s)?;
     d.set_item("hang_time", f.hang_time_s)?;
     d.set_item("landing", (f.landing_m[0], f.landing_m[1]))?;
-    let column = |g: &dyn Fn(&flight::Sample) -> f64| -> Vec<f64> {
-        f.trajectory.iter().map(g).collect()
-    };
+    let column =
+        |g: &dyn Fn(&flight::Sample) -> f64| -> Vec<f64> { f.trajectory.iter().map(g).collect() };
     let columns: [(&str, Vec<f64>); 7] = [
         ("t", column(&|s| s.t_s)),
         ("x", column(&|s| s.x_m)),

@@ -10,10 +10,11 @@
 use super::common::{check_output_of, jobs_or_all, lock_output};
 use super::run::{run_settings, RunArgs, RunFailure, RunSettings};
 use super::{EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_POINTS_FAILED, EXIT_RUN_FAILED};
-use crate::optimize::{design_of, search, Candidate, Design, Evaluation, Evaluator, Stop};
+use crate::optimize::pareto::{front, search_pareto};
+use crate::optimize::{design_of, Candidate, Design, Evaluation, Evaluator, Stop};
 use crate::store::optimize::{
     journal_path, write_optimize, CandidateRow, ConstraintInfo, OptimizeJournal, OptimizeTable,
-    VariableInfo, FAILED, FEASIBLE, INFEASIBLE,
+    ParetoFront, VariableInfo, FAILED, FEASIBLE, INFEASIBLE,
 };
 use crate::study::optimize_block::OptimizeMethod;
 use crate::study::output::Existing;
@@ -215,7 +216,7 @@ pub fn optimize_study(
         // replayed candidates are answered at once
         p.done.store(recorded.len(), Ordering::Relaxed);
     }
-    let outcome = pool.install(|| search(&design, &eval, &record, recorded, stop));
+    let outcome = pool.install(|| search_pareto(&design, &eval, &record, recorded, stop));
     let journal = journal.into_inner().expect("journal");
     let table = table_of(&design, &outcome.candidates, outcome.stopped);
     let finished = |interrupted, failed_points| FinishedSearch {
@@ -418,9 +419,47 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
             })
             .collect(),
         rows: cands.iter().map(row_of).collect(),
+        pareto: design.pareto.as_ref().map(|p| ParetoFront {
+            quantity: p.quantity.name().into(),
+            units: p.quantity.units().into(),
+            sense: if p.maximize { "maximize" } else { "minimize" }.into(),
+            on_front: front(design, cands).into_iter().map(i8::from).collect(),
+        }),
         status,
         margins,
         best,
+    }
+}
+
+/// The front's candidates, ordered by the second objective (at most 12 of them, evenly
+/// spread; `/optimize/pareto` has every one).
+fn front_text(s: &mut String, t: &OptimizeTable, front: &ParetoFront) {
+    use std::fmt::Write;
+    let Some(k) = t.constraints.iter().position(|c| c.source == "pareto") else {
+        return;
+    };
+    let mut on: Vec<usize> = (0..t.rows.len())
+        .filter(|&i| front.on_front[i] == 1)
+        .collect();
+    on.sort_by(|&a, &b| t.rows[a].constraints[k].total_cmp(&t.rows[b].constraints[k]));
+    let _ = writeln!(
+        s,
+        "Pareto front: {} candidates; {} ({}) against {} ({}):",
+        on.len(),
+        t.objective,
+        t.sense,
+        front.quantity,
+        front.sense
+    );
+    let shown = on.len().min(12);
+    for j in 0..shown {
+        let i = on[j * (on.len() - 1) / (shown - 1).max(1)];
+        let r = &t.rows[i];
+        let _ = writeln!(
+            s,
+            "  candidate {i:>5}: {:.6} {} at {:.6} {}",
+            r.objective, t.objective_units, r.constraints[k], front.units
+        );
     }
 }
 
@@ -460,6 +499,9 @@ pub fn report_text(d: &FinishedSearch, a: &OptimizeArgs) -> String {
                 let _ = writeln!(s, "  {}: {x:.6} (margin {m:.6} {})", c.label, c.units);
             }
         }
+    }
+    if let Some(front) = &t.pareto {
+        front_text(&mut s, t, front);
     }
     if d.interrupted {
         let program = std::env::args().next().unwrap_or_else(|| "batstudy".into());

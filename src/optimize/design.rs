@@ -50,6 +50,31 @@ pub struct Design {
     /// The shape a profile keeps (`optimize.profile.shape`): None, radii free in their
     /// bounds and linear between knots.
     shape: Option<Shape>,
+    /// The second objective of a two-objective search (`optimize.pareto`).
+    pub pareto: Option<Pareto>,
+    /// What this search minimises: the objective, or a Pareto front's second objective.
+    pub searched: Searched,
+}
+
+/// The second objective of a two-objective search: a quantity, tracked as an unbounded
+/// limit (its value is every candidate's), whose front against the objective is traced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pareto {
+    pub quantity: Quantity,
+    pub maximize: bool,
+    /// Searches of the front (at least its points).
+    pub points: usize,
+    /// Its index among the design's limits.
+    pub limit: usize,
+}
+
+/// What a search minimises.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Searched {
+    /// The objective (negated to maximise).
+    Objective,
+    /// A limit's value (a Pareto front's second objective, searched alone).
+    Limit { index: usize, maximize: bool },
 }
 
 impl Design {
@@ -251,7 +276,11 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
     }
     check_plausible_bounds(study, &variables)?;
     let objective = objective_of(study, &block)?;
-    let limits = limits_of(study, &block)?;
+    let mut limits = limits_of(study, &block)?;
+    let pareto = match &block.pareto {
+        Some(p) => Some(pareto_of(study, p, &mut limits)?),
+        None => None,
+    };
     check_solid_wood(study, &block)?;
     let design = Design {
         variables,
@@ -260,6 +289,8 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
         block,
         profile,
         shape,
+        pareto,
+        searched: Searched::Objective,
     };
     check_start(study, &design)?;
     Ok(Some(design))
@@ -601,6 +632,53 @@ fn limits_of(study: &Study, block: &OptimizeBlock) -> Result<Vec<Limit>, StudyEr
         }
     }
     Ok(out)
+}
+
+/// `pareto`: one quantity to minimise or maximise, 3 to 50 points; tracked as a limit
+/// without bounds (appended to `limits`).
+fn pareto_of(
+    study: &Study,
+    p: &crate::study::optimize_block::ParetoBlock,
+    limits: &mut Vec<Limit>,
+) -> Result<Pareto, StudyError> {
+    let (name, maximize, key) = match (&p.minimize, &p.maximize) {
+        (Some(n), None) => (n, false, "minimize"),
+        (None, Some(n)) => (n, true, "maximize"),
+        _ => {
+            return Err(located(
+                study,
+                &at(&["pareto"]),
+                "the second objective needs exactly one of `minimize` and `maximize`".into(),
+            )
+            .field("optimize.pareto")
+            .allowed("{minimize: QUANTITY, points: N} or {maximize: QUANTITY, points: N}"))
+        }
+    };
+    let field = format!("optimize.pareto.{key}");
+    let quantity = quantity_of(study, name, at(&["pareto", key]), &field)?;
+    if !(3..=50).contains(&p.points) {
+        return Err(located(
+            study,
+            &at(&["pareto", "points"]),
+            "bad number of points".into(),
+        )
+        .field("optimize.pareto.points")
+        .value(p.points.to_string())
+        .allowed("3 to 50 searches"));
+    }
+    limits.push(Limit {
+        quantity,
+        min: None,
+        max: None,
+        over: Aggregate::Mean,
+        source: "pareto".into(),
+    });
+    Ok(Pareto {
+        quantity,
+        maximize,
+        points: p.points,
+        limit: limits.len() - 1,
+    })
 }
 
 /// How a bound's quantity over the grid becomes one number: `over` as written, a

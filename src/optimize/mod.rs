@@ -13,6 +13,7 @@
 pub mod cmaes;
 pub mod design;
 pub mod evaluate;
+pub mod pareto;
 pub mod profile_shape;
 pub mod quantity;
 pub mod rules;

@@ -19,7 +19,7 @@
 //! does not count against `max_evaluations`.
 
 use super::cmaes::Cmaes;
-use super::design::Design;
+use super::design::{Design, Searched};
 use super::evaluate::Evaluation;
 use crate::study::optimize_block::OptimizeMethod;
 use argmin::core::{CostFunction, Error, Executor};
@@ -74,9 +74,22 @@ pub struct Outcome {
     pub replayed: usize,
 }
 
-/// The objective's scale: its magnitude at the first candidate (1 if that failed or is 0).
-fn objective_scale(e: &Evaluation) -> f64 {
-    let a = e.objective.abs();
+/// What the search minimises of an evaluation: the objective's value, or (the second
+/// anchor of a Pareto front) a limit's; and whether it is maximised.
+fn searched(design: &Design, e: &Evaluation) -> (f64, bool) {
+    match design.searched {
+        Searched::Objective => (e.objective, design.objective.maximize),
+        Searched::Limit { index, maximize } => (
+            e.constraints.get(index).copied().unwrap_or(f64::NAN),
+            maximize,
+        ),
+    }
+}
+
+/// The objective's scale: the searched value's magnitude at the first candidate (1 if that
+/// failed or is 0).
+fn objective_scale(design: &Design, e: &Evaluation) -> f64 {
+    let a = searched(design, e).0.abs();
     if a.is_finite() && a > 0.0 {
         a
     } else {
@@ -90,11 +103,12 @@ fn key(u: &[f64]) -> Vec<u64> {
 
 /// The penalised value of a candidate (design `x` from scaled `u`).
 pub fn penalized(design: &Design, u: &[f64], e: &Evaluation, scale: f64) -> f64 {
-    if e.error.is_some() || !e.objective.is_finite() {
+    let (value, maximize) = searched(design, e);
+    if e.error.is_some() || !value.is_finite() {
         return FAILED;
     }
-    let sign = if design.objective.maximize { -1.0 } else { 1.0 };
-    let mut f = sign * e.objective / scale;
+    let sign = if maximize { -1.0 } else { 1.0 };
+    let mut f = sign * value / scale;
     for (l, &v) in design.limits.iter().zip(&e.constraints) {
         let m = l.margin(v);
         f += PENALTY
@@ -121,13 +135,30 @@ struct Progress {
     stopped: Option<Stop>,
     /// How many came from the record.
     replayed: usize,
-    /// The objective's scale (its magnitude at the first candidate).
-    scale: f64,
+    /// The objective's scale (its magnitude at the first design answered), once known.
+    scale: Option<f64>,
     /// Calls of the cost function so far (argmin's first simplex takes the first n + 1).
     calls: usize,
-    /// Index into `candidates` by the evaluated design's bits: a design asked for again
-    /// (a shrink step, or two scaled points clamped to one design) is answered from it.
-    seen: HashMap<Vec<u64>, usize>,
+}
+
+/// What the searches of one run share: every design evaluated, by its bits (a design asked
+/// for again, by a shrink step, two scaled points clamped to one design, or a later search
+/// of a Pareto front, is answered from it), and the record of an earlier run, by the scaled
+/// point asked for.
+#[derive(Default)]
+pub struct Shared {
+    memo: Mutex<HashMap<Vec<u64>, Evaluation>>,
+    replay: Mutex<HashMap<Vec<u64>, Candidate>>,
+}
+
+impl Shared {
+    /// Shared state over the `recorded` candidates of an earlier run.
+    pub fn replaying(recorded: Vec<Candidate>) -> Shared {
+        Shared {
+            memo: Mutex::default(),
+            replay: Mutex::new(recorded.into_iter().map(|c| (key(&c.u), c)).collect()),
+        }
+    }
 }
 
 struct Problem<'a> {
@@ -135,7 +166,7 @@ struct Problem<'a> {
     eval: &'a (dyn Fn(&[f64]) -> Evaluation + Sync),
     record: &'a (dyn Fn(&Candidate) -> Result<(), String> + Sync),
     stop: &'a AtomicBool,
-    replay: Mutex<HashMap<Vec<u64>, Candidate>>,
+    shared: &'a Shared,
     progress: Mutex<Progress>,
 }
 
@@ -163,20 +194,24 @@ impl Problem<'_> {
     /// A design evaluated before: its cost at `u` (the penalty for leaving the box is
     /// `u`'s own), without evaluating or recording it again.
     fn seen(&self, u: &[f64], x: &[f64]) -> Option<f64> {
-        let p = self.progress.lock().expect("search state");
-        let c = &p.candidates[*p.seen.get(&key(x))?];
-        Some(penalized(self.design, u, &c.evaluation, p.scale))
+        let e = self.shared.memo.lock().expect("memo").get(&key(x))?.clone();
+        let mut p = self.progress.lock().expect("search state");
+        let scale = *p
+            .scale
+            .get_or_insert_with(|| objective_scale(self.design, &e));
+        Some(penalized(self.design, u, &e, scale))
     }
 
     /// A new candidate, taken into the progress; its cost.
     fn push(&self, c: Candidate, replayed: bool) -> f64 {
         let mut p = self.progress.lock().expect("search state");
-        if p.candidates.is_empty() {
-            p.scale = objective_scale(&c.evaluation);
-        }
+        p.scale
+            .get_or_insert_with(|| objective_scale(self.design, &c.evaluation));
         let f = c.penalized;
-        let n = p.candidates.len();
-        p.seen.insert(key(&c.x), n);
+        let memo = &self.shared.memo;
+        memo.lock()
+            .expect("memo")
+            .insert(key(&c.x), c.evaluation.clone());
         p.replayed += usize::from(replayed);
         p.candidates.push(c);
         f
@@ -187,10 +222,8 @@ impl Problem<'_> {
         let evaluation = (self.eval)(&x);
         let scale = {
             let p = self.progress.lock().expect("search state");
-            match p.candidates.is_empty() {
-                true => objective_scale(&evaluation),
-                false => p.scale,
-            }
+            p.scale
+                .unwrap_or_else(|| objective_scale(self.design, &evaluation))
         };
         let c = Candidate {
             penalized: penalized(self.design, u, &evaluation, scale),
@@ -224,7 +257,7 @@ impl CostFunction for Problem<'_> {
         if n >= self.design.block.max_evaluations {
             return self.halt(Stop::Budget);
         }
-        if let Some(c) = self.replay.lock().expect("replay").remove(&key(u)) {
+        if let Some(c) = self.shared.replay.lock().expect("replay").remove(&key(u)) {
             return Ok(self.push(c, true));
         }
         if self.stop.load(Ordering::SeqCst) {
@@ -262,20 +295,31 @@ pub fn search(
     recorded: Vec<Candidate>,
     stop: &AtomicBool,
 ) -> Outcome {
-    let replay = recorded.into_iter().map(|c| (key(&c.u), c)).collect();
+    search_shared(design, eval, record, &Shared::replaying(recorded), stop)
+}
+
+/// [`search`] with the designs evaluated and the record shared with other searches of the
+/// same run (a Pareto front's): a design one of them evaluated is answered without a new
+/// evaluation or record, and does not count against this search's `max_evaluations`.
+pub fn search_shared(
+    design: &Design,
+    eval: &(dyn Fn(&[f64]) -> Evaluation + Sync),
+    record: &(dyn Fn(&Candidate) -> Result<(), String> + Sync),
+    shared: &Shared,
+    stop: &AtomicBool,
+) -> Outcome {
     let problem = Problem {
         design,
         eval,
         record,
         stop,
-        replay: Mutex::new(replay),
+        shared,
         progress: Mutex::new(Progress {
             candidates: Vec::new(),
             stopped: None,
             replayed: 0,
-            scale: 1.0,
+            scale: None,
             calls: 0,
-            seen: HashMap::new(),
         }),
     };
     match design.block.method {

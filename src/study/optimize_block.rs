@@ -40,6 +40,11 @@ pub struct OptimizeBlock {
     pub profile: Option<ProfileDesign>,
     /// What to maximise or minimise.
     pub objective: Objective,
+    /// A second objective, for the front of designs that trade one against the other
+    /// (`{minimize: bat.moment_of_inertia_knob6, points: 5}`: lab exit speed against swing
+    /// weight). Default: none (one objective).
+    #[serde(default)]
+    pub pareto: Option<ParetoBlock>,
     /// Bounds on stored quantities, and rule sets by name (`{rules: ncaa_bbcor}`).
     #[serde(default)]
     pub constraints: Vec<Constraint>,
@@ -66,6 +71,28 @@ pub enum OptimizeMethod {
     /// noisy objectives; seeded by `seed`.
     #[serde(rename = "cma_es")]
     CmaEs,
+}
+
+/// The second objective of a two-objective search (`optimize.pareto`): the front of the
+/// objective against it, traced by the ε-constraint method (one search for each objective
+/// alone, then `points` − 2 searches of the objective with the second capped at even steps
+/// between the two).
+#[derive(Debug, Clone, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ParetoBlock {
+    /// The quantity to minimise as the second objective (as the objective's names).
+    #[serde(default)]
+    pub minimize: Option<String>,
+    /// The quantity to maximise as the second objective.
+    #[serde(default)]
+    pub maximize: Option<String>,
+    /// Searches, hence points of the front at least (3 to 50). Default 5.
+    #[serde(default = "default_pareto_points")]
+    pub points: usize,
+}
+
+fn default_pareto_points() -> usize {
+    5
 }
 
 /// Bounds of a design variable.

@@ -216,6 +216,19 @@ pub struct OptimizeTable {
     pub margins: Vec<Vec<f64>>,
     /// The best feasible row.
     pub best: Option<usize>,
+    /// A two-objective search's front, if it was one.
+    pub pareto: Option<ParetoFront>,
+}
+
+/// A two-objective search's second objective and which rows are on the front.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParetoFront {
+    /// The second objective's quantity, its units, and `minimize` or `maximize`.
+    pub quantity: String,
+    pub units: String,
+    pub sense: String,
+    /// 1 for a row on the front (feasible, and beaten in both objectives by no other).
+    pub on_front: Vec<i8>,
 }
 
 /// Write `/optimize` into the results file at `path`.
@@ -248,6 +261,9 @@ pub fn write_optimize(path: &Path, t: &OptimizeTable) -> Result<(), StoreError> 
     rows.per_candidate(t)?;
     rows.scaled(t, &var, &con)?;
     write_status(&g, t, &cand, &att, path)?;
+    if let Some(front) = &t.pareto {
+        write_front(&g, front, &cand, &att, path)?;
+    }
     attrs(&g, t, path)?;
     att.write().ctx(path, "attach the dimension scales")?;
     f.flush().ctx(path, "flush the results file")
@@ -389,6 +405,39 @@ fn write_f64(
     describe(&ds, def).ctx(path, &what)?;
     att.add(&ds, scales);
     Ok(ds)
+}
+
+/// `pareto` along `candidate`: 1 on the front; its second objective in the attributes.
+fn write_front(
+    g: &Group,
+    front: &ParetoFront,
+    cand: &Dataset,
+    att: &Attacher,
+    path: &Path,
+) -> Result<(), StoreError> {
+    let ctx = "write optimize/pareto";
+    let ds = g
+        .new_dataset::<i8>()
+        .shape(front.on_front.len())
+        .create("pareto")
+        .ctx(path, ctx)?;
+    h5u::write_small(&ds, &front.on_front).ctx(path, ctx)?;
+    let meaning = format!(
+        "1: on the front of the objective against {} ({}; feasible, and beaten in both by no other candidate)",
+        front.quantity, front.sense
+    );
+    describe(&ds, &v("pareto", "1", "on the Pareto front", &meaning)).ctx(path, ctx)?;
+    attr_vec(&ds, "flag_values", &[0i8, 1]).ctx(path, ctx)?;
+    attr_str(&ds, "flag_meanings", "dominated on_front").ctx(path, ctx)?;
+    for (k, s) in [
+        ("pareto_quantity", &front.quantity),
+        ("pareto_units", &front.units),
+        ("pareto_sense", &front.sense),
+    ] {
+        attr_str(g, k, s).ctx(path, ctx)?;
+    }
+    att.add(&ds, &[cand]);
+    Ok(())
 }
 
 fn write_status(
