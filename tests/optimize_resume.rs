@@ -80,6 +80,22 @@ fn a_killed_pareto_search_resumes_to_the_same_record() {
     killed_and_resumed(&text, 40);
 }
 
+/// A robust search (over a sample of billets: eight densities, with the mass a probability)
+/// killed part way resumes to the same record.
+#[test]
+fn a_killed_robust_search_resumes_to_the_same_record() {
+    let text = STUDY
+        .replace("    bat.material.density: {min: 550, max: 750, start: 600}\n", "")
+        .replace(
+            "    - {quantity: bat.mass, max: 0.95}",
+            "    - {quantity: bat.mass, max: 0.95, probability: 0.75}",
+        )
+        .replace("max_evaluations: 80", "max_evaluations: 30")
+        + "sample:\n  n: 8\n  seed: 4\n  params:\n    bat.material.density: {normal: {mean: 649, sd: 40}}\n";
+    assert!(text.contains("probability: 0.75") && !text.contains("start: 600"));
+    killed_and_resumed(&text, 10);
+}
+
 /// `text` searched whole, and killed once `lines` candidates are in its journal then
 /// resumed: the same `/optimize` and the same results.
 fn killed_and_resumed(text: &str, lines: usize) {
