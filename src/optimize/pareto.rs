@@ -9,7 +9,7 @@
 
 use super::design::{Design, Searched};
 use super::evaluate::Evaluation;
-use super::search::{search_shared, Candidate, Outcome, Shared, Stop};
+use super::search::{search_shared, Candidate, EvalFn, Outcome, RecordFn, Shared, Stop};
 use std::sync::atomic::AtomicBool;
 
 /// Run the front's searches in order, sharing the designs evaluated and the record; the
@@ -17,8 +17,8 @@ use std::sync::atomic::AtomicBool;
 /// stops all; a search that spends its budget ends only itself.
 pub fn search_pareto(
     design: &Design,
-    eval: &(dyn Fn(&[f64]) -> Evaluation + Sync),
-    record: &(dyn Fn(&Candidate) -> Result<(), String> + Sync),
+    eval: &EvalFn<'_>,
+    record: &RecordFn<'_>,
     recorded: Vec<Candidate>,
     stop: &AtomicBool,
 ) -> Outcome {

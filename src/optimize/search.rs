@@ -40,6 +40,11 @@ pub const CMA_ES_STEP: f64 = 0.3;
 /// What a failed candidate costs the search (worse than any feasible one).
 const FAILED: f64 = 1e6;
 
+/// Evaluates a design (one value per variable).
+pub type EvalFn<'a> = dyn Fn(&[f64]) -> Evaluation + Sync + 'a;
+/// Stores a new candidate before the search goes on (an error stops the search).
+pub type RecordFn<'a> = dyn Fn(&Candidate) -> Result<(), String> + Sync + 'a;
+
 /// One evaluated candidate, as recorded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Candidate {
@@ -163,8 +168,8 @@ impl Shared {
 
 struct Problem<'a> {
     design: &'a Design,
-    eval: &'a (dyn Fn(&[f64]) -> Evaluation + Sync),
-    record: &'a (dyn Fn(&Candidate) -> Result<(), String> + Sync),
+    eval: &'a EvalFn<'a>,
+    record: &'a RecordFn<'a>,
     stop: &'a AtomicBool,
     shared: &'a Shared,
     progress: Mutex<Progress>,
@@ -290,8 +295,8 @@ fn simplex(design: &Design) -> Vec<Vec<f64>> {
 /// scale, so a resumed search must replay it (the caller passes the record whole).
 pub fn search(
     design: &Design,
-    eval: &(dyn Fn(&[f64]) -> Evaluation + Sync),
-    record: &(dyn Fn(&Candidate) -> Result<(), String> + Sync),
+    eval: &EvalFn<'_>,
+    record: &RecordFn<'_>,
     recorded: Vec<Candidate>,
     stop: &AtomicBool,
 ) -> Outcome {
@@ -303,8 +308,8 @@ pub fn search(
 /// evaluation or record, and does not count against this search's `max_evaluations`.
 pub fn search_shared(
     design: &Design,
-    eval: &(dyn Fn(&[f64]) -> Evaluation + Sync),
-    record: &(dyn Fn(&Candidate) -> Result<(), String> + Sync),
+    eval: &EvalFn<'_>,
+    record: &RecordFn<'_>,
     shared: &Shared,
     stop: &AtomicBool,
 ) -> Outcome {
