@@ -90,10 +90,10 @@ fn a_killed_robust_search_resumes_to_the_same_record() {
             "    - {quantity: bat.mass, max: 0.95}",
             "    - {quantity: bat.mass, max: 0.95, probability: 0.75}",
         )
-        .replace("max_evaluations: 80", "max_evaluations: 30")
+        .replace("max_evaluations: 80", "max_evaluations: 16")
         + "sample:\n  n: 8\n  seed: 4\n  params:\n    bat.material.density: {normal: {mean: 649, sd: 40}}\n";
     assert!(text.contains("probability: 0.75") && !text.contains("start: 600"));
-    killed_and_resumed(&text, 10);
+    killed_and_resumed(&text, 6);
 }
 
 /// `text` searched whole, and killed once `lines` candidates are in its journal then

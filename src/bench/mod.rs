@@ -116,7 +116,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
 
     let batted = batted::bench_batted(&sz, scaling.cores, dir.path())?;
     report::print_batted(out, &batted);
-    let optimize = optimize::bench_optimize(if opts.quick { 8 } else { 120 }, scaling.cores)?;
+    let (candidates, sample) = if opts.quick { (8, 8) } else { (120, 64) };
+    let optimize = optimize::bench_optimize(candidates, sample, scaling.cores)?;
     optimize::print(out, &optimize);
     let simulate = simulate::bench_simulate(&sz, dir.path())?;
     report::print_simulate(out, &simulate);

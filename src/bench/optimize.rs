@@ -60,11 +60,11 @@ optimize:
     - {rules: ncaa_bbcor, moi_min: 0.14}
 ";
 
-/// The robust search: the wood profile over a sample of 64 billets (density as
+/// The robust search: the wood profile over a sample of `POINTS` (64; 8 for `--quick`) billets (density as
 /// `studies/design_wood_robust.yaml` draws it) and ball lots, every sampled point a bat of
 /// its own.
 const ROBUST_SAMPLE: &str = "sample:
-  n: 64
+  n: POINTS
   seed: 56
   ball_spread: lot
   params:
@@ -91,6 +91,8 @@ pub struct OptimizeBench {
 #[derive(Debug, Clone, Serialize)]
 pub struct RobustCost {
     pub candidates: usize,
+    /// Billets and balls sampled.
+    pub sample_points: usize,
     /// Collisions per candidate (grid × sample).
     pub points_per_candidate: usize,
     pub seconds: f64,
@@ -163,13 +165,15 @@ fn shell_cost(candidates: usize, threads: usize) -> Result<ShellCost, String> {
 
 /// The robust search (`candidates` of them), and the preparation of its start design's bats
 /// alone.
-fn robust_cost(candidates: usize, threads: usize) -> Result<RobustCost, String> {
-    let text = STUDY.replace("MAX", &candidates.to_string()) + ROBUST_SAMPLE;
+fn robust_cost(candidates: usize, sample: usize, threads: usize) -> Result<RobustCost, String> {
+    let text = STUDY.replace("MAX", &candidates.to_string())
+        + &ROBUST_SAMPLE.replace("POINTS", &sample.to_string());
     let (_, done, points, seconds) = timed_search(&text, "bench_robust.yaml", threads)?;
     let prepare = preparation_seconds(&text, threads)?;
     let per_candidate = seconds / done.max(1) as f64;
     Ok(RobustCost {
         candidates: done,
+        sample_points: sample,
         points_per_candidate: points,
         seconds,
         evaluations_per_second: done as f64 / seconds,
@@ -215,9 +219,13 @@ fn preparation_seconds(text: &str, threads: usize) -> Result<f64, String> {
 }
 
 /// Run the search (`candidates` of them) on `threads` threads, and the hollow barrel's with
-/// and without its shell, and the robust search (a tenth as many candidates, at least the 7
+/// and without its shell, and the robust search over `sample` billets and balls (a tenth as many candidates, at least the 7
 /// of its first simplex).
-pub fn bench_optimize(candidates: usize, threads: usize) -> Result<OptimizeBench, String> {
+pub fn bench_optimize(
+    candidates: usize,
+    sample: usize,
+    threads: usize,
+) -> Result<OptimizeBench, String> {
     let text = STUDY.replace("MAX", &candidates.to_string());
     let (variables, done, points, seconds) = timed_search(&text, "bench_optimize.yaml", threads)?;
     Ok(OptimizeBench {
@@ -228,7 +236,7 @@ pub fn bench_optimize(candidates: usize, threads: usize) -> Result<OptimizeBench
         seconds,
         evaluations_per_second: done as f64 / seconds,
         shell: shell_cost(candidates, threads)?,
-        robust: robust_cost((candidates / 10).max(7), threads)?,
+        robust: robust_cost((candidates / 10).max(7), sample, threads)?,
     })
 }
 
@@ -253,8 +261,8 @@ pub fn print(out: &mut dyn Write, b: &OptimizeBench) {
     let r = &b.robust;
     let _ = writeln!(
         out,
-        "  a robust wood design over 64 billets and balls ({} collisions a candidate): {:.2} candidates/s ({} in {:.2} s); preparing a candidate's bats {:.3} s, {:.0} % of it",
-        r.points_per_candidate, r.evaluations_per_second, r.candidates, r.seconds, r.seconds_preparing_bats, 100.0 * r.preparation_share
+        "  a robust wood design over {} billets and balls ({} collisions a candidate): {:.2} candidates/s ({} in {:.2} s); preparing a candidate's bats {:.3} s, {:.0} % of it",
+        r.sample_points, r.points_per_candidate, r.evaluations_per_second, r.candidates, r.seconds, r.seconds_preparing_bats, 100.0 * r.preparation_share
     );
     let _ = out.flush();
 }
