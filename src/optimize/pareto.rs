@@ -83,27 +83,44 @@ fn caps(design: &Design, cands: &[Candidate]) -> Vec<f64> {
     let Some(p) = &design.pareto else {
         return Vec::new();
     };
-    let feasible: Vec<(f64, f64)> = cands
+    let scored: Vec<(f64, f64)> = scores(design, cands).into_iter().flatten().collect();
+    let at_best = scored
         .iter()
-        .filter(|c| feasible(design, &c.evaluation))
-        .map(|c| (c.evaluation.objective, c.evaluation.constraints[p.limit]))
-        .collect();
-    let sign = |maximize: bool| if maximize { 1.0 } else { -1.0 };
-    let (s1, s2) = (sign(design.objective.maximize), sign(p.maximize));
-    let at_best = feasible
-        .iter()
-        .max_by(|a, b| (s1 * a.0).total_cmp(&(s1 * b.0)))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
         .map(|f| f.1);
-    let best_second = feasible
-        .iter()
-        .map(|f| f.1)
-        .max_by(|a, b| (s2 * a).total_cmp(&(s2 * b)));
+    let best_second = scored.iter().map(|f| f.1).max_by(f64::total_cmp);
     let (Some(from), Some(to)) = (best_second, at_best) else {
         return Vec::new();
     };
+    // back from "higher is better" to the second objective's own sign
+    let (from, to) = (sign(p.maximize) * from, sign(p.maximize) * to);
     let n = p.points - 1;
     (1..n)
         .map(|k| from + (to - from) * k as f64 / n as f64)
+        .collect()
+}
+
+/// +1 for a quantity maximised, −1 for one minimised.
+fn sign(maximize: bool) -> f64 {
+    if maximize {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Each candidate's two objectives signed so that higher is better (None: not feasible).
+fn scores(design: &Design, cands: &[Candidate]) -> Vec<Option<(f64, f64)>> {
+    let Some(p) = &design.pareto else {
+        return vec![None; cands.len()];
+    };
+    let (s1, s2) = (sign(design.objective.maximize), sign(p.maximize));
+    cands
+        .iter()
+        .map(|c| {
+            let e = &c.evaluation;
+            feasible(design, e).then(|| (s1 * e.objective, s2 * e.constraints[p.limit]))
+        })
         .collect()
 }
 
@@ -121,18 +138,7 @@ fn feasible(design: &Design, e: &Evaluation) -> bool {
 /// Which candidates are on the front: feasible, and beaten in both objectives by no other
 /// feasible candidate (equal in both counts as not beaten).
 pub fn front(design: &Design, cands: &[Candidate]) -> Vec<bool> {
-    let Some(p) = &design.pareto else {
-        return vec![false; cands.len()];
-    };
-    let sign = |maximize: bool| if maximize { 1.0 } else { -1.0 };
-    let (s1, s2) = (sign(design.objective.maximize), sign(p.maximize));
-    let points: Vec<Option<(f64, f64)>> = cands
-        .iter()
-        .map(|c| {
-            let e = &c.evaluation;
-            feasible(design, e).then(|| (s1 * e.objective, s2 * e.constraints[p.limit]))
-        })
-        .collect();
+    let points = scores(design, cands);
     points
         .iter()
         .map(|a| match a {
