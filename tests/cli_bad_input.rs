@@ -80,7 +80,7 @@ const CASES: &[(&str, &[&str])] = &[
             "unknown_grid_path.yaml:6:3",
             "`swing.omgea`",
             "did you mean `swing.omega`",
-            "allowed: swing.attack_angle, swing.cm_speed, swing.omega, swing.vertical_angle",
+            "allowed: swing.attack_angle, swing.attack_direction, swing.cm_speed, swing.omega, swing.tilt",
         ],
     ),
     (

@@ -52,7 +52,7 @@ fn knob_moi(bat: &PreparedBat) -> f64 {
 
 fn batter(reference: &PreparedBat, n: f64) -> BatterSpec {
     BatterSpec {
-        pitch_speed: 94.0 * MPH,
+        pitch_speed: Some(94.0 * MPH),
         bat_speed: 70.0 * MPH,
         bat_speed_at: 0.7112,
         reference_moi: knob_moi(reference),

@@ -187,7 +187,13 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
         "elevation of the bat's path",
     ),
     (
-        "swing.vertical_angle",
+        "swing.attack_direction",
+        "rad",
+        "attack direction",
+        "direction of the bat's path from straight to the pitcher, toward first base positive",
+    ),
+    (
+        "swing.tilt",
         "rad",
         "vertical bat angle",
         "tilt of the bat's axis about its path, barrel down negative",
@@ -196,7 +202,25 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
         "batter.pitch_speed",
         "m/s",
         "pitch speed",
-        "lab speed of the pitch",
+        "lab speed of the pitch, arriving along the bat's path",
+    ),
+    (
+        "pitch.speed",
+        "m/s",
+        "pitch speed",
+        "lab speed of the pitch at contact",
+    ),
+    (
+        "pitch.descent_angle",
+        "rad",
+        "descent angle",
+        "angle of the pitch's path below the horizontal at contact",
+    ),
+    (
+        "pitch.horizontal_angle",
+        "rad",
+        "horizontal approach angle",
+        "angle of the pitch's path from straight to the catcher, toward first base positive",
     ),
     (
         "batter.bat_speed",

@@ -67,7 +67,8 @@ fn fill_contact_defaults(spec: &CollisionSpec, tree: &mut Value) {
     set("/ball/law", "friction", ball.friction);
     set("/ball/law", "tangential_ratio", ball.tangential_ratio);
     set("/swing", "attack_angle", 0.0);
-    set("/swing", "vertical_angle", 0.0);
+    set("/swing", "attack_direction", 0.0);
+    set("/swing", "tilt", 0.0);
 }
 
 /// The value at a dotted path (`bat.material.density`) of [`resolved_tree`]; `None` where

@@ -2,6 +2,7 @@
 //! Ω = Ω_ref (I_ref / I_pivot)^n (docs/physics.md, "The batter").
 
 use crate::bat::PreparedBat;
+use crate::collision::frame::pitch_components;
 use crate::error::ModelError;
 use crate::protocol::moment_of_inertia_about;
 use crate::spec::{BatterSpec, CollisionSpec};
@@ -48,6 +49,27 @@ pub fn swung<'a>(
     let mut swung = spec.clone();
     swung.swing.omega = -rate;
     swung.swing.cm_speed = cm_speed;
-    swung.ball.speed = batter.pitch_speed + cm_speed;
+    swung.ball.speed = pitch_along(spec)? + cm_speed;
     Ok(Cow::Owned(swung))
+}
+
+/// The pitch's speed along the bat's path toward the bat, m/s: the whole of
+/// `batter.pitch_speed` on plane, the component of the `pitch` block's velocity otherwise
+/// (exactly one of the two gives the pitch).
+pub fn pitch_along(spec: &CollisionSpec) -> Result<f64, ModelError> {
+    let given = spec.batter.as_ref().and_then(|b| b.pitch_speed);
+    match (given, pitch_components(spec)) {
+        (Some(speed), None) => Ok(speed),
+        (None, Some(p)) => Ok(p.along),
+        (Some(speed), Some(_)) => Err(crate::error::out_of_range(
+            "batter.pitch_speed",
+            speed,
+            "unset with a pitch block (pitch.speed gives the pitch)",
+        )),
+        (None, None) => Err(crate::error::out_of_range(
+            "batter.pitch_speed",
+            f64::NAN,
+            "a speed in m/s, required without a pitch block",
+        )),
+    }
 }

@@ -1,67 +1,12 @@
 //! The batted ball in the lab: its launch from the collision's plane and the swing's
-//! geometry, and its flight (docs/physics.md, "Launch" and "Flight").
-//!
-//! The lab frame is the flight's (Nathan's trajectory calculator): x horizontal toward the
-//! first-base side, y toward centre field, z up. The bat's path at the impact point (the
-//! direction its impact point moves, toward the pitcher) is û = (0, cos ψ, sin ψ), ψ the
-//! attack angle, and the pitch arrives along −û (an "on plane" swing). The bat's axis from
-//! knob to barrel, a right-handed batter's, is a = (cos φ, −sin ψ sin φ, cos ψ sin φ), φ the
-//! vertical bat angle (tilted about the path; negative with the barrel down). The
-//! collision's plane is spanned by ŷ = −û and x̂ = (a × û)/|a × û| (up for a level bat),
-//! and its spin axis is b̂ = ŷ × x̂ = −a. A left-handed batter's launch is the mirror image
-//! (x → −x).
+//! geometry (`frame`), and its flight (docs/physics.md, "Launch" and "Flight").
 
+use crate::collision::frame::{dot, pitch_components, scaled, SwingFrame, Vec3};
 use crate::collision::oblique::BallContact;
 use crate::error::ModelError;
 use crate::flight::{fly, Atmosphere, BallProperties, FlightOptions, Launch};
 use crate::outcome::{BallExit, BattedBall};
 use crate::spec::{CollisionSpec, FlightSpec};
-
-type Vec3 = [f64; 3];
-
-fn scaled(v: Vec3, k: f64) -> Vec3 {
-    [v[0] * k, v[1] * k, v[2] * k]
-}
-
-fn added(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// The swing's directions in the lab: the bat's path û, the plane's x̂ and spin axis b̂.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SwingFrame {
-    pub path: Vec3,
-    pub across: Vec3,
-    pub spin_axis: Vec3,
-}
-
-impl SwingFrame {
-    /// The frame of attack angle `attack` and vertical bat angle `tilt`, rad.
-    pub fn new(attack: f64, tilt: f64) -> SwingFrame {
-        let (sa, ca) = attack.sin_cos();
-        let (st, ct) = tilt.sin_cos();
-        // a × û with a = (ct, −sa st, ca st), û = (0, ca, sa): a unit vector already
-        let across = [-st, -ct * sa, ct * ca];
-        SwingFrame {
-            path: [0.0, ca, sa],
-            across,
-            spin_axis: [-ct, sa * st, -ca * st],
-        }
-    }
-
-    /// The ball's lab velocity after the collision: the bat's CM moves at `cm_speed` along
-    /// the path; `exit` is in the bat-CM frame (ŷ = −û).
-    pub fn velocity(&self, cm_speed: f64, exit: &BallExit) -> Vec3 {
-        added(
-            scaled(self.path, cm_speed - exit.along),
-            scaled(self.across, exit.across),
-        )
-    }
-}
 
 /// Launch angle, spray angle, backspin and sidespin of a lab velocity `v` and spin vector
 /// `spin` (the flight's conventions, `flight::Launch`; the spin about the ball's path, which
@@ -85,8 +30,11 @@ pub fn complete(
     exit: &BallExit,
     batted: &mut BattedBall,
 ) -> Result<f64, ModelError> {
-    let frame = SwingFrame::new(spec.swing.attack_angle, spec.swing.vertical_angle);
-    let v = frame.velocity(spec.swing.cm_speed, exit);
+    let frame = SwingFrame::of(spec);
+    // the pitch's motion along the bat's axis passes through the contact (its friction
+    // acts across the bat only)
+    let axial = pitch_components(spec).map_or(0.0, |p| p.axial);
+    let v = frame.velocity(spec.swing.cm_speed, (exit.along, exit.across, axial));
     let lab_speed = dot(v, v).sqrt().copysign(dot(v, frame.path));
     let spin = scaled(frame.spin_axis, exit.spin);
     let (launch_angle, spray_angle, backspin, sidespin) = launch_of(v, spin);

@@ -27,6 +27,7 @@ use crate::ball::{
     DEFAULT_BALL_RADIUS, DEFAULT_FRICTION, DEFAULT_INERTIA_FACTOR, DEFAULT_TANGENTIAL_RATIO,
 };
 use crate::bat::PreparedBat;
+use crate::collision::frame::pitch_components;
 use crate::error::ModelError;
 use crate::protocol::{free_effective_mass, pivoted_effective_mass};
 use crate::spec::{BallSpec, CollisionSpec};
@@ -70,6 +71,9 @@ pub struct Oblique {
     pub ball: BallContact,
     /// The pitch's spin about the bat's axis b̂, rad/s (ω_b; + is the pitch's backspin).
     pub spin: f64,
+    /// The ball's velocity across the swing plane (along x̂) before contact, bat-CM frame,
+    /// m/s: a pitch off the bat's path (`pitch`); 0 on plane.
+    pub across_speed: f64,
     /// The bat's outer radius at the impact point, m.
     pub bat_radius: f64,
     /// The bat's moment of inertia about its long axis, kg·m².
@@ -101,26 +105,42 @@ pub(crate) fn check_reach(
 }
 
 impl Oblique {
-    /// The oblique part of `spec` on `bat`: `None` for a head-on ball without spin (the
-    /// paper's collision, computed exactly as before).
-    pub fn resolve(spec: &CollisionSpec, bat: &PreparedBat) -> Result<Option<Oblique>, ModelError> {
-        if spec.impact.offset == 0.0 && spec.ball.spin == 0.0 {
+    /// The oblique part of `spec` on `bat`, whose impact point the ball approaches at
+    /// `approach` along ŷ (m/s): `None` for a head-on ball without spin on the bat's path
+    /// (the paper's collision, computed exactly as before).
+    pub fn resolve(
+        spec: &CollisionSpec,
+        bat: &PreparedBat,
+        approach: f64,
+    ) -> Result<Option<Oblique>, ModelError> {
+        let across_speed = pitch_components(spec).map_or(0.0, |p| p.across);
+        if spec.impact.offset == 0.0 && spec.ball.spin == 0.0 && across_speed == 0.0 {
             return Ok(None);
         }
         let ball = BallContact::of(&spec.ball);
         let bat_radius = bat.geometry.outer_radius(spec.impact.z);
         // the same check the study layer makes when it loads (a miss is refused)
         check_reach(spec, &bat.geometry)?;
-        let sin = spec.impact.offset / (bat_radius + ball.radius);
+        let (cos, sin) = line_of_centres(
+            spec.impact.offset / (bat_radius + ball.radius),
+            (approach, across_speed),
+        );
         Ok(Some(Oblique {
-            cos: (1.0 - sin * sin).sqrt(),
+            cos,
             sin,
             ball,
             spin: spec.ball.spin,
+            across_speed,
             bat_radius,
             roll_inertia: bat.roll_inertia,
             cross_mass: cross_mass(bat, spec.impact.z),
         }))
+    }
+
+    /// The normal speed at first contact (the compression's rate), m/s, of a ball that
+    /// meets the bat's impact point at `approach` along ŷ.
+    pub fn normal_speed(&self, approach: f64) -> f64 {
+        approach * self.cos + self.across_speed * self.sin
     }
 
     /// The tangential velocity of the ball's contact point relative to the bat's surface
@@ -132,6 +152,22 @@ impl Oblique {
             + self.ball.radius * ball_spin
             + self.bat_radius * roll_rate
     }
+}
+
+/// cos θ and sin θ of the line of centres at first touch, from the offset's sine
+/// (`offset` / (R + r), the offset measured across the ball's path relative to the bat's
+/// impact point) and that relative velocity in (ŷ, x̂): θ is the offset's angle turned by
+/// the path's, δ = atan2(v_x, v_y). On the bat's path (v_x = 0) it is the offset's alone.
+fn line_of_centres(offset_sin: f64, (along, across): (f64, f64)) -> (f64, f64) {
+    let offset_cos = (1.0 - offset_sin * offset_sin).sqrt();
+    if across == 0.0 {
+        return (offset_cos, offset_sin);
+    }
+    let (sd, cd) = across.atan2(along).sin_cos();
+    (
+        offset_cos * cd - offset_sin * sd,
+        offset_sin * cd + offset_cos * sd,
+    )
 }
 
 /// The rigid bat's effective mass at `z` for a push across the swing plane: about the
@@ -185,8 +221,8 @@ pub fn rigid_oblique(
     let w_n = 1.0 / ball_mass + inverse_bat;
     let r = o.ball.radius;
     let w_t = w_n + r * r / o.ball.inertia + o.bat_radius.powi(2) / o.roll_inertia;
-    let v_n = approach * o.cos;
-    let slip_before = o.slip_velocity((approach, 0.0), o.spin, 0.0);
+    let v_n = o.normal_speed(approach);
+    let slip_before = o.slip_velocity((approach, o.across_speed), o.spin, 0.0);
     let normal_impulse = (1.0 + cor) * v_n / w_n;
     let stop = slip_before / w_t;
     let tangential_impulse = if o.ball.friction * normal_impulse >= stop.abs() {
@@ -197,7 +233,10 @@ pub fn rigid_oblique(
     // on the ball: −J_n n̂ + J_t t̂, n̂ = (c, s), t̂ = (−s, c)
     let (jn, jt) = (normal_impulse, tangential_impulse);
     let impulse = (-jn * o.cos - jt * o.sin, -jn * o.sin + jt * o.cos);
-    let velocity = (ball_speed + impulse.0 / ball_mass, impulse.1 / ball_mass);
+    let velocity = (
+        ball_speed + impulse.0 / ball_mass,
+        o.across_speed + impulse.1 / ball_mass,
+    );
     RigidOblique {
         velocity,
         spin: o.spin + r * jt / o.ball.inertia,

@@ -53,7 +53,9 @@ pub(super) fn simulate_rigid(
     spec: &CollisionSpec,
     bat: &PreparedBat,
 ) -> Result<Outcome, ModelError> {
-    Ok(match Oblique::resolve(spec, bat)? {
+    let lever_arm = spec.impact.z - bat.properties().z_cm;
+    let approach = spec.ball.speed - spec.swing.omega * lever_arm;
+    Ok(match Oblique::resolve(spec, bat, approach)? {
         None => rigid_head_on(spec, bat),
         Some(o) => rigid_oblique_outcome(spec, bat, &o),
     })
@@ -142,7 +144,7 @@ fn rigid_oblique_outcome(spec: &CollisionSpec, bat: &PreparedBat, o: &Oblique) -
     let bat_speed = omega * lever_arm;
     let approach = v - bat_speed;
     let effective = free_effective_mass(p.mass, p.z_cm, p.moment_of_inertia, lever_arm + p.z_cm);
-    let cor = cor_at_speed(&spec.ball.law, approach * o.cos);
+    let cor = cor_at_speed(&spec.ball.law, o.normal_speed(approach));
     let r = rigid_oblique(o, m, effective, (v, bat_speed), cor);
     let ball_exit = BallExit {
         along: r.velocity.0,
@@ -177,8 +179,9 @@ fn oblique_energies(
     let lever_arm = spec.impact.z - p.z_cm;
     let (jy, jx) = (-r.impulse.0, -r.impulse.1);
     let (inertia, ball_inertia) = (p.moment_of_inertia, o.ball.inertia);
-    let initial =
-        0.5 * m * v * v + 0.5 * inertia * omega * omega + 0.5 * ball_inertia * o.spin.powi(2);
+    let initial = 0.5 * m * (v * v + o.across_speed.powi(2))
+        + 0.5 * inertia * omega * omega
+        + 0.5 * ball_inertia * o.spin.powi(2);
     let ball_final = 0.5 * m * (r.velocity.0.powi(2) + r.velocity.1.powi(2))
         + 0.5 * ball_inertia * r.spin.powi(2);
     let turn_in = omega + jy * lever_arm / inertia;

@@ -63,7 +63,7 @@ pub fn simulate_with_diagnostics(
     let lever_arm = spec.impact.z - p.z_cm;
     let lab_speed = launch::complete(spec, lever_arm, &outcome.ball_exit, &mut outcome.batted)?;
     // off the bat's path the lab speed is no longer the CM frame's plus the CM's
-    if outcome.ball_exit.across != 0.0 {
+    if outcome.ball_exit.across != 0.0 || spec.pitch.is_some() {
         outcome.exit_speed_lab = lab_speed;
     }
     Ok((outcome, diagnostics))

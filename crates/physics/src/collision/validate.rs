@@ -39,6 +39,11 @@ pub fn validate_spec(spec: &CollisionSpec) -> Result<(), ModelError> {
         crate::collision::oblique::check_reach(spec, g)?;
     }
     check_batter(spec, wall)?;
+    if spec.pitch.is_some() && spec.batter.is_none() {
+        return Err(ModelError::Unsupported(
+            "a pitch block without a batter block (the batter's swing meets the pitch)",
+        ));
+    }
     if let Some(flight) = &spec.flight {
         check_flight(flight)?;
     }
@@ -211,7 +216,8 @@ fn check_oblique(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
     let right_angle = std::f64::consts::FRAC_PI_2;
     for (path, angle) in [
         ("swing.attack_angle", spec.swing.attack_angle),
-        ("swing.vertical_angle", spec.swing.vertical_angle),
+        ("swing.attack_direction", spec.swing.attack_direction),
+        ("swing.tilt", spec.swing.tilt),
     ] {
         check(path, angle, angle.abs() < right_angle, "(-pi/2, pi/2) rad")?;
     }
@@ -231,12 +237,15 @@ fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
     if let Some(e) = crate::collision::batter::swing_conflict(spec) {
         return Err(e);
     }
-    check(
-        "batter.pitch_speed",
-        b.pitch_speed,
-        b.pitch_speed >= 0.0,
-        "a finite number >= 0 m/s",
-    )?;
+    if let Some(speed) = b.pitch_speed {
+        check(
+            "batter.pitch_speed",
+            speed,
+            speed >= 0.0,
+            "a finite number >= 0 m/s",
+        )?;
+    }
+    check_pitch(spec)?;
     check(
         "batter.bat_speed",
         b.bat_speed,
@@ -267,6 +276,27 @@ fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
         (0.0..=1.0).contains(&b.exponent),
         "[0, 1]",
     )
+}
+
+/// The pitch block: a speed and two angles of a path that reaches the bat, with exactly
+/// one of it and `batter.pitch_speed` giving the pitch.
+fn check_pitch(spec: &CollisionSpec) -> Result<(), ModelError> {
+    if let Some(p) = &spec.pitch {
+        check(
+            "pitch.speed",
+            p.speed,
+            p.speed >= 0.0,
+            "a finite number >= 0 m/s",
+        )?;
+        let right_angle = std::f64::consts::FRAC_PI_2;
+        for (path, angle) in [
+            ("pitch.descent_angle", p.descent_angle),
+            ("pitch.horizontal_angle", p.horizontal_angle),
+        ] {
+            check(path, angle, angle.abs() < right_angle, "(-pi/2, pi/2) rad")?;
+        }
+    }
+    crate::collision::batter::pitch_along(spec).map(|_| ())
 }
 
 /// The flight's air: the ranges the flight model accepts.

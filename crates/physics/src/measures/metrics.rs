@@ -246,6 +246,7 @@ pub fn bbcor_scan_mapped(
         numerics: numerics.clone(),
         batter: None,
         flight: None,
+        pitch: None,
     };
     let at = |zi: f64| {
         let mut spec = spec.clone();

@@ -15,8 +15,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BatterSpec {
-    /// Lab-frame speed of the pitch toward the batter at contact, m/s.
-    pub pitch_speed: f64,
+    /// Lab-frame speed of the pitch toward the batter at contact, m/s, arriving along the
+    /// bat's path (an "on plane" swing). Required unless a `pitch` block gives the pitch
+    /// (then it must be left out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch_speed: Option<f64>,
     /// The batter's swing speed with the reference bat: the lab speed of the point
     /// `bat_speed_at` of that bat at contact, m/s.
     pub bat_speed: f64,
@@ -68,6 +71,26 @@ pub fn swing_law_extrapolated(moment_of_inertia_knob6: f64) -> Option<String> {
             )
         },
     )
+}
+
+/// The pitch as it reaches the bat, in the lab: its speed and the two angles of its path,
+/// independent of the swing's (docs/physics.md, "The geometry of a swing"). Without this
+/// block the pitch arrives along the bat's path (`batter.pitch_speed`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PitchSpec {
+    /// The pitch's speed at contact, m/s (about 92 % of its release speed: a pitch loses
+    /// about 8 % to drag on its way to the plate).
+    pub speed: f64,
+    /// The angle of the pitch's path below the horizontal at contact, rad, positive for a
+    /// falling pitch (measured fastballs about 0.09–0.12, curveballs up to about 0.21).
+    /// Default 0.
+    #[serde(default, skip_serializing_if = "super::is_zero")]
+    pub descent_angle: f64,
+    /// The angle of the pitch's path from straight toward the catcher, seen from above,
+    /// rad, positive when it moves toward the first-base side. Default 0.
+    #[serde(default, skip_serializing_if = "super::is_zero")]
+    pub horizontal_angle: f64,
 }
 
 fn default_bat_speed_at() -> f64 {

@@ -11,7 +11,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 mod batter;
-pub use batter::{swing_law_extrapolated, BatterSpec, FlightSpec, SWING_LAW_MOI6};
+pub use batter::{swing_law_extrapolated, BatterSpec, FlightSpec, PitchSpec, SWING_LAW_MOI6};
 pub mod ball_law;
 pub use ball_law::{BallLaw, BallLawKind, BallPreset, Loading};
 
@@ -58,6 +58,10 @@ pub struct CollisionSpec {
     /// flight (those results are NaN).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub flight: Option<FlightSpec>,
+    /// The pitch's speed and path at contact, independent of the swing's; needs a `batter`.
+    /// Default `null`: the pitch arrives along the bat's path at `batter.pitch_speed`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch: Option<PitchSpec>,
 }
 
 impl CollisionSpec {
@@ -78,6 +82,7 @@ impl CollisionSpec {
             numerics: NumericsSpec::default(),
             batter: None,
             flight: None,
+            pitch: None,
         }
     }
 }
@@ -536,15 +541,21 @@ pub struct SwingSpec {
     #[serde(default)]
     pub cm_speed: f64,
     /// Attack angle: the elevation of the bat's path (its impact point's velocity) above the
-    /// horizontal, rad, positive for an upward swing. The pitch arrives along that path (an
-    /// "on plane" swing, docs/physics.md "Launch"). Default 0.
+    /// horizontal, rad, positive for an upward swing. Without a `pitch` block the pitch
+    /// arrives along that path (an "on plane" swing, docs/physics.md "The geometry of a
+    /// swing"). Default 0.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub attack_angle: f64,
-    /// Vertical bat angle: the tilt of the bat's axis (knob to barrel) about its path, rad,
+    /// Attack direction: the angle of the bat's path from straight toward the pitcher, seen
+    /// from above, rad, positive toward the first-base side (a right-handed batter's
+    /// opposite field). Default 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub attack_direction: f64,
+    /// The bat's vertical angle: the tilt of its axis (knob to barrel) about its path, rad,
     /// negative with the barrel below the hands (measured swings average about −0.5).
     /// Default 0: a level bat.
     #[serde(default, skip_serializing_if = "is_zero")]
-    pub vertical_angle: f64,
+    pub tilt: f64,
 }
 
 /// A hoop mode: mass `mass` on a spring of frequency `frequency` between ball and bat;
@@ -588,7 +599,7 @@ pub struct ImpactSpec {
 
 /// Default-valued angles and offsets are left out of a spec's canonical form, so that a
 /// point that does not use them keeps the id it had before they existed.
-fn is_zero(x: &f64) -> bool {
+pub(crate) fn is_zero(x: &f64) -> bool {
     *x == 0.0 && x.is_sign_positive()
 }
 

@@ -24,11 +24,12 @@ pub(super) fn ball_exit(c: &Collision, fin: &FinalState) -> BallExit {
     }
 }
 
-/// Kinetic energies an oblique contact adds, J: the pitch's spin before; the ball's motion
+/// Kinetic energies an oblique contact adds, J: the pitch's spin and motion across the
+/// plane before; the ball's motion
 /// across the plane and its spin after; the bat's rigid motion across the plane and its
 /// roll after; and what sliding dissipated.
 pub(super) struct ObliqueEnergies {
-    pub(super) spin_before: f64,
+    pub(super) before: f64,
     pub(super) ball_after: f64,
     pub(super) bat_after: f64,
     pub(super) friction: f64,
@@ -38,7 +39,8 @@ pub(super) fn oblique_energies(c: &Collision, fin: &FinalState) -> Option<Obliqu
     let (o, t) = (c.oblique.as_ref()?, fin.tangential.as_ref()?);
     let inertia = o.ball.inertia;
     Some(ObliqueEnergies {
-        spin_before: 0.5 * inertia * o.spin * o.spin,
+        before: 0.5 * inertia * o.spin * o.spin
+            + 0.5 * c.ball_mass * o.across_speed * o.across_speed,
         ball_after: 0.5 * c.ball_mass * t.ball_vx * t.ball_vx
             + 0.5 * inertia * t.ball_spin * t.ball_spin,
         bat_after: 0.5 * o.cross_mass * t.bat_vx * t.bat_vx
@@ -55,7 +57,7 @@ pub(super) fn tangential_cor(c: &Collision, bat: &PreparedBat, fin: &FinalState)
         return f64::NAN;
     };
     let bat_before = c.omega * c.lever - c.frame_velocity;
-    let before = o.slip_velocity((c.ball_speed - bat_before, 0.0), o.spin, 0.0);
+    let before = o.slip_velocity((c.ball_speed - bat_before, o.across_speed), o.spin, 0.0);
     if before.abs() < 1e-12 {
         return f64::NAN;
     }

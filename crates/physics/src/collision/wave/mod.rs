@@ -220,7 +220,7 @@ fn collision_of(
 ) -> Result<Collision, ModelError> {
     let hoop = resolve_hoop(spec)?;
     let shell = resolve_shell(spec, bat)?;
-    let oblique = Oblique::resolve(spec, bat)?;
+    let oblique = Oblique::resolve(spec, bat, approach)?;
     let dt = time_step(spec, bat)?;
     // The run lasts at least the re-contact watch after the ball has left.
     let budget = checked_step_budget(spec, dt, "numerics.max_steps")?;
@@ -232,7 +232,7 @@ fn collision_of(
     // a speed-dependent ball takes its COR at the normal speed it meets the bat with
     let law = ContactLaw::new(
         &spec.ball.law,
-        oblique.map_or(approach, |o| approach * o.cos),
+        oblique.map_or(approach, |o| o.normal_speed(approach)),
     );
     Ok(Collision {
         law,
@@ -294,7 +294,7 @@ fn energy_partition(
         friction: 0.0,
     };
     if let Some(extra) = exit::oblique_energies(c, fin) {
-        energy.initial += extra.spin_before;
+        energy.initial += extra.before;
         energy.ball_final += extra.ball_after;
         energy.bat_rigid += extra.bat_after;
         energy.friction = extra.friction;

@@ -40,9 +40,10 @@ pub(in crate::collision::wave) struct Tangential {
 }
 
 impl Tangential {
-    /// At first contact: nothing across the plane, the pitch's spin.
+    /// At first contact: the pitch's motion across the plane, its spin.
     pub(in crate::collision::wave) fn first_contact(o: &Oblique) -> Tangential {
         Tangential {
+            ball_vx: o.across_speed,
             ball_spin: o.spin,
             ..Tangential::default()
         }
