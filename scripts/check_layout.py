@@ -7,7 +7,7 @@ Prints one line per problem and exits 1 if there is any, 0 (after "layout ok") i
 none, and 2 if the file cannot be checked at all (missing, not HDF5, or h5py / xarray /
 h5netcdf not installed).
 
-What is checked (layout_version 6, as docs/layout.md describes it):
+What is checked (layout_version 7, as docs/layout.md describes it):
 
 - root attributes: every documented one is present with its type; `Conventions` is CF-1.8;
   `title` names the study; `study_sha256` is the SHA-256 of `study_yaml` (for a study that names no profile file); `created` is ISO 8601
@@ -56,7 +56,7 @@ import json
 import re
 import sys
 
-LAYOUT_VERSION = 6
+LAYOUT_VERSION = 7
 # longest `long_name` (short, for plot labels; layout 3)
 LONG_NAME_MAX = 40
 
@@ -78,6 +78,7 @@ SUMMARY_FLOATS = {
     "hoop_mode_frequency": "Hz", "hoop_mode_mass": "kg", "tangential_cor": "1",
     "bat_speed": "m/s", "launch_angle": "rad", "spray_angle": "rad", "spin": "rad/s",
     "sidespin": "rad/s", "carry": "m", "apex": "m", "hang_time": "s", "energy_friction": "J",
+    "bat_speed_6in": "m/s", "pitch_speed_plate": "m/s", "collision_efficiency_q": "1", "squared_up": "1",
 }
 # name: (numpy dtype string, units)
 SUMMARY_INTS = {"recontact": ("int8", "1"), "status": ("int8", "1"),
@@ -118,6 +119,7 @@ BAT = {
     "drop": (("bat",), "1"), "barrel_diameter": (("bat",), "m"),
     "sweet_zone_start": (("bat",), "m"), "sweet_zone_end": (("bat",), "m"),
     "sweet_zone_length": (("bat",), "m"), "hoop_mode_frequency": (("bat",), "Hz"),
+    "best_q": (("bat",), "1"), "best_q_position": (("bat",), "m"),
     "rule_units": (("rule_check",), ""),
     # each limit in its own units (attribute units_from: rule_units)
     "rule_value": (("bat", "rule_check"), None), "rule_margin": (("bat", "rule_check"), None),

@@ -233,6 +233,10 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
             carry: 100.0 + 10.0 * z,
             apex: 20.0 + z,
             hang_time: 4.0 + z,
+            bat_speed_6in: 31.0 + z,
+            pitch_speed: 40.0 - z,
+            collision_efficiency_q: 0.2 + 1e-4 * index as f64,
+            squared_up: (index % 2) as f64,
         },
         history,
     })

@@ -8,6 +8,7 @@
 
 use super::shard::Shard;
 use super::traits::{Encode, Simulator, Sink};
+use crate::model::measures::field::squared_up;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::ModelKind;
 use crate::pointset::PointSet;
@@ -504,6 +505,12 @@ impl<S: Simulator, E: Encode> Dispatch<'_, S, E> {
                 Err(payload) => Err(format!("panic: {}", panic_text(payload))),
             },
         };
+        // squared up against the bat's own best q, which preparing the bat found
+        let best_q = self.bats.variants[p.bat as usize].properties.metrics.best_q;
+        let result = result.map(|mut o| {
+            o.batted.squared_up = squared_up(&o.batted, o.exit_speed_lab, best_q);
+            o
+        });
         PointRecord {
             index: i,
             id: p.id,

@@ -48,7 +48,7 @@ def test_root_attributes(files):
                   "host", "threads", "command_line", "study_yaml", "study_sha256", "layout_version"]:
             assert k in a, k
         assert a["Conventions"] == "CF-1.8"
-        assert int(a["layout_version"]) == 6
+        assert int(a["layout_version"]) == 7
         assert a["complete"] == 1
 
 

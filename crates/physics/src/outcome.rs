@@ -190,6 +190,17 @@ pub struct BattedBall {
     pub apex: f64,
     /// Time from contact to landing, s.
     pub hang_time: f64,
+    /// Lab speed of the bat's point 6 in from its barrel end before contact, m/s (where bat
+    /// tracking measures bat speed; `measures::field`).
+    pub bat_speed_6in: f64,
+    /// The pitch's lab speed at contact (the front of the plate), m/s.
+    pub pitch_speed: f64,
+    /// Collision efficiency in the field's convention, q = (exit − bat)/(pitch + bat) with
+    /// `bat_speed_6in` and `pitch_speed`.
+    pub collision_efficiency_q: f64,
+    /// 1 if the exit speed is at least 80 % of the most the swing could give the pitch with
+    /// the bat's best q, 0 if not, NaN unknown.
+    pub squared_up: f64,
 }
 
 impl Default for BattedBall {
@@ -203,6 +214,10 @@ impl Default for BattedBall {
             carry: f64::NAN,
             apex: f64::NAN,
             hang_time: f64::NAN,
+            bat_speed_6in: f64::NAN,
+            pitch_speed: f64::NAN,
+            collision_efficiency_q: f64::NAN,
+            squared_up: f64::NAN,
         }
     }
 }
@@ -377,6 +392,10 @@ pub struct BatMetrics {
     pub hoop_mode_frequency: f64,
     /// The ball and hoop the scan fired and gave (`metrics::BbcorShot`), canonical JSON.
     pub bbcor_shot: String,
+    /// The bat's best collision efficiency in the field's convention at the field's
+    /// reference swing (`measures::field::best_q`), and where, m from the knob.
+    pub best_q: f64,
+    pub best_q_position: f64,
 }
 
 impl Default for BatMetrics {
@@ -395,6 +414,8 @@ impl Default for BatMetrics {
             sweet_zone_end: f64::NAN,
             hoop_mode_frequency: f64::NAN,
             bbcor_shot: String::new(),
+            best_q: f64::NAN,
+            best_q_position: f64::NAN,
         }
     }
 }

@@ -1,6 +1,8 @@
 //! The trade's units, in SI: rule books and bat makers state lengths in inches, weights in
 //! ounces and swing weights in ounce-square-inches.
 
+/// One mile per hour, m/s.
+pub const MPH: f64 = 0.447_04;
 /// One inch, m.
 pub const INCH: f64 = 0.0254;
 /// One ounce (avoirdupois), kg.

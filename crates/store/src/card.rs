@@ -43,6 +43,10 @@ pub struct BatCard {
     /// The lowest free–free bending mode, Hz.
     pub bending_frequency: f64,
     pub hoop_mode_frequency: f64,
+    /// The best collision efficiency in the field's convention at the field's reference
+    /// swing, and where, m from the knob (NaN in files before layout 7).
+    pub best_q: f64,
+    pub best_q_position: f64,
     pub rules: Vec<CardRule>,
 }
 
@@ -95,6 +99,17 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
     ]
     .map(column);
     let moi_knob = column(l::BAT_MOI_KNOB.name)?;
+    // layout 7 added the best q: an older file's card shows it unknown
+    let optional = |name: &str| {
+        column(name)
+            .ok()
+            .filter(|_| version >= 7)
+            .unwrap_or_else(|| vec![f64::NAN; n])
+    };
+    let (best_q, best_q_z) = (
+        optional(l::BAT_BEST_Q.name),
+        optional(l::BAT_BEST_Q_POS.name),
+    );
     let modes = floats(l::BAT_MODE_FREQ.name)?;
     let per = modes.len().checked_div(n).unwrap_or(0);
     let shots = texts(l::BAT_BBCOR_SHOT.name)?;
@@ -124,6 +139,8 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
             sweet_zone_end: end[i],
             bending_frequency: if per > 0 { modes[i * per] } else { f64::NAN },
             hoop_mode_frequency: hoop[i],
+            best_q: best_q[i],
+            best_q_position: best_q_z[i],
             rules: (0..nr)
                 .map(|k| CardRule {
                     label: rule_labels[k].clone(),
@@ -226,6 +243,15 @@ fn render_one(c: &BatCard, s: &mut String) {
         "none (a solid bat)".to_string()
     };
     row("hoop mode", hoop);
+    row(
+        "best q",
+        format!(
+            "{:.4} at {:.4} m ({:.2} in): exit = q pitch + (1 + q) bat speed 6 in from the end, 70-mph swing, 82-mph pitch",
+            c.best_q,
+            c.best_q_position,
+            inch(c.best_q_position)
+        ),
+    );
     let _ = writeln!(
         s,
         "  rules (margin: how far inside the limit; negative breaks it)"

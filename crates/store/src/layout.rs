@@ -11,7 +11,7 @@ mod bat;
 pub use bat::*;
 
 /// Version of the file layout documented in docs/layout.md.
-pub const LAYOUT_VERSION: u32 = 6;
+pub const LAYOUT_VERSION: u32 = 7;
 
 pub const GROUP_SUMMARY: &str = "summary";
 pub const GROUP_ERRORS: &str = "errors";
@@ -88,7 +88,7 @@ const fn v(
 }
 
 /// Number of f64 summary variables (the order of [`SUMMARY_FLOATS`] and [`summary_floats`]).
-pub const N_SUMMARY_FLOATS: usize = 34;
+pub const N_SUMMARY_FLOATS: usize = 38;
 
 /// The f64 summary variables, in journal order.
 pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
@@ -297,6 +297,30 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "friction loss",
         "energy dissipated by the ball sliding on the bat",
     ),
+    v(
+        "bat_speed_6in",
+        "m/s",
+        "bat speed 6 in from the end",
+        "lab speed of the bat's point 6 in from its barrel end before contact, where bat tracking measures it",
+    ),
+    v(
+        "pitch_speed_plate",
+        "m/s",
+        "pitch speed at the plate",
+        "the pitch's lab speed at contact (the front of the plate)",
+    ),
+    v(
+        "collision_efficiency_q",
+        "1",
+        "q",
+        "collision efficiency in the field's convention: (exit_speed_lab - bat_speed_6in) / (pitch_speed_plate + bat_speed_6in)",
+    ),
+    v(
+        "squared_up",
+        "1",
+        "squared up",
+        "1 if exit_speed_lab is at least 80 % of best_q pitch_speed_plate + (1 + best_q) bat_speed_6in with the bat's best_q, 0 if not",
+    ),
 ];
 
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
@@ -341,6 +365,10 @@ pub fn summary_floats(o: &Outcome) -> [f64; N_SUMMARY_FLOATS] {
         o.batted.apex,
         o.batted.hang_time,
         o.energy.friction,
+        o.batted.bat_speed_6in,
+        o.batted.pitch_speed,
+        o.batted.collision_efficiency_q,
+        o.batted.squared_up,
     ]
 }
 
@@ -373,6 +401,10 @@ pub fn outcome_from_floats(f: &[f64; N_SUMMARY_FLOATS]) -> Outcome {
             carry: f[30],
             apex: f[31],
             hang_time: f[32],
+            bat_speed_6in: f[34],
+            pitch_speed: f[35],
+            collision_efficiency_q: f[36],
+            squared_up: f[37],
         },
         ..Default::default()
     };

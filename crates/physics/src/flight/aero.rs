@@ -13,7 +13,7 @@
 use super::error::{check_range, FlightError};
 
 /// 1 mph in m/s (exact: 1609.344 m / 3600 s).
-pub const MPH: f64 = 0.447_04;
+pub const MPH: f64 = crate::units::MPH;
 /// 1 ft in m (exact).
 pub const FOOT: f64 = 0.3048;
 /// 1 rpm in rad/s.

@@ -142,7 +142,7 @@ pub fn bat_metrics(
 pub type ScanMap<'a> = dyn Fn(&[f64], &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> + Sync + 'a;
 
 /// The scan's collisions one after the other.
-fn in_order(z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> {
+pub fn in_order(z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> {
     z.iter().map(|&z| f(z)).collect()
 }
 
@@ -158,6 +158,17 @@ pub fn bat_metrics_mapped(
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
     let (bbcor_z, bbcor) = bbcor_scan_mapped(bat, bat_spec, numerics, shot, map)?;
     let zone = find_zone(&bbcor_z, &bbcor, BBCOR_ZONE_DROP);
+    let (best_q, best_q_position) = if bbcor_z.is_empty() {
+        (f64::NAN, f64::NAN)
+    } else {
+        crate::measures::field::best_q(
+            bat,
+            bat_spec,
+            numerics,
+            (&shot.ball, shot.hoop.as_ref()),
+            map,
+        )?
+    };
     let (bbcor_max_position, bbcor_max) =
         zone.map_or((f64::NAN, f64::NAN), |z| (z.position, z.peak));
     Ok(BatMetrics {
@@ -174,6 +185,8 @@ pub fn bat_metrics_mapped(
         sweet_zone_end: zone.map_or(f64::NAN, |z| z.right),
         hoop_mode_frequency: lowest_breathing_frequency(bat)?,
         bbcor_shot: shot.json(),
+        best_q,
+        best_q_position,
     })
 }
 

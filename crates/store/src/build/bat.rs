@@ -185,7 +185,7 @@ impl BatGroup<'_> {
     fn metrics(&self, p: &[&BatProperties]) -> Result<(), StoreError> {
         let nb = p.len();
         type Getter = fn(&BatMetrics) -> f64;
-        let per_bat: [(&VarDef, Getter); 7] = [
+        let per_bat: [(&VarDef, Getter); 9] = [
             (&l::BAT_PIVOT, |m| m.pivot),
             (&l::BAT_COP, |m| m.centre_of_percussion),
             (&l::BAT_NODE1, |m| m.node1_barrel),
@@ -193,6 +193,8 @@ impl BatGroup<'_> {
             (&l::BAT_BBCOR_SPEED, |m| m.bbcor_ball_speed),
             (&l::BAT_BBCOR_MAX, |m| m.bbcor_max),
             (&l::BAT_BBCOR_MAX_POS, |m| m.bbcor_max_position),
+            (&l::BAT_BEST_Q, |m| m.best_q),
+            (&l::BAT_BEST_Q_POS, |m| m.best_q_position),
         ];
         for (def, get) in per_bat {
             self.var(

@@ -91,6 +91,18 @@ pub const BAT_BBCOR_MAX_POS: VarDef = v(
     "max-BBCOR z",
     "impact position of maximum BBCOR, from the knob",
 );
+pub const BAT_BEST_Q: VarDef = v(
+    "best_q",
+    "1",
+    "best q",
+    "the bat's best collision efficiency in the field's convention, (exit - bat speed 6 in from the end) / (pitch + bat speed), at a 70-mph swing meeting an 82-mph pitch, free bat turning about the knob, head-on",
+);
+pub const BAT_BEST_Q_POS: VarDef = v(
+    "best_q_position",
+    "m",
+    "best q position",
+    "where the bat's best q is reached, from the knob",
+);
 pub const BBCOR_DIM: VarDef = v("bbcor_point", "1", "BBCOR point", "BBCOR scan point number");
 /// The bat card's quantities (`batstudy card`).
 pub const BAT_DROP: VarDef = v(
