@@ -79,8 +79,11 @@ fn a_stiff_bats_best_q_is_the_rigid_closed_form() {
 
 /// A wood bat's best q with the calibrated ball, and the same bat made rigid.
 fn wood_best_q(length: f64, density: f64) -> (f64, f64, f64) {
-    let mut spec = BatSpec::default(); // the R161's profile and wood
-    spec.length = Some(length);
+    // the R161's profile and wood
+    let mut spec = BatSpec {
+        length: Some(length),
+        ..BatSpec::default()
+    };
     spec.material.density = Some(density);
     let numerics = NumericsSpec::default();
     let bat = prepared(&spec);
