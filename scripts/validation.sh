@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The validation table: run the five studies of studies/validation/ and write
+# The validation table: run the six studies of studies/validation/ and write
 # docs/validation.md with scripts/validation.py (about 10 s once built; it reads the files with
 # batstudy.open_results from python/).
 #   bash scripts/validation.sh [BATSTUDY_BINARY]
@@ -8,8 +8,8 @@ cd "$(dirname "$0")/.."
 source scripts/release_binary.sh "${1:-}"
 out=target/validation
 mkdir -p "$out"
-for s in certification wall game low_speed oblique; do
+for s in certification wall game low_speed oblique field; do
   "$bin" run "studies/validation/$s.yaml" -o "$out/$s.h5" --force --quiet
 done
 .venv/bin/python scripts/validation.py "$out"/certification.h5 "$out"/wall.h5 "$out"/game.h5 "$out"/low_speed.h5 \
-  "$out"/oblique.h5 --check
+  "$out"/oblique.h5 "$out"/field.h5 --check

@@ -78,6 +78,7 @@ _ON_FIRST_USE = {
     "export_profile": "._api",
     "fly": "._fly",
     "units": ".units",
+    "tracking": ".tracking",
     "ShardTask": "._scale_out",
     "StudyError": "._api",
     "RunError": "._api",
@@ -90,14 +91,14 @@ def __getattr__(name: str):
     module = _ON_FIRST_USE.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    if module not in (".plot", ".units") and _find_spec("._native", __name__) is None:
+    if module not in (".plot", ".units", ".tracking") and _find_spec("._native", __name__) is None:
         raise ImportError(
             f"batstudy.{name} needs the native module batstudy._native, which this copy of batstudy "
             "does not have (a source tree: build and install the wheel with `pip install .`); "
             "open_results, histories, report and batstudy.plot work without it"
         )
     imported = _import_module(module, __name__)
-    value = imported if module in (".plot", ".units") else getattr(imported, name)
+    value = imported if module in (".plot", ".units", ".tracking") else getattr(imported, name)
     globals()[name] = value
     return value
 

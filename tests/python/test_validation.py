@@ -1,4 +1,4 @@
-"""The validation page (docs/validation.md): the five studies of studies/validation/ run,
+"""The validation page (docs/validation.md): the six studies of studies/validation/ run,
 scripts/validation.py evaluates every row, and each row's verdict is the one recorded in the
 script (a row that agreed and drifts out of its band fails, and so does a row that starts to
 agree: the table must then be re-judged). The committed docs/validation.md must be the table
@@ -17,7 +17,7 @@ pytestmark = pytest.mark.skipif(not BIN, reason="BATSTUDY_BIN not set (scripts/t
 
 def test_every_row_keeps_its_verdict_and_the_page_is_current(tmp_path):
     files = []
-    for study in ("certification", "wall", "game", "low_speed", "oblique"):
+    for study in ("certification", "wall", "game", "low_speed", "oblique", "field"):
         out = tmp_path / f"{study}.h5"
         r = subprocess.run([BIN, "run", str(ROOT / "studies" / "validation" / f"{study}.yaml"), "-o", str(out),
                             "--jobs", "2", "--quiet"], capture_output=True, text=True)
