@@ -16,7 +16,8 @@
 //!   bats: r changes by about 10 %, q by about 0.01), the balls' (COR ±0.005 lot to lot:
 //!   q ±0.004) and the mph rounding of the examples (±0.002).
 
-use batstudy::model::measures::field::{best_q, REFERENCE_BAT_SPEED, REFERENCE_PITCH_SPEED};
+use batstudy::model::field::{REFERENCE_BAT_SPEED, REFERENCE_PITCH_SPEED};
+use batstudy::model::measures::metrics::best_q;
 use batstudy::model::measures::metrics::in_order;
 use batstudy::model::spec::*;
 use batstudy::model::{prepare_bat, PreparedBat};

@@ -8,7 +8,7 @@
 
 use super::shard::Shard;
 use super::traits::{Encode, Simulator, Sink};
-use crate::model::measures::field::squared_up;
+use crate::model::field::squared_up;
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::ModelKind;
 use crate::pointset::PointSet;

@@ -8,6 +8,8 @@
 //! - `bat/`: the bat — outer profile, cross-sections, the discretised beam, its modes, the
 //!   prepared bat, and the motion of a bat state (grip vibration, recoil).
 //! - `ball`: the ball's force–compression laws.
+//! - `field`: the field's conventions for a swing and a batted ball (bat speed 6 in from the
+//!   end, the pitch at the plate, q, squared up).
 //! - `collision/`: one collision — what makes it computable (`validate`), the wave model's
 //!   integrators (`wave/`), Brody's rigid model, history sampling, and the dispatch.
 //! - `measures/`: what is measured over many collisions — sweet spots, least vibration,
@@ -17,6 +19,7 @@ pub mod ball;
 pub mod bat;
 pub mod collision;
 pub mod error;
+pub mod field;
 pub mod flight;
 pub mod measures;
 pub mod outcome;

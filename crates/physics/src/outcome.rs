@@ -191,7 +191,7 @@ pub struct BattedBall {
     /// Time from contact to landing, s.
     pub hang_time: f64,
     /// Lab speed of the bat's point 6 in from its barrel end before contact, m/s (where bat
-    /// tracking measures bat speed; `measures::field`).
+    /// tracking measures bat speed; `field`).
     pub bat_speed_6in: f64,
     /// The pitch's lab speed at contact (the front of the plate), m/s.
     pub pitch_speed: f64,
@@ -393,7 +393,7 @@ pub struct BatMetrics {
     /// The ball and hoop the scan fired and gave (`metrics::BbcorShot`), canonical JSON.
     pub bbcor_shot: String,
     /// The bat's best collision efficiency in the field's convention at the field's
-    /// reference swing (`measures::field::best_q`), and where, m from the knob.
+    /// reference swing (`measures::metrics::best_q`), and where, m from the knob.
     pub best_q: f64,
     pub best_q_position: f64,
 }

@@ -66,7 +66,7 @@ pub fn simulate_with_diagnostics(
     if outcome.ball_exit.across != 0.0 || spec.pitch.is_some() {
         outcome.exit_speed_lab = lab_speed;
     }
-    crate::measures::field::fill(spec, bat, &mut outcome);
+    crate::field::fill(spec, bat, &mut outcome);
     Ok((outcome, diagnostics))
 }
 

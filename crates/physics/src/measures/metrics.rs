@@ -35,14 +35,17 @@
 use crate::bat::PreparedBat;
 use crate::collision::simulate::simulate;
 use crate::error::ModelError;
-use crate::measures::sweet::{find_zone, BBCOR_ZONE_DROP};
+use crate::field::{
+    collision_efficiency_q, BAT_SPEED_FROM_END, REFERENCE_BAT_SPEED, REFERENCE_PITCH_SPEED,
+};
+use crate::measures::sweet::{find_maximum, find_zone, BBCOR_ZONE_DROP};
 use crate::outcome::BatMetrics;
 use crate::protocol::{
     bbcor_from_efficiency, free_effective_mass, moment_of_inertia_about, BBCOR_BALL_SPEED, KNOB6,
 };
 use crate::spec::{
-    BallSpec, BatSpec, CollisionSpec, EndsSpec, HoopSpec, ImpactSpec, ModelKind, NumericsSpec,
-    SwingSpec,
+    BallSpec, BatSpec, BatterSpec, CollisionSpec, EndsSpec, HoopSpec, ImpactSpec, ModelKind,
+    NumericsSpec, SwingSpec,
 };
 
 /// Spacing of the BBCOR scan along the barrel, m.
@@ -161,7 +164,7 @@ pub fn bat_metrics_mapped(
     let (best_q, best_q_position) = if bbcor_z.is_empty() {
         (f64::NAN, f64::NAN)
     } else {
-        crate::measures::field::best_q(
+        best_q(
             bat,
             bat_spec,
             numerics,
@@ -274,6 +277,78 @@ pub fn bbcor_scan_mapped(
     };
     let out = map(&z, &at);
     Ok((z, out))
+}
+
+/// Spacing of the best-q scan along the barrel, m (the peak is refined by a parabola).
+pub const BEST_Q_SCAN_STEP: f64 = 0.015;
+
+/// A bat's best q in the field's convention at the reference swing, and where (m from the
+/// knob): the wave model along the barrel from the CM to a ball's radius from the end,
+/// every 1.5 cm, the peak refined by a parabola through its neighbours. The bat is free
+/// and turns about its knob; `ball` and `hoop` are those of the bat's BBCOR shot.
+pub fn best_q(
+    bat: &PreparedBat,
+    bat_spec: &BatSpec,
+    numerics: &NumericsSpec,
+    (ball, hoop): (&BallSpec, Option<&HoopSpec>),
+    map: &ScanMap,
+) -> Result<(f64, f64), ModelError> {
+    let spec = reference_swing(bat, bat_spec, numerics, ball, hoop);
+    let p = bat.properties();
+    let end = p.length - BBCOR_SCAN_END_MARGIN;
+    let n = ((end - p.z_cm) / BEST_Q_SCAN_STEP).floor().max(0.0) as usize + 1;
+    let z: Vec<f64> = (0..n)
+        .map(|k| p.z_cm + k as f64 * BEST_Q_SCAN_STEP)
+        .collect();
+    let v_bat = REFERENCE_BAT_SPEED;
+    let at = |zi: f64| {
+        let mut spec = spec.clone();
+        spec.impact.z = zi;
+        simulate(&spec, bat, None).map_or(f64::NAN, |o| {
+            collision_efficiency_q(o.exit_speed_lab, REFERENCE_PITCH_SPEED, v_bat)
+        })
+    };
+    let q = map(&z, &at);
+    let (position, peak) = find_maximum(&z, &q).unwrap_or((f64::NAN, f64::NAN));
+    Ok((peak, position))
+}
+
+/// The reference swing's collision on `bat` (impact position to be set).
+fn reference_swing(
+    bat: &PreparedBat,
+    bat_spec: &BatSpec,
+    numerics: &NumericsSpec,
+    ball: &BallSpec,
+    hoop: Option<&HoopSpec>,
+) -> CollisionSpec {
+    let p = bat.properties();
+    let mut spec = CollisionSpec::base_case(p.z_cm);
+    spec.model = ModelKind::Wave;
+    spec.bat = BatSpec {
+        grip: None,
+        ..bat_spec.clone()
+    };
+    spec.ball = BallSpec {
+        spin: 0.0,
+        ..ball.clone()
+    };
+    spec.hoop = hoop.cloned();
+    spec.impact = ImpactSpec {
+        z: p.z_cm,
+        offset: 0.0,
+    };
+    spec.numerics = numerics.clone();
+    spec.swing = SwingSpec::default();
+    spec.batter = Some(BatterSpec {
+        pitch_speed: Some(REFERENCE_PITCH_SPEED),
+        bat_speed: REFERENCE_BAT_SPEED,
+        bat_speed_at: p.length - BAT_SPEED_FROM_END,
+        // the bat's own moment of inertia about the knob: the reference swing as given
+        reference_moi: p.moment_of_inertia + p.mass * p.z_cm * p.z_cm,
+        exponent: 0.0,
+        pivot: 0.0,
+    });
+    spec
 }
 
 #[cfg(test)]

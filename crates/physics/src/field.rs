@@ -11,16 +11,11 @@
 //!   q = (v_exit − v_bat)/(v_pitch + v_bat).
 //! - **Squared up** (Savant): the exit speed is at least 80 % of the most this swing could
 //!   give this pitch, q_max v_pitch + (1 + q_max) v_bat. Savant takes one q_max for every
-//!   bat; here it is the bat's own best q ([`best_q`]).
+//!   bat; here it is the bat's own best q (`measures::metrics::best_q`).
 
 use crate::bat::PreparedBat;
-use crate::collision::batter::pitch_along;
-use crate::collision::simulate::simulate;
-use crate::error::ModelError;
-use crate::measures::sweet::find_maximum;
 use crate::outcome::{BattedBall, Outcome};
-use crate::spec::{BallSpec, BatSpec, BatterSpec, CollisionSpec, HoopSpec, ImpactSpec};
-use crate::spec::{ModelKind, NumericsSpec, SwingSpec};
+use crate::spec::CollisionSpec;
 
 /// Where bat tracking measures bat speed: 6 in from the barrel's end, m.
 pub const BAT_SPEED_FROM_END: f64 = 0.1524;
@@ -34,9 +29,6 @@ pub const SQUARED_UP_SHARE: f64 = 0.8;
 /// pitches in `data/bat_tracking_2025.csv` (70.6 mph; 89.7 mph released).
 pub const REFERENCE_BAT_SPEED: f64 = 70.0 * crate::units::MPH;
 pub const REFERENCE_PITCH_SPEED: f64 = 82.0 * crate::units::MPH;
-
-/// Spacing of the best-q scan along the barrel, m (the peak is refined by a parabola).
-const SCAN_STEP: f64 = 0.015;
 
 /// The lab speed of the point 6 in from the barrel's end, m/s, in a swing that turns the
 /// bat at `omega` (rad/s, bat-CM frame) with its CM moving at `cm_speed`.
@@ -91,74 +83,6 @@ pub fn squared_up(batted: &BattedBall, exit_speed: f64, best_q: f64) -> f64 {
     } else {
         0.0
     }
-}
-
-/// A bat's best q in the field's convention at the reference swing, and where (m from the
-/// knob): the wave model along the barrel from the CM to a ball's radius from the end,
-/// every 1.5 cm, the peak refined by a parabola through its neighbours. The bat is free
-/// and turns about its knob; `ball` and `hoop` are those of the bat's BBCOR shot.
-pub fn best_q(
-    bat: &PreparedBat,
-    bat_spec: &BatSpec,
-    numerics: &NumericsSpec,
-    (ball, hoop): (&BallSpec, Option<&HoopSpec>),
-    map: &crate::measures::metrics::ScanMap,
-) -> Result<(f64, f64), ModelError> {
-    let spec = reference_swing(bat, bat_spec, numerics, ball, hoop);
-    let p = bat.properties();
-    let end = p.length - crate::measures::metrics::BBCOR_SCAN_END_MARGIN;
-    let n = ((end - p.z_cm) / SCAN_STEP).floor().max(0.0) as usize + 1;
-    let z: Vec<f64> = (0..n).map(|k| p.z_cm + k as f64 * SCAN_STEP).collect();
-    let v_bat = REFERENCE_BAT_SPEED;
-    let at = |zi: f64| {
-        let mut spec = spec.clone();
-        spec.impact.z = zi;
-        simulate(&spec, bat, None).map_or(f64::NAN, |o| {
-            collision_efficiency_q(o.exit_speed_lab, REFERENCE_PITCH_SPEED, v_bat)
-        })
-    };
-    let q = map(&z, &at);
-    let (position, peak) = find_maximum(&z, &q).unwrap_or((f64::NAN, f64::NAN));
-    Ok((peak, position))
-}
-
-/// The reference swing's collision on `bat` (impact position to be set).
-fn reference_swing(
-    bat: &PreparedBat,
-    bat_spec: &BatSpec,
-    numerics: &NumericsSpec,
-    ball: &BallSpec,
-    hoop: Option<&HoopSpec>,
-) -> CollisionSpec {
-    let p = bat.properties();
-    let mut spec = CollisionSpec::base_case(p.z_cm);
-    spec.model = ModelKind::Wave;
-    spec.bat = BatSpec {
-        grip: None,
-        ..bat_spec.clone()
-    };
-    spec.ball = BallSpec {
-        spin: 0.0,
-        ..ball.clone()
-    };
-    spec.hoop = hoop.cloned();
-    spec.impact = ImpactSpec {
-        z: p.z_cm,
-        offset: 0.0,
-    };
-    spec.numerics = numerics.clone();
-    spec.swing = SwingSpec::default();
-    spec.batter = Some(BatterSpec {
-        pitch_speed: Some(REFERENCE_PITCH_SPEED),
-        bat_speed: REFERENCE_BAT_SPEED,
-        bat_speed_at: p.length - BAT_SPEED_FROM_END,
-        // the bat's own moment of inertia about the knob: the reference swing as given
-        reference_moi: p.moment_of_inertia + p.mass * p.z_cm * p.z_cm,
-        exponent: 0.0,
-        pivot: 0.0,
-    });
-    debug_assert!(pitch_along(&spec).is_ok());
-    spec
 }
 
 #[cfg(test)]
