@@ -865,7 +865,9 @@ def field_section(files: Files) -> list[str]:
         "ball. Where the ball meets the bat is not in the public data: it is drawn uniformly along the barrel "
         "(0.60–0.84 m from the knob) and across it (±5 cm). Distances: the Kolmogorov–Smirnov statistic (0–1) and "
         "the first Wasserstein distance (the mean gap between the two quantile functions, in the quantity's units). "
-        "`batstudy.tracking.read` and `compare` compute both.",
+        "`batstudy.tracking.read` and `compare` compute both; `batstudy.plot.tracking` draws the figure.",
+        "",
+        "![Exit speed and launch angle, simulated and tracked, and exit speed against bat speed](figures/field.png)",
         "",
         "| quantity | simulated mean ± SD | measured mean ± SD | simulated 10 / 50 / 90 % | measured 10 / 50 / 90 % "
         "| KS | Wasserstein |",

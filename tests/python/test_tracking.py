@@ -77,3 +77,15 @@ def test_a_file_without_savants_columns_is_refused_by_name(tmp_path):
     bad.write_text(DATA.read_text().replace(",L,R,", ",X,R,", 1))
     with pytest.raises(ValueError, match=r"bad.csv:\d+: stand 'X': allowed R or L"):
         tracking.read(bad)
+
+
+def test_the_figure_draws_both_populations():
+    import matplotlib
+    matplotlib.use("Agg")
+    from batstudy import plot
+    ds = tracking.read(DATA)
+    sim = xr.Dataset({"exit_speed_lab": ds.exit_speed + 0.5, "launch_angle": ds.launch_angle,
+                      "bat_speed_6in": ds.bat_speed, "collision_efficiency_q": ds.collision_efficiency_q})
+    ax = plot.tracking(sim, DATA)
+    assert len(ax) == 3 and len(ax[2].collections) == 2
+    assert ax[0].get_title().startswith("KS ")

@@ -43,6 +43,7 @@ from ._curves import (
     select,
 )
 from ._figures import ALL_FIGURES, figures, file_name, main
+from ._field import tracking
 from ._uncertainty import search, uncertainty
 from ._paper import FIGURES, MAX_FRAMES, OTHER_FIGURES
 from ._views import bat_profiles, displacement, exit_speed, history, sweet_spots

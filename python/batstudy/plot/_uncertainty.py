@@ -57,3 +57,4 @@ def search(path, ax=None):
     ax.set_ylabel(f"{name} ({units})")
     ax.legend(fontsize=8)
     return ax
+
