@@ -171,4 +171,17 @@ fn a_run_warns_where_the_swing_law_is_extrapolated() {
         warnings[0].contains("density=1000") && warnings[0].contains("extrapolated"),
         "{err}"
     );
+    // with n = 0 every bat is swung alike: the law plays no part, and nothing is said
+    let fixed = std::fs::read_to_string(&study).unwrap().replace(
+        "reference_moi: 0.319}",
+        "reference_moi: 0.319, exponent: 0}",
+    );
+    std::fs::write(&study, fixed).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_batstudy"))
+        .args(["run", study.to_str().unwrap(), "-o", out.to_str().unwrap()])
+        .args(["-q", "--force"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && !err.contains("warning: bat"), "{err}");
 }

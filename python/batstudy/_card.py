@@ -30,6 +30,9 @@ _FROM_BAT = [
     ("rule_units", "rule_units"),
 ]
 
+# the card's quantities that files before layout version 7 lack
+_SINCE_LAYOUT_7 = ("best_q", "best_q_position")
+
 # the trade's units beside SI: (new variable, SI variable, scale, units)
 _TRADE = [
     ("length_in", "length", 1 / INCH, "in"),
@@ -71,6 +74,9 @@ def bat_card(tree, bat=None):
     if "bat" not in tree.children:
         raise ValueError("the results file has no /bat group")
     stored = tree["bat"].to_dataset()
+    for name in _SINCE_LAYOUT_7:  # an older file's card shows them unknown
+        if name not in stored:
+            stored[name] = xr.full_like(stored["mass"], np.nan)
     missing = [b for _, b in _FROM_BAT if b not in stored]
     if missing:
         raise ValueError(

@@ -344,10 +344,12 @@ where
     Ok((report, started.elapsed()))
 }
 
-/// A study with a batter: a warning for each bat the swing law is extrapolated to.
+/// A study with a batter whose swing answers to the bat (an exponent n > 0 somewhere): a
+/// warning for each bat the swing law is extrapolated to. With n = 0 throughout every bat
+/// is swung alike and the law plays no part.
 fn swing_law_warnings(plan: &crate::study::Plan, bats: &[crate::results::BatVariant]) {
     let batter = crate::study::paths::get_path(plan.base(), "batter");
-    if batter.is_none_or(|b| b.is_null()) {
+    if batter.is_none_or(|b| b.is_null()) || !swing_law_used(plan) {
         return;
     }
     for b in bats {
@@ -357,6 +359,20 @@ fn swing_law_warnings(plan: &crate::study::Plan, bats: &[crate::results::BatVari
             eprintln!("warning: bat {label}: {why}");
         }
     }
+}
+
+/// Whether some point's batter has an exponent other than 0: the base's (its default 0.27
+/// when unset) or a value a dimension sets.
+fn swing_law_used(plan: &crate::study::Plan) -> bool {
+    let nonzero = |v: &yaml_serde::Value| v.as_f64().is_none_or(|n| n != 0.0);
+    let base = crate::study::paths::get_path(plan.base(), "batter.exponent");
+    base.is_none_or(|v| v.is_null() || nonzero(v))
+        || plan.dims().iter().any(|d| {
+            d.params
+                .iter()
+                .filter(|(path, _)| path == "batter.exponent")
+                .any(|(_, values)| values.iter().any(nonzero))
+        })
 }
 
 /// The message of a run that failed midway (I/O): its cause, a full disk named as such,
