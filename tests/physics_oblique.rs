@@ -13,6 +13,8 @@
 //!   and with friction the energy balance closes (friction included);
 //! - continuity with the head-on collision as the offset goes to zero.
 
+mod common;
+
 use batstudy::model::collision::oblique::BallContact;
 use batstudy::model::spec::*;
 use batstudy::model::{prepare_bat, simulate, simulate_with_diagnostics, PreparedBat};
@@ -217,12 +219,7 @@ fn with_friction_on_a_flexible_bat_the_energy_balance_closes() {
         let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
         let (o, d) = simulate_with_diagnostics(&spec, &bat, None).unwrap();
         assert!(o.energy.friction > 0.0, "offset {offset}: slides at first");
-        assert!(
-            (d.energy_final / o.energy.initial - 1.0).abs() < 2e-4,
-            "offset {offset} spin {spin}: {} vs {}",
-            d.energy_final,
-            o.energy.initial
-        );
+        common::assert_energy_closes(&o, &d, 2e-4, &format!("offset {offset} spin {spin}"));
     }
 }
 

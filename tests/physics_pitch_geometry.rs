@@ -11,6 +11,8 @@
 //!   plane before contact counted.
 
 use batstudy::model::outcome::Outcome;
+mod common;
+
 use batstudy::model::spec::*;
 use batstudy::model::{prepare_bat, simulate, simulate_with_diagnostics, PreparedBat};
 
@@ -147,12 +149,7 @@ fn an_off_plane_collisions_energy_balance_closes() {
         );
         s.swing.attack_angle = 0.17;
         let (o, d) = simulate_with_diagnostics(&s, &bat, None).unwrap();
-        assert!(
-            (d.energy_final / o.energy.initial - 1.0).abs() < 2e-4,
-            "offset {offset}: {} vs {}",
-            d.energy_final,
-            o.energy.initial
-        );
+        common::assert_energy_closes(&o, &d, 2e-4, &format!("offset {offset}"));
     }
 }
 

@@ -167,3 +167,19 @@ impl Rng {
         (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// A collision's energy closes: the diagnostics' final energy (every part, friction and
+/// damping included) is the initial energy to within `tolerance` (relative).
+pub fn assert_energy_closes(
+    outcome: &batstudy::model::outcome::Outcome,
+    diagnostics: &batstudy::model::collision::wave::Diagnostics,
+    tolerance: f64,
+    what: &str,
+) {
+    assert!(
+        (diagnostics.energy_final / outcome.energy.initial - 1.0).abs() < tolerance,
+        "{what}: {} vs {}",
+        diagnostics.energy_final,
+        outcome.energy.initial
+    );
+}
