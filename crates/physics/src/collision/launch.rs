@@ -1,7 +1,7 @@
 //! The batted ball in the lab: its launch from the collision's plane and the swing's
 //! geometry (`frame`), and its flight (docs/physics.md, "Launch" and "Flight").
 
-use crate::collision::frame::{dot, pitch_components, scaled, SwingFrame, Vec3};
+use crate::collision::frame::{dot, scaled, SwingFrame, Vec3};
 use crate::collision::oblique::BallContact;
 use crate::error::ModelError;
 use crate::flight::{fly, Atmosphere, BallProperties, FlightOptions, Launch};
@@ -33,7 +33,7 @@ pub fn complete(
     let frame = SwingFrame::of(spec);
     // the pitch's motion along the bat's axis passes through the contact (its friction
     // acts across the bat only)
-    let axial = pitch_components(spec).map_or(0.0, |p| p.axial);
+    let axial = spec.pitch.as_ref().map_or(0.0, |p| frame.pitch(p).axial);
     let v = frame.velocity(spec.swing.cm_speed, (exit.along, exit.across, axial));
     let lab_speed = dot(v, v).sqrt().copysign(dot(v, frame.path));
     let spin = scaled(frame.spin_axis, exit.spin);
