@@ -150,6 +150,11 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
     assert!(!verdict(cards[1], "one piece of solid wood"));
     assert!(cards[0].contains("none (a solid bat)"));
     assert!(cards[1].contains("breathing mode"));
+    // the best q in the field's convention, where the bat's BBCOR scan is
+    assert!(
+        cards.iter().all(|c| c.contains("best q            0.")),
+        "{text}"
+    );
     // the table: a row per bat under two header lines, the rules kept as the cards count them
     let table = stdout_of("compare", &out);
     let rows: Vec<&str> = table.lines().skip(2).collect();

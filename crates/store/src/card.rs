@@ -281,7 +281,7 @@ pub fn render_table(cards: &[BatCard]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:>3} {:>7} {:>6} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6} {:>6} {:>5}  bat",
+        "{:>3} {:>7} {:>6} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6} {:>6} {:>6} {:>5}  bat",
         "#",
         "oz",
         "drop",
@@ -290,6 +290,7 @@ pub fn render_table(cards: &[BatCard]) -> String {
         "6in",
         "diam",
         "BBCOR",
+        "best q",
         "zone",
         "bend",
         "hoop",
@@ -297,8 +298,8 @@ pub fn render_table(cards: &[BatCard]) -> String {
     );
     let _ = writeln!(
         s,
-        "{:>3} {:>7} {:>6} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6} {:>6} {:>5}",
-        "", "", "", "", "oz in^2", "oz in^2", "in", "", "in", "Hz", "Hz", "kept"
+        "{:>3} {:>7} {:>6} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6} {:>6} {:>6} {:>5}",
+        "", "", "", "", "oz in^2", "oz in^2", "in", "", "", "in", "Hz", "Hz", "kept"
     );
     for (i, c) in cards.iter().enumerate() {
         let kept = c.rules.iter().filter(|r| r.margin >= 0.0).count();
@@ -306,7 +307,7 @@ pub fn render_table(cards: &[BatCard]) -> String {
         let unknown = c.rules.iter().find(|r| r.margin.is_nan());
         let _ = writeln!(
             s,
-            "{i:>3} {:>7.2} {:>+6.2} {:>7.2} {:>8.0} {:>8.0} {:>6.3} {:>7.4} {:>6.2} {:>6.0} {:>6.0} {:>5}  {}{}",
+            "{i:>3} {:>7.2} {:>+6.2} {:>7.2} {:>8.0} {:>8.0} {:>6.3} {:>7.4} {:>6.3} {:>6.2} {:>6.0} {:>6.0} {:>5}  {}{}",
             c.mass / OUNCE,
             c.drop,
             c.balance_point / INCH,
@@ -314,6 +315,7 @@ pub fn render_table(cards: &[BatCard]) -> String {
             c.moment_of_inertia_knob6 / OUNCE_SQUARE_INCH,
             c.barrel_diameter / INCH,
             c.bbcor_max,
+            c.best_q,
             (c.sweet_zone_end - c.sweet_zone_start) / INCH,
             c.bending_frequency,
             c.hoop_mode_frequency,
