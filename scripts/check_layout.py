@@ -95,6 +95,8 @@ HISTORY = {"force": ("N", ("time",)), "compression": ("m", ("time",)),
            "ball_velocity": ("m/s", ("time",)), "displacement": ("m", ("time", "z")),
            "rigid_translation": ("m", ("time",)), "rigid_rotation": ("rad", ("time",)),
            "hoop_displacement": ("m", ("time",)),
+           "trajectory_x": ("m", ("flight_time",)), "trajectory_y": ("m", ("flight_time",)),
+           "trajectory_z": ("m", ("flight_time",)),
            # the displacement's modal form (layout 4): f64, and /bat's MODAL_BAT
            "modal_coordinate": ("m", ("bat_mode", "time")), "bat_load": ("N", ("time",)),
            "static_shape": ("m/N", ("shape_point",))}
@@ -549,6 +551,8 @@ class Checker:
                 self.bad(f"/history/{name}", f"type {ds.dtype}, expected float32 or float64")
         if "displacement" in g or any(k in g for k in MODAL):
             self.want(g, dims_of, "z", None, "m", ("z",))
+        if "trajectory_x" in g:
+            self.want(g, dims_of, "flight_time", None, "s", ("flight_time",))
         modal = [k for k in MODAL if k in g]
         if modal and len(modal) != len(MODAL):
             self.bad("/history", f"the modal form needs {', '.join(MODAL)}; it has {', '.join(modal)}")

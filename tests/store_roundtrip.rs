@@ -110,6 +110,7 @@ fn study(history: bool, precision: HistoryPrecision) -> StudyInfo {
                 HistoryField::Force,
                 HistoryField::BallVelocity,
                 HistoryField::Displacement,
+                HistoryField::Trajectory,
             ],
             interval: 1e-5,
             n_samples: 20,
@@ -176,6 +177,13 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
     let v = 20.0 + 5.0 * (-((z - 0.68) / 0.1f64).powi(2)).exp() - 0.1 * w;
     let history = info.history.as_ref().map(|h| {
         let t = |k: usize| k as f64 * h.interval;
+        // a flight on its own time axis (finite: the round trip compares with ==)
+        let flight = |f: &dyn Fn(f64) -> f64| -> Vec<f64> {
+            (0..batstudy::model::flight::TRAJECTORY_SAMPLES)
+                .map(|k| k as f64 * batstudy::model::flight::TRAJECTORY_STEP_S)
+                .map(f)
+                .collect()
+        };
         History {
             force: (0..h.n_samples)
                 .map(|k| 1e3 * (t(k) * 1e5 + index as f64).sin())
@@ -186,6 +194,10 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
             displacement: (0..h.n_samples * h.z.len())
                 .map(|k| 1e-4 * (k as f64 * 0.37 + index as f64).cos())
                 .collect(),
+            // the flight, on its own time axis: NaN once landed
+            trajectory_x: flight(&|t| 0.5 * t),
+            trajectory_y: flight(&|t| 30.0 * t + index as f64),
+            trajectory_z: flight(&|t| 1.0 + 20.0 * t - 4.9 * t * t),
             // not requested: must be dropped
             hoop_displacement: vec![1.0; 3],
             ..Default::default()
@@ -330,7 +342,14 @@ fn expected(info: &StudyInfo, index: usize) -> PointRecord {
         if let Some(h) = &mut o.history {
             h.hoop_displacement.clear();
             if info.history.as_ref().unwrap().precision == HistoryPrecision::F32 {
-                for a in [&mut h.force, &mut h.ball_velocity, &mut h.displacement] {
+                for a in [
+                    &mut h.force,
+                    &mut h.ball_velocity,
+                    &mut h.displacement,
+                    &mut h.trajectory_x,
+                    &mut h.trajectory_y,
+                    &mut h.trajectory_z,
+                ] {
                     for x in a.iter_mut() {
                         *x = *x as f32 as f64;
                     }
@@ -1200,8 +1219,9 @@ fn history_layout_does_not_depend_on_arrival_order_placer_or_resume() {
         layout(&path)
     };
     let want = run("in_order", &in_order, usize::MAX, None);
-    // 27 points, 23 with histories (every 7th from 3 failed), 3 variables: one chunk each
-    assert_eq!(want.1.len(), 3);
+    // 27 points, 23 with histories (every 7th from 3 failed), 6 variables (force, ball
+    // velocity, displacement and the trajectory's x, y, z): one chunk each
+    assert_eq!(want.1.len(), 6);
     assert!(want.1.iter().all(|(_, c)| c.len() == 23), "{:?}", want.1);
     assert_eq!(run("scrambled", &scrambled, usize::MAX, None), want);
     assert_eq!(run("gave_up", &scrambled, 0, None), want);

@@ -161,7 +161,7 @@ def _history_parts(path: str, summary: xr.Dataset) -> tuple | None:
         zs = g["z"][...]
         meta = {k: (_tail_dims(g[k], rank), g[k].shape[rank:], g[k].dtype, dict(g[k].attrs))
                 for k in names}  # fmt: skip
-        extra = {k: g[k][...] for k in ("bat_mode", "shape_point") if k in g}
+        extra = {k: g[k][...] for k in ("bat_mode", "shape_point", "flight_time") if k in g}
     return dims, positions, time, zs, meta, extra
 
 
@@ -189,7 +189,8 @@ def _sparse_history(path: str, summary: xr.Dataset, parts: tuple, z: Any = None)
         "z": ("z", zs, {"units": "m", "long_name": "position from the knob"}),
     }
     for k, v in extra.items():
-        coords[k] = (k, v, {"units": "1", "long_name": k.replace("_", " ")})
+        units = "s" if k == "flight_time" else "1"
+        coords[k] = (k, v, {"units": units, "long_name": k.replace("_", " ")})
     # every coordinate of the summary, taken at each stored history's grid position
     for name, c in summary.coords.items():
         if not set(c.dims) <= set(dims):

@@ -110,6 +110,12 @@ fn simulate<'py>(
             let time: Vec<f64> = (0..n).map(|k| k as f64 * req.interval).collect();
             d.set_item("time", (f64_bytes(py, &time), (n,)))?;
             d.set_item("z", (f64_bytes(py, &req.z), (req.z.len(),)))?;
+            if !h.trajectory_x.is_empty() {
+                let t: Vec<f64> = (0..h.trajectory_x.len())
+                    .map(|k| k as f64 * batstudy::model::flight::TRAJECTORY_STEP_S)
+                    .collect();
+                d.set_item("flight_time", (f64_bytes(py, &t), (t.len(),)))?;
+            }
             for (k, (def, _, dims)) in l::HISTORY_VARS.iter().enumerate() {
                 let a = l::history_array(h, k);
                 if a.is_empty() {
@@ -120,7 +126,7 @@ fn simulate<'py>(
                     l::HistoryDims::TimeZ => vec![n, req.z.len()],
                     // the model's own order: (time, mode)
                     l::HistoryDims::ModeTime => vec![n, h.modal.modes],
-                    l::HistoryDims::ShapePoint => vec![a.len()],
+                    l::HistoryDims::ShapePoint | l::HistoryDims::FlightTime => vec![a.len()],
                 };
                 d.set_item(def.name, (f64_bytes(py, a), PyTuple::new(py, shape)?))?;
             }

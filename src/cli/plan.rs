@@ -123,10 +123,13 @@ fn print_estimates(s: &Study) {
             .map(|f| match f {
                 crate::model::outcome::HistoryField::Displacement => req.z.len() as f64,
                 crate::model::outcome::HistoryField::RigidMotion => 2.0,
+                crate::model::outcome::HistoryField::Trajectory => 0.0,
                 _ => 1.0,
             })
             .sum();
-        bytes_per_point += history_share * series * req.n_samples as f64 * width;
+        let values = series * req.n_samples as f64
+            + crate::study::history_size::trajectory_values(&req.fields);
+        bytes_per_point += history_share * values * width;
     }
     println!(
         "estimated output size: ~{} uncompressed (written to {})",

@@ -94,6 +94,7 @@ pub fn estimate_cost(spec: &CollisionSpec, history: Option<&HistoryRequest>) -> 
                     .map(|f| match f {
                         HistoryField::Displacement => h.z.len().max(1),
                         HistoryField::RigidMotion => 2,
+                        HistoryField::Trajectory => 0,
                         _ => 1,
                     })
                     .sum();

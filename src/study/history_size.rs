@@ -15,12 +15,21 @@ use crate::model::outcome::HistoryField;
 /// and leaves a many-core run's workers (one history each) within a node's memory.
 pub const MAX_HISTORY_BYTES_PER_POINT: u64 = 256 << 20;
 
-/// Series a field records per sample (the rigid motion is a translation and a rotation).
+/// Series a field records per sample (the rigid motion is a translation and a rotation;
+/// the trajectory has a time axis of its own, [`trajectory_values`]).
 fn series(field: HistoryField) -> u64 {
     match field {
         HistoryField::RigidMotion => 2,
-        HistoryField::Displacement => 0,
+        HistoryField::Displacement | HistoryField::Trajectory => 0,
         _ => 1,
+    }
+}
+
+/// Values the trajectory adds to a history: x, y, z on the flight's time axis.
+pub fn trajectory_values(fields: &[HistoryField]) -> f64 {
+    match fields.contains(&HistoryField::Trajectory) {
+        true => 3.0 * crate::model::flight::TRAJECTORY_SAMPLES as f64,
+        false => 0.0,
     }
 }
 
@@ -56,7 +65,7 @@ pub(super) fn check_history_size(
             )));
     }
     let per_sample = h.fields.iter().map(|&f| series(f)).sum::<u64>() as f64 + positions;
-    let bytes = h.n_samples() as f64 * per_sample * 8.0;
+    let bytes = (h.n_samples() as f64 * per_sample + trajectory_values(&h.fields)) * 8.0;
     if bytes > MAX_HISTORY_BYTES_PER_POINT as f64 {
         return Err(cx
             .err(&keys(&["history"]), "the history of one point is too big")

@@ -11,7 +11,7 @@ pub mod coords;
 pub mod error;
 mod expand;
 mod history_only;
-mod history_size;
+pub mod history_size;
 pub mod load;
 mod locate;
 pub mod optimize_block;

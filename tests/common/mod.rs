@@ -74,6 +74,9 @@ fn hash_history(history: &batstudy_physics::outcome::History, digest: &mut impl 
         rigid_translation,
         rigid_rotation,
         hoop_displacement,
+        trajectory_x,
+        trajectory_y,
+        trajectory_z,
         modal:
             ModalHistory {
                 modes,
@@ -91,6 +94,9 @@ fn hash_history(history: &batstudy_physics::outcome::History, digest: &mut impl 
         rigid_translation,
         rigid_rotation,
         hoop_displacement,
+        trajectory_x,
+        trajectory_y,
+        trajectory_z,
         coordinate,
         bat_load,
         static_shape,

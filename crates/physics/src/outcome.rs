@@ -23,6 +23,10 @@ pub enum HistoryField {
     RigidMotion,
     /// Displacement of the hoop mass relative to the impact point (m).
     HoopDisplacement,
+    /// The batted ball's flight: its position (m, the flight's frame) on the flight's own
+    /// time axis, every `flight::TRAJECTORY_STEP_S` from contact, NaN once it has landed
+    /// (and throughout without a `flight`).
+    Trajectory,
 }
 
 /// A request for sampled time histories: samples at t = k·interval, k = 0..n_samples,
@@ -107,6 +111,12 @@ pub struct History {
     pub rigid_rotation: Vec<f64>,
     /// Hoop mass displacement relative to the impact point, m.
     pub hoop_displacement: Vec<f64>,
+    /// The batted ball's position in the flight's frame (x toward first base, y toward
+    /// centre field, z up), m, every `flight::TRAJECTORY_STEP_S`, length
+    /// `flight::TRAJECTORY_SAMPLES` (NaN after the landing).
+    pub trajectory_x: Vec<f64>,
+    pub trajectory_y: Vec<f64>,
+    pub trajectory_z: Vec<f64>,
     /// The displacement's modal form (`HistoryDisplacement::Modal`; empty otherwise).
     pub modal: ModalHistory,
 }

@@ -12,6 +12,7 @@ use super::journal;
 use super::layout::{self, HistoryDims};
 use super::modal::{coordinate_block_rows, padded_points, ModalExtents};
 use crate::results::{PointGroups, PointRecord, StudyInfo};
+use batstudy_physics::flight::TRAJECTORY_SAMPLES;
 use batstudy_physics::outcome::{History, HistoryPrecision};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -71,6 +72,7 @@ impl StoredHistory {
         match layout::HISTORY_VARS[k].2 {
             HistoryDims::Time => fits(nt),
             HistoryDims::TimeZ => fits(nt * self.nz),
+            HistoryDims::FlightTime => fits(TRAJECTORY_SAMPLES),
             HistoryDims::ShapePoint if a.len() <= ext.points => {
                 Ok(vec![chunk(&padded_points(a, ext.points), precision, level)])
             }
@@ -113,6 +115,7 @@ impl StoredHistory {
         let per = match dims {
             HistoryDims::Time => nt,
             HistoryDims::TimeZ => nt * self.nz,
+            HistoryDims::FlightTime => TRAJECTORY_SAMPLES,
             HistoryDims::ShapePoint => ext.points,
             HistoryDims::ModeTime => return self.group_coordinates(places),
         };

@@ -537,6 +537,12 @@ pub const SWEET_AT_EDGE: VarDef = v(
 
 pub const TIME: VarDef = v("time", "s", "time", "time since first contact");
 pub const HIST_Z: VarDef = v("z", "m", "z", "position along the bat from the knob");
+pub const FLIGHT_TIME: VarDef = v(
+    "flight_time",
+    "s",
+    "flight time",
+    "time since contact, on the batted ball's flight",
+);
 
 /// The dims a history variable has after the study's.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -550,12 +556,14 @@ pub enum HistoryDims {
     ModeTime,
     /// (shape_point): one value per shape point of the bat
     ShapePoint,
+    /// (flight_time): the batted ball's flight, on a time axis of its own
+    FlightTime,
 }
 
 /// The history variables: public name, units, long name, the field that requests it, its
 /// dims after the study's. `displacement` is the grid form; the last three are the modal
 /// form of the same field (`history.displacement`, [`history_stored`]).
-pub const HISTORY_VARS: [(VarDef, HistoryField, HistoryDims); 10] = [
+pub const HISTORY_VARS: [(VarDef, HistoryField, HistoryDims); 13] = [
     (
         v("force", "N", "force", "contact force between ball and bat"),
         HistoryField::Force,
@@ -618,6 +626,36 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, HistoryDims); 10] = [
     ),
     (
         v(
+            "trajectory_x",
+            "m",
+            "trajectory x",
+            "batted ball's position toward the first-base side, flight frame (origin on the ground below contact); NaN after landing",
+        ),
+        HistoryField::Trajectory,
+        HistoryDims::FlightTime,
+    ),
+    (
+        v(
+            "trajectory_y",
+            "m",
+            "trajectory y",
+            "batted ball's position toward centre field, flight frame; NaN after landing",
+        ),
+        HistoryField::Trajectory,
+        HistoryDims::FlightTime,
+    ),
+    (
+        v(
+            "trajectory_z",
+            "m",
+            "trajectory z",
+            "batted ball's height above the ground, flight frame; NaN after landing",
+        ),
+        HistoryField::Trajectory,
+        HistoryDims::FlightTime,
+    ),
+    (
+        v(
             "modal_coordinate",
             "m",
             "modal coordinate",
@@ -649,7 +687,7 @@ pub const HISTORY_VARS: [(VarDef, HistoryField, HistoryDims); 10] = [
 ];
 
 /// Index of `modal_coordinate` in [`HISTORY_VARS`].
-pub const MODAL_COORDINATE: usize = 7;
+pub const MODAL_COORDINATE: usize = 10;
 
 /// Whether history variable `k` belongs to the displacement's modal form.
 pub fn is_modal(k: usize) -> bool {
@@ -698,8 +736,11 @@ pub fn history_array(h: &History, k: usize) -> &Vec<f64> {
         4 => &h.rigid_translation,
         5 => &h.rigid_rotation,
         6 => &h.hoop_displacement,
-        7 => &h.modal.coordinate,
-        8 => &h.modal.bat_load,
+        7 => &h.trajectory_x,
+        8 => &h.trajectory_y,
+        9 => &h.trajectory_z,
+        10 => &h.modal.coordinate,
+        11 => &h.modal.bat_load,
         _ => &h.modal.static_shape,
     }
 }
@@ -714,8 +755,11 @@ pub fn history_array_mut(h: &mut History, k: usize) -> &mut Vec<f64> {
         4 => &mut h.rigid_translation,
         5 => &mut h.rigid_rotation,
         6 => &mut h.hoop_displacement,
-        7 => &mut h.modal.coordinate,
-        8 => &mut h.modal.bat_load,
+        7 => &mut h.trajectory_x,
+        8 => &mut h.trajectory_y,
+        9 => &mut h.trajectory_z,
+        10 => &mut h.modal.coordinate,
+        11 => &mut h.modal.bat_load,
         _ => &mut h.modal.static_shape,
     }
 }

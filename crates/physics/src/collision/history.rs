@@ -262,6 +262,8 @@ impl<'r> Recorder<'r> {
                 HistoryField::HoopDisplacement => {
                     h.hoop_displacement.push(at(|s| s.hoop_displacement))
                 }
+                // the flight's, after the collision (`collision::simulate`)
+                HistoryField::Trajectory => {}
             }
         }
     }

@@ -5,7 +5,7 @@ use crate::collision::frame::{dot, scaled, SwingFrame, Vec3};
 use crate::collision::oblique::BallContact;
 use crate::error::ModelError;
 use crate::flight::{fly, Atmosphere, BallProperties, FlightOptions, Launch};
-use crate::outcome::{BallExit, BattedBall};
+use crate::outcome::{BallExit, BattedBall, HistoryField, HistoryRequest, Outcome};
 use crate::spec::{CollisionSpec, FlightSpec};
 
 /// Launch angle, spray angle, backspin and sidespin of a lab velocity `v` and spin vector
@@ -29,6 +29,7 @@ pub fn complete(
     lever_arm: f64,
     exit: &BallExit,
     batted: &mut BattedBall,
+    trajectory: Option<&mut [Vec<f64>; 3]>,
 ) -> Result<f64, ModelError> {
     let frame = SwingFrame::of(spec);
     // the pitch's motion along the bat's axis passes through the contact (its friction
@@ -47,7 +48,33 @@ pub fn complete(
         ..BattedBall::default()
     };
     if let Some(flight) = &spec.flight {
-        fly_batted(spec, flight, v, batted)?;
+        let samples = fly_batted(spec, flight, v, batted, trajectory.is_some())?;
+        if let Some(out) = trajectory {
+            *out = crate::flight::trajectory_on_grid(&samples);
+        }
+    }
+    Ok(lab_speed)
+}
+
+/// [`complete`] on a collision's outcome, with the flight's trajectory in its history when
+/// `history` asks for it (NaN without a flight, or for a ball that does not fly).
+pub fn complete_outcome(
+    spec: &CollisionSpec,
+    lever_arm: f64,
+    history: Option<&HistoryRequest>,
+    outcome: &mut Outcome,
+) -> Result<f64, ModelError> {
+    let wants = history.is_some_and(|h| h.fields.contains(&HistoryField::Trajectory));
+    let mut trajectory = [(); 3].map(|_| vec![f64::NAN; crate::flight::TRAJECTORY_SAMPLES]);
+    let lab_speed = complete(
+        spec,
+        lever_arm,
+        &outcome.ball_exit,
+        &mut outcome.batted,
+        wants.then_some(&mut trajectory),
+    )?;
+    if let (true, Some(h)) = (wants, outcome.history.as_mut()) {
+        [h.trajectory_x, h.trajectory_y, h.trajectory_z] = trajectory;
     }
     Ok(lab_speed)
 }
@@ -56,18 +83,20 @@ pub fn complete(
 /// to batted balls of up to about 4 500 rpm).
 const FLIGHT_SPIN_LIMIT: f64 = 1000.0;
 
-/// The flight of a ball launched as `batted` says with lab velocity `v`; a ball that goes
-/// back past the batter (toward the catcher), or spins beyond what the flight model covers
-/// (an extreme pop-up), has no carry (NaN).
+/// The flight of a ball launched as `batted` says with lab velocity `v`, and its recorded
+/// states when `record` asks for them; a ball that goes back past the batter (toward the
+/// catcher), or spins beyond what the flight model covers (an extreme pop-up), has no carry
+/// (NaN) and no states.
 fn fly_batted(
     spec: &CollisionSpec,
     flight: &FlightSpec,
     v: Vec3,
     batted: &mut BattedBall,
-) -> Result<(), ModelError> {
+    record: bool,
+) -> Result<Vec<crate::flight::Sample>, ModelError> {
     let spin = batted.backspin.hypot(batted.sidespin);
     if v[1].is_nan() || v[1] <= 0.0 || spin.is_nan() || spin > FLIGHT_SPIN_LIMIT {
-        return Ok(());
+        return Ok(Vec::new());
     }
     let speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     let launch = Launch {
@@ -92,9 +121,10 @@ fn fly_batted(
             mass_kg: spec.ball.mass,
             circumference_m: std::f64::consts::TAU * ball.radius,
         },
+        record_trajectory: record,
         ..FlightOptions::default()
     };
     let f = fly(launch, &atmosphere, &options).map_err(|e| ModelError::Flight(e.to_string()))?;
     (batted.carry, batted.apex, batted.hang_time) = (f.carry_m, f.apex_m, f.hang_time_s);
-    Ok(())
+    Ok(f.trajectory)
 }

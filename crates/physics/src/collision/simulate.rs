@@ -61,7 +61,7 @@ pub fn simulate_with_diagnostics(
     };
     certify(spec, spec.swing.omega == 0.0, effective_mass, &mut outcome);
     let lever_arm = spec.impact.z - p.z_cm;
-    let lab_speed = launch::complete(spec, lever_arm, &outcome.ball_exit, &mut outcome.batted)?;
+    let lab_speed = launch::complete_outcome(spec, lever_arm, history, &mut outcome)?;
     // off the bat's path the lab speed is no longer the CM frame's plus the CM's
     if outcome.ball_exit.across != 0.0 || spec.pitch.is_some() {
         outcome.exit_speed_lab = lab_speed;

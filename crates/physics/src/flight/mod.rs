@@ -31,6 +31,64 @@ pub const DEFAULT_CONTACT_HEIGHT_M: f64 = 3.0 * FOOT;
 /// 10–60° and 0–3000 rpm (0.13 mm at 0.2 s), far below the 16-ft (5 m) natural spread of
 /// fly-ball distances, in 20–80 steps a flight.
 pub const DEFAULT_STEP_S: f64 = 0.1;
+
+/// The stored trajectory's time step, s: the integrator's default, so that a flight of
+/// 16 steps or more is stored at its own states.
+pub const TRAJECTORY_STEP_S: f64 = DEFAULT_STEP_S;
+/// The stored trajectory's samples: 0 to 12 s (the longest pop-ups hang about 7 s).
+pub const TRAJECTORY_SAMPLES: usize = 121;
+
+/// A flight's recorded states on the stored trajectory's time axis: (x, y, z) at
+/// k·[`TRAJECTORY_STEP_S`], k < [`TRAJECTORY_SAMPLES`], NaN after the landing. Between two
+/// recorded states the position is the cubic Hermite through their positions and
+/// velocities (exact at the states themselves; a shortened step puts them off the axis).
+pub fn trajectory_on_grid(samples: &[Sample]) -> [Vec<f64>; 3] {
+    let mut pair = 0;
+    let positions: Vec<[f64; 3]> = (0..TRAJECTORY_SAMPLES)
+        .map_while(|k| position_at(samples, k as f64 * TRAJECTORY_STEP_S, &mut pair))
+        .collect();
+    let mut out = [(); 3].map(|_| vec![f64::NAN; TRAJECTORY_SAMPLES]);
+    for (c, column) in out.iter_mut().enumerate() {
+        for (v, p) in column.iter_mut().zip(&positions) {
+            *v = p[c];
+        }
+    }
+    out
+}
+
+/// The position at `t` on the recorded states, `None` after the last; `pair` is the index
+/// of the state at or before `t`, advanced as `t` grows.
+fn position_at(samples: &[Sample], t: f64, pair: &mut usize) -> Option<[f64; 3]> {
+    while *pair + 1 < samples.len() && samples[*pair + 1].t_s < t {
+        *pair += 1;
+    }
+    let a = samples.get(*pair)?;
+    match samples.get(*pair + 1) {
+        Some(b) if t <= b.t_s => Some(hermite(a, b, t)),
+        None if t == a.t_s => Some([a.x_m, a.y_m, a.z_m]),
+        _ => None,
+    }
+}
+
+/// The cubic Hermite position at `t` between states `a` and `b` (a.t ≤ t ≤ b.t).
+fn hermite(a: &Sample, b: &Sample, t: f64) -> [f64; 3] {
+    let h = b.t_s - a.t_s;
+    if h <= 0.0 {
+        return [a.x_m, a.y_m, a.z_m];
+    }
+    let s = (t - a.t_s) / h;
+    let (s2, s3) = (s * s, s * s * s);
+    let (h00, h10, h01, h11) = (
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        s3 - 2.0 * s2 + s,
+        -2.0 * s3 + 3.0 * s2,
+        s3 - s2,
+    );
+    let (pa, pb) = ([a.x_m, a.y_m, a.z_m], [b.x_m, b.y_m, b.z_m]);
+    std::array::from_fn(|i| {
+        h00 * pa[i] + h10 * h * a.velocity_m_s[i] + h01 * pb[i] + h11 * h * b.velocity_m_s[i]
+    })
+}
 /// Fewest steps a flight is cut into: a very short flight gets a smaller step.
 const MIN_STEPS_PER_FLIGHT: f64 = 16.0;
 
@@ -301,5 +359,36 @@ fn landed_at_once(start: &State, record: bool) -> Flight {
         } else {
             Vec::new()
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(t: f64) -> Sample {
+        // a cubic path, which the Hermite cubic reproduces exactly
+        Sample {
+            t_s: t,
+            x_m: 0.5 * t,
+            y_m: 30.0 * t - t * t * t,
+            z_m: 1.0 + 20.0 * t - 4.9 * t * t,
+            velocity_m_s: [0.5, 30.0 - 3.0 * t * t, 20.0 - 9.8 * t],
+        }
+    }
+
+    #[test]
+    fn the_grid_holds_the_path_between_uneven_states_and_nothing_after_the_landing() {
+        let times = [0.0, 0.07, 0.19, 0.23, 0.41, 0.5, 0.58];
+        let samples: Vec<Sample> = times.iter().map(|&t| at(t)).collect();
+        let [x, y, z] = trajectory_on_grid(&samples);
+        for k in 0..=5 {
+            let want = at(k as f64 * TRAJECTORY_STEP_S);
+            assert!((x[k] - want.x_m).abs() < 1e-12, "{k}");
+            assert!((y[k] - want.y_m).abs() < 1e-12, "{k}");
+            assert!((z[k] - want.z_m).abs() < 1e-12, "{k}");
+        }
+        assert!(x[6..].iter().chain(&z[6..]).all(|v| v.is_nan()));
+        assert_eq!(x.len(), TRAJECTORY_SAMPLES);
     }
 }

@@ -7,7 +7,8 @@ use crate::header::history_vars;
 use crate::layout::{self as l, HistoryDims};
 use crate::modal::ModalExtents;
 use crate::results::StudyInfo;
-use batstudy_physics::outcome::{HistoryPrecision, HistoryRequest};
+use batstudy_physics::flight::{TRAJECTORY_SAMPLES, TRAJECTORY_STEP_S};
+use batstudy_physics::outcome::{HistoryField, HistoryPrecision, HistoryRequest};
 use hdf5::Dataset;
 use std::path::Path;
 
@@ -71,6 +72,7 @@ pub(super) fn create_history(
 struct Tails {
     time: (usize, Dataset),
     z: (usize, Dataset),
+    flight_time: Option<Dataset>,
     modal: Option<(ModalExtents, Dataset, Dataset)>,
 }
 
@@ -85,6 +87,16 @@ impl Tails {
         let t: Vec<f64> = (0..h.n_samples).map(|k| k as f64 * h.interval).collect();
         let time = h5u::scale_coord(g, l::TIME.name, &t, &l::TIME).ctx(out, "write time")?;
         let z = h5u::scale_coord(g, l::HIST_Z.name, &h.z, &l::HIST_Z).ctx(out, "write z")?;
+        let flight_time = match h.fields.contains(&HistoryField::Trajectory) {
+            true => {
+                let t: Vec<f64> = (0..TRAJECTORY_SAMPLES)
+                    .map(|k| k as f64 * TRAJECTORY_STEP_S)
+                    .collect();
+                let d = &l::FLIGHT_TIME;
+                Some(h5u::scale_coord(g, d.name, &t, d).ctx(out, "write flight_time")?)
+            }
+            false => None,
+        };
         let modal = match modal {
             true => {
                 let ext = ModalExtents::of(info);
@@ -101,6 +113,7 @@ impl Tails {
         Ok(Tails {
             time: (h.n_samples, time),
             z: (h.z.len(), z),
+            flight_time,
             modal,
         })
     }
@@ -124,6 +137,11 @@ impl Tails {
                 vec![(ext.modes, ext.block, m.map(|m| &m.1)), (nt, nt, time)]
             }
             HistoryDims::ShapePoint => vec![(ext.points, ext.points, m.map(|m| &m.2))],
+            HistoryDims::FlightTime => vec![(
+                TRAJECTORY_SAMPLES,
+                TRAJECTORY_SAMPLES,
+                self.flight_time.as_ref(),
+            )],
         }
     }
 }
