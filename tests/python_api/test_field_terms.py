@@ -47,3 +47,18 @@ def test_a_bat_tracking_csv_reads_into_si():
     ratio = (ds.pitch_speed / ds.release_speed).values
     assert 0.88 < ratio.mean() < 0.95, ratio.mean()
     assert ds.exit_speed.attrs["units"] == "m/s"
+
+
+def test_one_collisions_trajectory_on_its_own_time_axis():
+    # the flight's frame: the ball starts at the contact height above the origin, and the
+    # stored states end at the landing (NaN after), the hang time between the last two
+    spec = {"ball": {"preset": "mlb"}, "impact": {"z": 0.70, "offset": -0.012},
+            "batter": dict(BATTER, pitch_speed=40.2), "swing": {"attack_angle": 0.17}, "flight": {}}
+    r = batstudy.simulate(spec, history={"fields": ["trajectory"], "interval": 1e-5, "duration": 1e-3})
+    h = r["history"]
+    t, z = h["flight_time"], h["trajectory_z"]
+    assert t[1] - t[0] == pytest.approx(0.1) and len(t) == len(z) == 121
+    assert z[0] == pytest.approx(0.9144)
+    import numpy as np
+    last = np.flatnonzero(np.isfinite(z))[-1]
+    assert t[last] <= r["hang_time"] < t[last] + 0.1
