@@ -64,17 +64,19 @@ pub fn complete_outcome(
     history: Option<&HistoryRequest>,
     outcome: &mut Outcome,
 ) -> Result<f64, ModelError> {
+    // the trajectory's room only when it is asked for: most collisions do not store one
     let wants = history.is_some_and(|h| h.fields.contains(&HistoryField::Trajectory));
-    let mut trajectory = [(); 3].map(|_| vec![f64::NAN; crate::flight::TRAJECTORY_SAMPLES]);
+    let mut trajectory =
+        wants.then(|| [(); 3].map(|_| vec![f64::NAN; crate::flight::TRAJECTORY_SAMPLES]));
     let lab_speed = complete(
         spec,
         lever_arm,
         &outcome.ball_exit,
         &mut outcome.batted,
-        wants.then_some(&mut trajectory),
+        trajectory.as_mut(),
     )?;
-    if let (true, Some(h)) = (wants, outcome.history.as_mut()) {
-        [h.trajectory_x, h.trajectory_y, h.trajectory_z] = trajectory;
+    if let (Some(t), Some(h)) = (trajectory, outcome.history.as_mut()) {
+        [h.trajectory_x, h.trajectory_y, h.trajectory_z] = t;
     }
     Ok(lab_speed)
 }

@@ -99,15 +99,24 @@ fn root_in_step(
     state
 }
 
+/// The cubic Hermite through values `y0`, `y1` and slopes `d0`, `d1` (per unit τ) at the
+/// ends of τ ∈ [0, 1], as its coefficients: y(τ) = c0 + c1 τ + c2 τ² + c3 τ³.
+pub(crate) fn hermite_cubic(y0: f64, y1: f64, d0: f64, d1: f64) -> [f64; 4] {
+    [
+        y0,
+        d0,
+        3.0 * (y1 - y0) - 2.0 * d0 - d1,
+        2.0 * (y0 - y1) + d0 + d1,
+    ]
+}
+
 /// First guess of the landing: the root of the cubic Hermite interpolant of z through the
 /// step's ends (heights and vertical speeds), by Newton from the straight-line root.
 fn hermite_root(from: &State, to: &State) -> f64 {
     let h = to.t - from.t;
     let (z0, z1) = (from.p[2], to.p[2]);
-    let (d0, d1) = (h * from.v[2], h * to.v[2]);
-    // z(τ) = z0 + d0 τ + c2 τ² + c3 τ³ on τ ∈ [0, 1].
-    let c2 = 3.0 * (z1 - z0) - 2.0 * d0 - d1;
-    let c3 = 2.0 * (z0 - z1) + d0 + d1;
+    let d0 = h * from.v[2];
+    let [_, _, c2, c3] = hermite_cubic(z0, z1, d0, h * to.v[2]);
     let mut tau = if z0 > z1 { z0 / (z0 - z1) } else { 1.0 };
     for _ in 0..4 {
         let value = z0 + tau * (d0 + tau * (c2 + tau * c3));

@@ -76,17 +76,12 @@ fn hermite(a: &Sample, b: &Sample, t: f64) -> [f64; 3] {
     if h <= 0.0 {
         return [a.x_m, a.y_m, a.z_m];
     }
-    let s = (t - a.t_s) / h;
-    let (s2, s3) = (s * s, s * s * s);
-    let (h00, h10, h01, h11) = (
-        2.0 * s3 - 3.0 * s2 + 1.0,
-        s3 - 2.0 * s2 + s,
-        -2.0 * s3 + 3.0 * s2,
-        s3 - s2,
-    );
+    let tau = (t - a.t_s) / h;
     let (pa, pb) = ([a.x_m, a.y_m, a.z_m], [b.x_m, b.y_m, b.z_m]);
     std::array::from_fn(|i| {
-        h00 * pa[i] + h10 * h * a.velocity_m_s[i] + h01 * pb[i] + h11 * h * b.velocity_m_s[i]
+        let [c0, c1, c2, c3] =
+            integrate::hermite_cubic(pa[i], pb[i], h * a.velocity_m_s[i], h * b.velocity_m_s[i]);
+        c0 + tau * (c1 + tau * (c2 + tau * c3))
     })
 }
 /// Fewest steps a flight is cut into: a very short flight gets a smaller step.
