@@ -5,15 +5,16 @@
 //! rigidly fixed to a wall. Read here: the opening (set-up; "for a given angle of incidence
 //! the scattered spin is nearly independent of the incident spin"). Second-hand (two public
 //! notes that quote the paper): for the 47 impacts without gross slip at 85–120 mph the
-//! tangential COR is e_x = 0.30 ± 0.02, μ = 0.15 from the gross-slip impacts, and the share of
-//! the incident spin that survives a fixed cylinder is (0.4 − e_x)/1.4 (its Eq. 3).
+//! tangential COR is e_x = 0.30 ± 0.02, flat over the angle, μ = 0.15 from the gross-slip
+//! impacts, and the share of the incident spin that survives a fixed cylinder is
+//! (0.4 − e_x)/1.4 (its Eq. 3).
 //!
-//! batstudy's defaults (μ = 0.2, κ = 0.346, docs/physics.md "Oblique impacts") were chosen to
-//! give the calibrated ball e_x = 0.30 at 20° incidence and gross slip from about 40°: those
-//! rows are consistency. The contact's speed independence and the incident-spin independence
-//! are predictions of the contact model; the calibrated ball's e_x falling with speed and the
-//! angle dependence are stated disagreements (the measured e_x is flat), held here so that a
-//! change is noticed.
+//! batstudy's defaults (μ = 0.2, κ = 0.27, docs/physics.md "Oblique impacts") were chosen to
+//! bring the calibrated ball's e_x nearest 0.30 at 20° incidence and 46 m/s, with gross slip
+//! from between 35° and 40°: those rows are consistency. The flat e_x over 5–35°, the
+//! contact's speed independence and the incident-spin independence are predictions of the
+//! contact model; the calibrated ball's e_x falling with speed is a stated disagreement (the
+//! measured e_x is flat), held here so that a change is noticed.
 
 use batstudy::model::spec::*;
 use batstudy::model::{prepare_bat, simulate, PreparedBat};
@@ -58,9 +59,41 @@ fn shot_with(speed: f64, degrees: f64, spin: f64, edit: impl Fn(&mut BallLaw)) -
 
 #[test]
 fn the_calibration_point_20_degrees_off_normal() {
-    for speed in [38.0, 46.0, 54.0] {
-        let (e_x, _) = shot(speed, 20.0, 0.0);
-        assert!((e_x - 0.30).abs() <= 0.02, "{speed} m/s: e_x {e_x}");
+    let (e_x, _) = shot(46.0, 20.0, 0.0);
+    assert!((e_x - 0.30).abs() <= 0.02, "e_x {e_x}");
+}
+
+/// Verification of the contact's unloading rule. While the patch grips, its stiffness
+/// follows the normal compression alone, so the tangential motion is linear in the
+/// incident slip: at one normal speed, e_x cannot depend on the angle (Maw, Barber &
+/// Fawcett, Wear 38, 101 (1976): the angle enters a gripping elastic contact only through
+/// the ratio of tangential to normal force, which sets where microslip begins). With
+/// friction too high for any slip, e_x is the same from 2° to 40°. A patch that kept its
+/// shear while it shrank failed this, from −0.14 at 2° to +0.05 at 40°.
+#[test]
+fn a_gripping_ball_s_tangential_cor_does_not_depend_on_the_angle() {
+    let normal_speed = 40.0;
+    let e_x = |degrees: f64| {
+        let speed = normal_speed / degrees.to_radians().cos();
+        shot_with(speed, degrees, 0.0, |law| law.friction = Some(10.0)).0
+    };
+    let at_2 = e_x(2.0);
+    for degrees in [10.0, 20.0, 30.0, 40.0] {
+        let at = e_x(degrees);
+        assert!(
+            (at - at_2).abs() < 2e-3,
+            "{degrees}°: {at} against {at_2} at 2°"
+        );
+    }
+}
+
+/// A prediction: e_x is flat over the angles without gross slip, as measured (0.30 ± 0.02,
+/// second-hand; band set before the run: that uncertainty).
+#[test]
+fn the_tangential_cor_is_flat_over_the_angle_until_gross_slip() {
+    for degrees in [5.0, 10.0, 15.0, 25.0, 30.0, 35.0] {
+        let (e_x, _) = shot(46.0, degrees, 0.0);
+        assert!((e_x - 0.30).abs() <= 0.02, "{degrees}°: e_x {e_x}");
     }
 }
 
@@ -129,13 +162,4 @@ fn the_ball_slides_throughout_from_about_40_degrees() {
         share(30.0),
         share(40.0)
     );
-}
-
-#[test]
-fn the_model_s_tangential_cor_rises_with_the_angle_where_the_measured_one_is_flat() {
-    // the stated disagreement (docs/physics.md): below the measured 0.30 ± 0.02 at 5° and
-    // above it at 30°
-    let (at_5, _) = shot(46.0, 5.0, 0.0);
-    let (at_30, _) = shot(46.0, 30.0, 0.0);
-    assert!(at_5 < 0.28 && at_30 > 0.32, "5°: {at_5}, 30°: {at_30}");
 }

@@ -129,7 +129,7 @@ pub const DEFAULT_INERTIA_FACTOR: f64 = 0.4;
 pub const DEFAULT_FRICTION: f64 = 0.2;
 /// The contact patch's tangential stiffness over the ball's normal tangent stiffness dN/ds
 /// (docs/physics.md, "Oblique impacts").
-pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.346;
+pub const DEFAULT_TANGENTIAL_RATIO: f64 = 0.27;
 
 /// The law of a built-in ball.
 pub fn preset_law(preset: BallPreset) -> BallLaw {

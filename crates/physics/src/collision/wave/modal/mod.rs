@@ -67,6 +67,9 @@ pub(super) fn run_modal(
 
 /// One step of length h.
 fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
+    if let Some(o) = &c.oblique {
+        release_shear(c, o, state, contact);
+    }
     let (y_free, g_end, alpha_d) = state::free_contact_point(c, s, state);
     let h2 = s.h * s.h;
     let w_free = state.w + s.h * state.v - h2 * state.force / (3.0 * c.ball_mass);
@@ -113,6 +116,22 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
         advance_oblique(c, o, s.h, state, dy_before, forces);
     }
     ball_and_contact(c, s, state, contact, (new_force, new_hoop_force, new_s));
+}
+
+/// The patch's stiffness for this step; a shrinking patch lets go of its shear, and the
+/// forces at the step's start follow.
+fn release_shear(c: &Collision, o: &Oblique, state: &mut State, contact: &Contact) {
+    let s_now = state.s;
+    let Some(t) = state.tangential.as_mut() else {
+        return;
+    };
+    let k = tangential::patch_stiffness(o, &c.law, s_now, contact.s_max);
+    if t.shrink_patch(k) {
+        state.force = Tangential::bat_force_y(o, t.normal, t.shear);
+        if c.hoop.is_some() {
+            state.hoop_force = Tangential::bat_force_y(o, t.bat_normal, t.shear);
+        }
+    }
 }
 
 /// The oblique contact's end forces: (the ball's force along ŷ, the bat's along ŷ, the

@@ -37,6 +37,8 @@ pub(in crate::collision::wave) struct Tangential {
     pub(in crate::collision::wave) roll_rate: f64,
     /// Energy dissipated by sliding so far, J.
     pub(in crate::collision::wave) slip_loss: f64,
+    /// The patch's tangential stiffness over the last step, N/m.
+    pub(in crate::collision::wave) patch_stiffness: f64,
 }
 
 impl Tangential {
@@ -94,14 +96,37 @@ pub(in crate::collision::wave) struct StepInputs<'a> {
 /// times the normal law's tangent dN/ds at the compression at the step's start (Mindlin: a
 /// patch's tangential stiffness grows with its radius as its normal stiffness does); 0 out
 /// of contact.
-fn patch_stiffness(o: &Oblique, inp: &StepInputs) -> f64 {
-    if inp.s_now <= 0.0 {
+pub(in crate::collision::wave) fn patch_stiffness(
+    o: &Oblique,
+    law: &ContactLaw,
+    s_now: f64,
+    s_max: f64,
+) -> f64 {
+    if s_now <= 0.0 {
         return 0.0;
     }
-    let (_, tangent) = inp
-        .law
-        .force_and_tangent(inp.s_now, inp.s_max.max(inp.s_now));
+    let (_, tangent) = law.force_and_tangent(s_now, s_max.max(s_now));
     o.ball.tangential_ratio * tangent
+}
+
+impl Tangential {
+    /// Take the patch's stiffness for the next step. A shrinking patch lets go of its shear:
+    /// when the stiffness falls, the tangential force the patch holds falls in proportion,
+    /// its elastic shear displacement kept (the unloading rule of Mindlin's contact, as in
+    /// Thornton, Cummins & Cleary 2013 and LAMMPS's `mindlin_rescale/force`). A growing
+    /// patch keeps its force and is stiffer only for what comes next. Without the rule a
+    /// vanishing patch would still hold its shear, and the ball would be made to slide at
+    /// the end of every contact (docs/physics.md, "Oblique impacts and spin"). Returns
+    /// whether the force changed.
+    pub(in crate::collision::wave) fn shrink_patch(&mut self, stiffness: f64) -> bool {
+        let before = self.patch_stiffness;
+        self.patch_stiffness = stiffness;
+        if stiffness < before && before > 0.0 {
+            self.shear *= stiffness / before;
+            return true;
+        }
+        false
+    }
 }
 
 /// The step's end forces (N₁, T₁) and compression s₁. `y_part`: the relative displacement
@@ -126,7 +151,7 @@ pub(in crate::collision::wave) fn end_forces(
     let b_nn = c * c * c_y + s * s * c_x + g_r;
     let b_nt = c * s * (c_y - c_x);
     let b_tt = s * s * c_y + c * c * c_x + c_rot;
-    let k = patch_stiffness(o, inp);
+    let k = t.patch_stiffness;
     // gripping: T₁ = T₀ − k (u₁ − u_now)
     let den = 1.0 + k * b_tt;
     let alpha = (t.shear - k * (u0 - t.tangential_displacement(o, dy_now))) / den;
@@ -189,7 +214,7 @@ pub(in crate::collision::wave) fn end_forces_hoop(
     let s_free = c * w_free + s * xb0 - xh0 + a_h * eta0;
     let u_now = t.tangential_displacement(o, dy_now);
     let u_free = -s * (w_free - y0) + c * (xb0 - xc0) + u_free + lever * eta0 - u_now;
-    let kt = patch_stiffness(o, inp);
+    let kt = t.patch_stiffness;
     let den_t = 1.0 + kt * d_t;
     let (alpha, beta) = ((t.shear - kt * u_free) / den_t, -kt * d_n / den_t);
     let (n1, s1) = inp.law.solve_implicit(
