@@ -156,7 +156,6 @@ fn oblique_end_forces(
         h: s.h,
         s_max: contact.s_max,
         guess: 2.0 * state.s - state.s_before,
-        s_now: state.s,
     };
     let dy_now = state.w - state.y_c;
     let y0 = y_free + s.g_start * state.bat_force(c);

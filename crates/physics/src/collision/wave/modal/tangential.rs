@@ -88,8 +88,6 @@ pub(in crate::collision::wave) struct StepInputs<'a> {
     pub(in crate::collision::wave) h: f64,
     pub(in crate::collision::wave) s_max: f64,
     pub(in crate::collision::wave) guess: f64,
-    /// The compression at the step's start, m.
-    pub(in crate::collision::wave) s_now: f64,
 }
 
 /// The contact patch's tangential stiffness over this step, N/m: the ball's tangential ratio
