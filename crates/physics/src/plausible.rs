@@ -329,7 +329,7 @@ pub const RANGES: &[Range] = &[
         min: 0.01,
         max: 2.0,
         unit: "1",
-        reason: "a rubber contact's tangential stiffness is 0.67-1 of its normal one (Mindlin); baseballs' about 0.35",
+        reason: "a rubber contact's tangential stiffness is 0.67-1 of its normal one (Mindlin); baseballs' about 0.27",
         get: |s| s.ball.law.tangential_ratio,
     },
     Range {

@@ -295,7 +295,7 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
         "energy_friction",
         "J",
         "friction loss",
-        "energy dissipated by the ball sliding on the bat",
+        "energy dissipated by the tangential contact: sliding, and the shear a shrinking patch lets go",
     ),
     v(
         "bat_speed_6in",
