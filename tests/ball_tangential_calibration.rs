@@ -173,7 +173,10 @@ fn the_tangential_cor_converges_with_the_step() {
         let fine = shot_dt(46.0, degrees, 2.5e-7);
         for dt in [4e-6, 2e-6, 1e-6] {
             let coarse = shot_dt(46.0, degrees, dt);
-            assert!((coarse - fine).abs() < 1e-3, "{degrees}°, {dt} s: {coarse} against {fine}");
+            assert!(
+                (coarse - fine).abs() < 1e-3,
+                "{degrees}°, {dt} s: {coarse} against {fine}"
+            );
         }
     }
 }

@@ -139,3 +139,24 @@ fn bad_input_names_the_flag() {
     assert!(err.contains("--humidity: 1.5"), "{err}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+/// A file or link planted beside the trajectory's path (a shared folder) is neither
+/// followed nor overwritten: the CSV is written to a new file of this process's own and
+/// renamed into place. A fixed `t.csv.partial`, opened with truncation, was followed.
+#[test]
+fn a_planted_link_beside_the_trajectory_is_not_followed() {
+    let dir = tempfile::tempdir().unwrap();
+    let victim = dir.path().join("victim");
+    std::fs::write(&victim, b"keep me").unwrap();
+    let csv = dir.path().join("t.csv");
+    std::os::unix::fs::symlink(&victim, dir.path().join("t.csv.partial")).unwrap();
+    let (_, err, code) = fly(&[
+        "--exit-speed=45",
+        "--launch-angle=0.45",
+        "--trajectory",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!(std::fs::read(&victim).unwrap(), b"keep me");
+    assert!(std::fs::read_to_string(&csv).unwrap().contains("t_s,x_m"));
+}

@@ -4,7 +4,7 @@
 use super::{EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED};
 use crate::profile_export::{profile_csv, Units};
 use crate::study::error::printable;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct ExportArgs {
@@ -35,7 +35,7 @@ pub(super) fn cmd_export(a: &ExportArgs) -> i32 {
             print!("{text}");
             EXIT_OK
         }
-        Some(path) => match write_whole(path, &text) {
+        Some(path) => match crate::store::journal::write_whole(path, text.as_bytes()) {
             Ok(()) => EXIT_OK,
             Err(e) => {
                 eprintln!(
@@ -46,26 +46,4 @@ pub(super) fn cmd_export(a: &ExportArgs) -> i32 {
             }
         },
     }
-}
-
-/// Write `text` to a new temporary file beside `path`, then rename it over `path`: a
-/// reader sees the old file or the whole new one.
-fn write_whole(path: &Path, text: &str) -> std::io::Result<()> {
-    use std::io::Write;
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".{}.tmp", std::process::id()));
-    let tmp = path.with_file_name(name);
-    let written = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&tmp)
-        .and_then(|mut f| {
-            f.write_all(text.as_bytes())?;
-            f.sync_all()
-        })
-        .and_then(|()| std::fs::rename(&tmp, path));
-    if written.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    written
 }

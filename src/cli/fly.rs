@@ -7,7 +7,6 @@
 
 use super::{EXIT_BAD_INPUT, EXIT_OK};
 use crate::model::flight::{self, Atmosphere, FlightError, FlightOptions, Launch, FOOT};
-use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -198,20 +197,17 @@ fn flag_of(e: &FlightError) -> String {
 
 /// The trajectory as CSV, written beside `path` and renamed onto it when whole.
 fn write_trajectory(path: &std::path::Path, samples: &[flight::Sample]) -> std::io::Result<()> {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(".partial");
-    let partial = path.with_file_name(name);
-    let mut out = std::io::BufWriter::new(std::fs::File::create(&partial)?);
-    writeln!(out, "# batstudy fly: the ball's flight; x toward right field, y toward centre field, z up, from the ground below the contact point")?;
-    writeln!(out, "t_s,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s")?;
+    use std::fmt::Write as _;
+    let mut text = String::from(
+        "# batstudy fly: the ball's flight; x toward right field, y toward centre field, z up, from the ground below the contact point\nt_s,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s\n",
+    );
     for s in samples {
         let [vx, vy, vz] = s.velocity_m_s;
-        writeln!(
-            out,
+        let _ = writeln!(
+            text,
             "{},{},{},{},{vx},{vy},{vz}",
             s.t_s, s.x_m, s.y_m, s.z_m
-        )?;
+        );
     }
-    out.into_inner()?.sync_all()?;
-    std::fs::rename(&partial, path)
+    crate::store::journal::write_whole(path, text.as_bytes())
 }

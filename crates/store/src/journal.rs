@@ -585,6 +585,32 @@ impl JournalWriter {
     }
 }
 
+/// Write `bytes` to a temporary file of this process beside `path`, sync it, rename it over
+/// `path` and make the rename durable: a reader, or a second process writing the same path,
+/// sees the old file or one whole new one, never a mixture or a part.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = path.with_file_name(name);
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)
+        .and_then(|mut f| {
+            f.write_all(bytes)?;
+            f.sync_all()
+        })
+        .and_then(|()| std::fs::rename(&tmp, path));
+    match written {
+        Ok(()) => sync_parent_dir(path),
+        Err(_) => {
+            let _ = std::fs::remove_file(&tmp);
+        }
+    }
+    written
+}
+
 /// Best effort: make a created/renamed/removed directory entry durable.
 pub fn sync_parent_dir(path: &Path) {
     let dir = match path.parent() {
