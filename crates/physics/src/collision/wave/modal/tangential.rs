@@ -35,7 +35,8 @@ pub(in crate::collision::wave) struct Tangential {
     pub(in crate::collision::wave) ball_spin: f64,
     pub(in crate::collision::wave) roll: f64,
     pub(in crate::collision::wave) roll_rate: f64,
-    /// Energy dissipated by sliding so far, J.
+    /// Energy the tangential contact has taken so far (sliding, and the shear a shrinking
+    /// patch lets go), J.
     pub(in crate::collision::wave) slip_loss: f64,
     /// The patch's tangential stiffness over the last step, N/m.
     pub(in crate::collision::wave) patch_stiffness: f64,
@@ -79,6 +80,24 @@ impl Tangential {
             + o.ball.radius * self.ball_turn
             + o.bat_radius * self.roll
     }
+
+    /// Take the patch's stiffness for the next step. A shrinking patch lets go of its shear:
+    /// when the stiffness falls, the tangential force the patch holds falls in proportion,
+    /// its elastic shear displacement kept (the unloading rule of Mindlin's contact, as in
+    /// Thornton, Cummins & Cleary 2013 and LAMMPS's `mindlin_rescale/force`). A growing
+    /// patch keeps its force and is stiffer only for what comes next. Without the rule a
+    /// vanishing patch would still hold its shear, and the ball would be made to slide at
+    /// the end of every contact (docs/physics.md, "Oblique impacts and spin"). Returns
+    /// whether the force changed.
+    pub(in crate::collision::wave) fn shrink_patch(&mut self, stiffness: f64) -> bool {
+        let before = self.patch_stiffness;
+        self.patch_stiffness = stiffness;
+        if stiffness < before && before > 0.0 {
+            self.shear *= stiffness / before;
+            return true;
+        }
+        false
+    }
 }
 
 /// The ball's mass, the step and the law: what every part of the solve shares.
@@ -105,26 +124,6 @@ pub(in crate::collision::wave) fn patch_stiffness(
     }
     let (_, tangent) = law.force_and_tangent(s_now, s_max.max(s_now));
     o.ball.tangential_ratio * tangent
-}
-
-impl Tangential {
-    /// Take the patch's stiffness for the next step. A shrinking patch lets go of its shear:
-    /// when the stiffness falls, the tangential force the patch holds falls in proportion,
-    /// its elastic shear displacement kept (the unloading rule of Mindlin's contact, as in
-    /// Thornton, Cummins & Cleary 2013 and LAMMPS's `mindlin_rescale/force`). A growing
-    /// patch keeps its force and is stiffer only for what comes next. Without the rule a
-    /// vanishing patch would still hold its shear, and the ball would be made to slide at
-    /// the end of every contact (docs/physics.md, "Oblique impacts and spin"). Returns
-    /// whether the force changed.
-    pub(in crate::collision::wave) fn shrink_patch(&mut self, stiffness: f64) -> bool {
-        let before = self.patch_stiffness;
-        self.patch_stiffness = stiffness;
-        if stiffness < before && before > 0.0 {
-            self.shear *= stiffness / before;
-            return true;
-        }
-        false
-    }
 }
 
 /// The step's end forces (N₁, T₁) and compression s₁. `y_part`: the relative displacement
