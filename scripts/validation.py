@@ -72,7 +72,9 @@ class Files:
 BAT_SETS = ("wood", "drilled", "aluminum", "aluminum+hoop", "drilled+hoop", "hoop1000", "hoop1500",
             "hoop2000", "hoop2500", "test_bat", "test_bat_drilled", "soft_ball", "cor_low", "cor_high",
             "wood_linear_ball", "aluminum+hoop_linear_ball", "test_bat_hollow", "test_bat_hollow+shell",
-            "alloy_bbcor", "composite_bbcor")
+            "alloy_bbcor", "composite_bbcor", "alloy_wall_2mm", "alloy_wall_3mm", "alloy_wall_4mm")
+# One family of walls: the alloy_bbcor geometry with one wall thickness throughout.
+WALL_FAMILY = ("alloy_wall_2mm", "alloy_wall_3mm", "alloy_wall_4mm")
 
 
 def bat_index(label: str) -> int:
@@ -384,6 +386,14 @@ def fig7_rows() -> list[Row]:
     return rows
 
 
+def wall_family_slope(f: Files) -> float:
+    """BBCOR per kHz of the lowest breathing frequency over one family of walls (least squares)."""
+    points = [best(cert(f), b, BBCOR_SPEED) for b in WALL_FAMILY]
+    x = np.array([float(p.hoop_mode_frequency) for p in points]) / 1000
+    y = np.array([float(p.bbcor) for p in points])
+    return float(np.polyfit(x, y, 1)[0])
+
+
 def rolling_spin_at_most(f: Files, speed: float) -> float:
     """The spin rolling contact would give (rpm) at the hit with the most spin: spin / (1 + e_T)."""
     p = oblique_points(f, speed)
@@ -550,6 +560,16 @@ PREDICTION = [
                         f"{float(best(cert(f), 'alloy_bbcor', BBCOR_SPEED).hoop_mode_frequency):.0f} Hz, "
                         f"composite_bbcor: "
                         f"{float(best(cert(f), 'composite_bbcor', BBCOR_SPEED).hoop_mode_frequency):.0f} Hz)")),
+    Row("prediction", "BBCOR against the lowest hoop frequency",
+        "one family of hollow walls: the `alloy_bbcor` geometry with one wall of 2, 3 and 4 mm, breathing as "
+        f"shells, pivoted at rest, {BBCOR_SPEED} m/s, best point",
+        "higher BBCOR with a lower hoop frequency, 'strongly correlated' over five aluminum bats (no number read)",
+        "Nathan, Crisco, Greenwald, Russell & Smith 2011, Sports Eng. 13, 153 (abstract)",
+        wall_family_slope, lambda v: f"{v:+.3f} per kHz", lambda v: v < 0, lambda v: f"{v:+.3f} per kHz", True,
+        band=lambda f: ("a falling line (the sign: the abstract gives no slope); the three walls breathe at "
+                        + ", ".join(f"{float(best(cert(f), b, BBCOR_SPEED).hoop_mode_frequency):.0f}"
+                                    for b in WALL_FAMILY)
+                        + " Hz; across families the frequency alone does not set the BBCOR (docs/design.md)")),
     Row("prediction", "corked bat: BBCOR against the solid bat", f"{DRILLED}, its hoop mode from the wall, {BBCOR_SPEED} m/s",
         "lower than the solid bat's (no number)", f"{RUSSELL_AT}, citing Nathan et al. 2011 (second-hand)",
         lambda f: float(best(cert(f), "drilled+hoop", BBCOR_SPEED).bbcor - best(cert(f), "wood", BBCOR_SPEED).bbcor),
