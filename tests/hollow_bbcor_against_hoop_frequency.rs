@@ -33,7 +33,10 @@ fn within_one_wall_family_bbcor_falls_as_the_breathing_frequency_rises() {
     pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
     // the walls span the measured range of hollow bats' hoop frequencies (1000–2500 Hz,
     // Russell 2017) and beyond
-    assert!(pairs[0].0 < 1500.0 && pairs[pairs.len() - 1].0 > 2500.0, "{pairs:?}");
+    assert!(
+        pairs[0].0 < 1500.0 && pairs[pairs.len() - 1].0 > 2500.0,
+        "{pairs:?}"
+    );
     assert!(
         pairs.windows(2).all(|w| w[1].1 < w[0].1),
         "BBCOR must fall as the frequency rises: {pairs:?}"
