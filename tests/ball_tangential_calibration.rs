@@ -45,10 +45,10 @@ fn shot(speed: f64, degrees: f64, spin: f64) -> (f64, f64) {
     shot_with(speed, degrees, spin, |_| {})
 }
 
-/// [`shot`] with the ball's law changed by `edit`.
-fn shot_with(speed: f64, degrees: f64, spin: f64, edit: impl Fn(&mut BallLaw)) -> (f64, f64) {
+/// [`shot`] with the collision changed by `edit` (the ball's law, the time step).
+fn shot_with(speed: f64, degrees: f64, spin: f64, edit: impl Fn(&mut CollisionSpec)) -> (f64, f64) {
     let (mut spec, bat) = cylinder();
-    edit(&mut spec.ball.law);
+    edit(&mut spec);
     let ball_radius = batstudy::model::collision::oblique::BallContact::of(&spec.ball).radius;
     spec.ball.speed = speed;
     spec.ball.spin = spin;
@@ -75,7 +75,7 @@ fn a_gripping_ball_s_tangential_cor_does_not_depend_on_the_angle() {
     let normal_speed = 40.0;
     let e_x = |degrees: f64| {
         let speed = normal_speed / degrees.to_radians().cos();
-        shot_with(speed, degrees, 0.0, |law| law.friction = Some(10.0)).0
+        shot_with(speed, degrees, 0.0, |s| s.ball.law.friction = Some(10.0)).0
     };
     let at_2 = e_x(2.0);
     for degrees in [10.0, 20.0, 30.0, 40.0] {
@@ -103,9 +103,9 @@ fn the_tangential_cor_is_flat_over_the_angle_until_gross_slip() {
 #[test]
 fn the_tangential_contact_hardly_depends_on_speed() {
     let fixed = |speed: f64, degrees: f64| {
-        shot_with(speed, degrees, 0.0, |law| {
-            law.kind = BallLawKind::PowerLaw;
-            law.cor = 0.5;
+        shot_with(speed, degrees, 0.0, |s| {
+            s.ball.law.kind = BallLawKind::PowerLaw;
+            s.ball.law.cor = 0.5;
         })
         .0
     };
@@ -183,10 +183,5 @@ fn the_tangential_cor_converges_with_the_step() {
 
 /// e_x of [`shot`] without incident spin, with the time step `dt`.
 fn shot_dt(speed: f64, degrees: f64, dt: f64) -> f64 {
-    let (mut spec, bat) = cylinder();
-    spec.numerics.dt = Some(dt);
-    let ball_radius = batstudy::model::collision::oblique::BallContact::of(&spec.ball).radius;
-    spec.ball.speed = speed;
-    spec.impact.offset = -(CYLINDER_RADIUS + ball_radius) * degrees.to_radians().sin();
-    simulate(&spec, &bat, None).unwrap().tangential_cor
+    shot_with(speed, degrees, 0.0, |s| s.numerics.dt = Some(dt)).0
 }
