@@ -58,10 +58,19 @@ KINEMATICS_Y_FT = 50.0
 _NEEDED = ("bat_speed", "release_speed", "vx0", "vy0", "vz0", "ax", "ay", "az", "stand")
 
 
-def _number(text: str) -> float:
+# the largest CSV :func:`read` opens: a full season of Savant's per-pitch rows (about 750,000
+# pitches) is well under it; a larger file, or a device, is refused before it is read
+MAX_BYTES = 4 << 30
+# tracked bat speeds, mph: bunts and checked swings from about 10, the fastest swings about 90
+BAT_SPEED_MPH = (5.0, 110.0)
+# the median swing a tracked file holds is about 70 mph; one under this is in another unit
+MIN_MEDIAN_BAT_SPEED_MPH = 40.0
+
+
+def _number(text) -> float:
     try:
         return float(text)
-    except ValueError:
+    except (TypeError, ValueError):
         return math.nan
 
 
@@ -72,10 +81,13 @@ def pitch_at_plate(v0, a):
     vx0, vy0, vz0 = v0
     ax, ay, az = a
     dy = PLATE_FRONT_FT - KINEMATICS_Y_FT
-    if ay == 0:
-        t = dy / vy0
-    else:
-        t = (-vy0 - math.sqrt(vy0 * vy0 + 2 * ay * dy)) / ay
+    if not all(map(math.isfinite, (*v0, *a))) or vy0 >= 0:
+        raise ValueError(f"vy0 {vy0}, ay {ay}: a pitch moving toward the plate (vy0 < 0 ft/s) "
+                         "with finite kinematics")
+    disc = vy0 * vy0 + 2 * ay * dy
+    if disc < 0:
+        raise ValueError(f"vy0 {vy0}, ay {ay}: a pitch that reaches the plate")
+    t = dy / vy0 if ay == 0 else (-vy0 - math.sqrt(disc)) / ay
     return vx0 + ax * t, vy0 + ay * t, vz0 + az * t
 
 
@@ -83,6 +95,9 @@ def _row(r: dict) -> dict | None:
     values = {k: _number(r.get(k, "")) for k in _NEEDED if k != "stand"}
     if not math.isfinite(values["bat_speed"]):
         return None
+    lo, hi = BAT_SPEED_MPH
+    if not lo <= values["bat_speed"] <= hi:
+        raise ValueError(f"bat_speed {values['bat_speed']}: allowed {lo} to {hi} mph")
     stand = r.get("stand", "")
     if stand not in ("R", "L"):
         raise ValueError(f"stand {stand!r}: allowed R or L")
@@ -131,30 +146,64 @@ _UNITS = {
 
 def read(path):
     """The swings of a Savant per-pitch CSV with a tracked bat speed, as a Dataset along
-    ``swing`` (module docs). A file without Savant's columns raises ``ValueError`` naming
-    what is missing."""
+    ``swing`` (module docs). ``path`` is the CSV's path, or a pandas DataFrame with its
+    columns. A file without Savant's columns, a row that is not a pitch, a bat speed that is
+    not in mph, a file larger than ``MAX_BYTES`` or anything but a regular file raises
+    ``ValueError`` naming what is wrong."""
     import numpy as np
     import xarray as xr
 
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.DictReader(f)
-        missing = [c for c in _NEEDED if c not in (reader.fieldnames or [])]
-        if missing:
-            raise ValueError(f"{path}: not a bat-tracking CSV: it lacks the column(s) {', '.join(missing)}")
-        rows = []
-        for line, r in enumerate(reader, start=2):
-            try:
-                row = _row(r)
-            except ValueError as e:
-                raise ValueError(f"{path}:{line}: {e}") from None
-            if row is not None:
-                rows.append(row)
+    if hasattr(path, "columns") and hasattr(path, "to_dict"):
+        rows = _rows("DataFrame", list(path.columns), path.to_dict("records"))
+        source = "DataFrame"
+    else:
+        _check_file(path)
+        with open(path, newline="", encoding="utf-8") as f:
+            reader = csv.DictReader(f)
+            rows = _rows(path, reader.fieldnames, reader)
+        source = str(path)
+    bats = [r["bat_speed"] / MPH for r in rows]
+    if bats and float(np.median(bats)) < MIN_MEDIAN_BAT_SPEED_MPH:
+        raise ValueError(
+            f"{source}: the median bat_speed is {float(np.median(bats)):.1f}, where tracked "
+            f"swings' is about 70 mph: Savant's column is in mph (a column in m/s: times 2.237)")
     data = {}
     for name, (units, long_name) in _UNITS.items():
         values = np.array([r[name] for r in rows])
         attrs = {"long_name": long_name} | ({"units": units} if units else {})
         data[name] = xr.Variable(("swing",), values, attrs)
-    return xr.Dataset(data, attrs={"source": str(path)})
+    return xr.Dataset(data, attrs={"source": source})
+
+
+def _check_file(path):
+    """A regular file of at most ``MAX_BYTES``, checked before a byte is read."""
+    import os
+    import stat
+
+    st = os.stat(path)
+    if not stat.S_ISREG(st.st_mode):
+        raise ValueError(f"{path}: not a regular file (a CSV is read whole; a device or a pipe "
+                         "has no end)")
+    if st.st_size > MAX_BYTES:
+        raise ValueError(f"{path}: {st.st_size} bytes, more than a season of pitches "
+                         f"(at most {MAX_BYTES})")
+
+
+def _rows(source, columns, records):
+    """Each record with a tracked bat speed as SI values; a bad one raises ``ValueError``
+    with its line (the header is line 1)."""
+    missing = [c for c in _NEEDED if c not in (columns or [])]
+    if missing:
+        raise ValueError(f"{source}: not a bat-tracking CSV: it lacks the column(s) {', '.join(missing)}")
+    rows = []
+    for line, r in enumerate(records, start=2):
+        try:
+            row = _row(r)
+        except (ValueError, ZeroDivisionError, TypeError, OverflowError) as e:
+            raise ValueError(f"{source}:{line}: {e}") from None
+        if row is not None:
+            rows.append(row)
+    return rows
 
 
 def _ks(a, b):

@@ -142,6 +142,12 @@ pub fn main(opts: &BenchOptions, json: Option<&Path>) -> i32 {
         eprintln!("error: {e}");
         return 2;
     }
+    if let Some(path) = json {
+        if let Err((msg, allowed)) = crate::study::output::check_side_output(path, &[]) {
+            eprintln!("error: --json: {msg}\n  allowed: {allowed}");
+            return 2;
+        }
+    }
     let stdout = std::io::stdout();
     let mut lock = stdout.lock();
     match run(opts, &mut lock) {

@@ -379,5 +379,5 @@ pub(super) fn print_end(out: &mut dyn Write, machine: &Machine) {
 /// Write the figures as JSON to `path`.
 pub(super) fn write_json(report: &BenchReport, path: &Path) -> std::io::Result<()> {
     let text = serde_json::to_string_pretty(report).expect("report serializes");
-    std::fs::write(path, text + "\n")
+    crate::store::journal::write_whole(path, (text + "\n").as_bytes())
 }

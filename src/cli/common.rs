@@ -36,6 +36,17 @@ pub(super) fn check_output_of(
         })
 }
 
+/// A small output named by a flag (`flag`), checked before anything runs
+/// (`study::output::check_side_output`): the located error names the flag and the path.
+pub(crate) fn side_output_ok(path: &Path, flag: &str, inputs: &[&Path]) -> Result<(), StudyError> {
+    crate::study::output::check_side_output(path, inputs).map_err(|(msg, allowed)| {
+        StudyError::new(Path::new("batstudy"), msg)
+            .field(flag)
+            .value(path.display().to_string())
+            .allowed(allowed)
+    })
+}
+
 /// `--force` replaces only batstudy's own results files, never another file a user mistyped
 /// the path of. Nothing at the path, or a results file of any study, may be replaced.
 pub(super) fn check_replaceable(output: &Path) -> Result<(), (String, String)> {

@@ -23,6 +23,12 @@ pub struct ExportArgs {
 }
 
 pub(super) fn cmd_export(a: &ExportArgs) -> i32 {
+    if let Some(path) = &a.output {
+        if let Err(e) = super::common::side_output_ok(path, "--output", &[&a.file]) {
+            eprintln!("{e}");
+            return EXIT_BAD_INPUT;
+        }
+    }
     let text = match profile_csv(&a.file, a.bat.as_deref(), a.units) {
         Ok(t) => t,
         Err(e) => {

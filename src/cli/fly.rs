@@ -7,15 +7,16 @@
 
 use super::{EXIT_BAD_INPUT, EXIT_OK};
 use crate::model::flight::{self, Atmosphere, FlightError, FlightOptions, Launch, FOOT};
+use crate::model::plausible;
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct FlyArgs {
     /// Exit speed: m/s, or `mph`.
-    #[arg(long, value_parser = speed, allow_hyphen_values = true)]
+    #[arg(long, value_parser = exit_speed, allow_hyphen_values = true)]
     pub exit_speed: f64,
     /// Launch angle above the horizontal: rad, or `deg`.
-    #[arg(long, value_parser = angle, allow_hyphen_values = true)]
+    #[arg(long, value_parser = launch_angle, allow_hyphen_values = true)]
     pub launch_angle: f64,
     /// Backspin (negative: topspin): rad/s, or `rpm`.
     #[arg(long, value_parser = spin, default_value = "0", allow_hyphen_values = true)]
@@ -25,91 +26,140 @@ pub struct FlyArgs {
     pub sidespin: f64,
     /// Spray angle from straight-away centre field, positive toward right field: rad, or
     /// `deg`.
-    #[arg(long, value_parser = angle, default_value = "0", allow_hyphen_values = true)]
+    #[arg(long, value_parser = spray_angle, default_value = "0", allow_hyphen_values = true)]
     pub spray_angle: f64,
     /// Height of the contact point: m, or `ft`. Default 3 ft.
-    #[arg(long, value_parser = length, default_value = "0.9144")]
+    #[arg(long, value_parser = height, default_value = "0.9144")]
     pub height: f64,
     /// Air temperature: K, or `F`, `C`. Default 70 F.
     #[arg(long, value_parser = temperature, allow_hyphen_values = true)]
     pub temperature: Option<f64>,
     /// Elevation of the field above sea level: m, or `ft`.
-    #[arg(long, value_parser = length, default_value = "0", allow_hyphen_values = true)]
+    #[arg(long, value_parser = elevation, default_value = "0", allow_hyphen_values = true)]
     pub elevation: f64,
-    /// Relative humidity, 0 to 1.
-    #[arg(long, default_value_t = 0.5)]
+    /// Relative humidity, 0 to 1, or `%`.
+    #[arg(long, value_parser = humidity, default_value = "0.5")]
     pub humidity: f64,
     /// Barometric pressure reduced to sea level: Pa, or `inHg`. Default 29.92 inHg.
     #[arg(long, value_parser = pressure)]
     pub pressure: Option<f64>,
     /// Wind toward centre field (a tail wind; negative: in the batter's face): m/s, or `mph`.
-    #[arg(long, value_parser = speed, default_value = "0", allow_hyphen_values = true)]
+    #[arg(long, value_parser = wind, default_value = "0", allow_hyphen_values = true)]
     pub tail_wind: f64,
     /// Write the trajectory to this CSV: time, position and velocity at every step, SI.
     #[arg(long)]
     pub trajectory: Option<PathBuf>,
 }
 
-/// A number with an optional unit suffix, times the unit's factor plus its offset.
-fn with_units(s: &str, units: &[(&str, f64, f64)], what: &str) -> Result<f64, String> {
+/// A number with an optional unit suffix, times the unit's factor plus its offset, inside
+/// the plausible range of `range` (`model::plausible`). The first unit is SI; a bare number
+/// outside the range that one of the others would put inside it is refused with that unit
+/// named (`--exit-speed 100` is 100 mph, not 100 m/s).
+fn with_units(s: &str, units: &[(&str, f64, f64)], what: &str, range: &str) -> Result<f64, String> {
     let t = s.trim();
-    let (number, (factor, offset)) = units
+    let suffixed = units
         .iter()
-        .find_map(|(u, f, o)| t.strip_suffix(u).map(|n| (n, (*f, *o))))
-        .unwrap_or((t, (1.0, 0.0)));
-    let names: Vec<&str> = units
-        .iter()
-        .map(|u| u.0)
-        .filter(|u| !u.is_empty())
-        .collect();
-    match number.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x * factor + offset),
-        _ => Err(format!(
-            "`{s}` is not {what}: a number in SI units, or with one of {}",
-            names.join(", ")
-        )),
+        .filter(|(u, _, _)| !u.is_empty())
+        .find_map(|(u, f, o)| t.strip_suffix(u).map(|n| (n, (*f, *o))));
+    let (number, (factor, offset)) = suffixed.unwrap_or((t, (1.0, 0.0)));
+    let names: Vec<&str> = units.iter().map(|u| u.0).collect();
+    let x = match number.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => x,
+        _ => {
+            return Err(format!(
+                "`{s}` is not {what}: a number in SI units{}, or with one of {}",
+                Some(names[0])
+                    .filter(|n| !n.is_empty())
+                    .map(|n| format!(" ({n})"))
+                    .unwrap_or_default(),
+                names[1..].join(", ")
+            ))
+        }
+    };
+    let r = plausible::range_of(range).expect("every flag has a plausible range");
+    let v = x * factor + offset;
+    if (r.min..=r.max).contains(&v) {
+        return Ok(v);
     }
+    let unit = |u: &str| {
+        if u == "1" {
+            String::new()
+        } else {
+            format!(" {u}")
+        }
+    };
+    let meant = units[1..]
+        .iter()
+        .find(|(_, f, o)| suffixed.is_none() && (r.min..=r.max).contains(&(x * f + o)))
+        .map(|(u, _, _)| format!("; if {x} {u} is meant, write `{x}{u}`"))
+        .unwrap_or_default();
+    // four decimals: a bound of ±π/2 reads as 1.5708
+    let num = |v: f64| (v * 1e4).round() / 1e4;
+    Err(format!(
+        "`{s}` is {}{} (SI), outside the plausible {} to {}{} ({}){meant}",
+        num(v),
+        unit(r.unit),
+        num(r.min),
+        num(r.max),
+        unit(r.unit),
+        r.reason
+    ))
 }
 
-fn speed(s: &str) -> Result<f64, String> {
-    with_units(
-        s,
-        &[("mph", flight::MPH, 0.0), ("m/s", 1.0, 0.0)],
-        "a speed",
-    )
+const DEG: f64 = std::f64::consts::PI / 180.0;
+const SPEEDS: &[(&str, f64, f64)] = &[("m/s", 1.0, 0.0), ("mph", flight::MPH, 0.0)];
+const ANGLES: &[(&str, f64, f64)] = &[("rad", 1.0, 0.0), ("deg", DEG, 0.0)];
+const SPINS: &[(&str, f64, f64)] = &[("rad/s", 1.0, 0.0), ("rpm", flight::RPM, 0.0)];
+const LENGTHS: &[(&str, f64, f64)] = &[("m", 1.0, 0.0), ("ft", FOOT, 0.0)];
+
+fn exit_speed(s: &str) -> Result<f64, String> {
+    with_units(s, SPEEDS, "a speed", "launch.exit_speed")
 }
 
-fn angle(s: &str) -> Result<f64, String> {
-    let deg = std::f64::consts::PI / 180.0;
-    with_units(s, &[("deg", deg, 0.0), ("rad", 1.0, 0.0)], "an angle")
+fn wind(s: &str) -> Result<f64, String> {
+    with_units(s, SPEEDS, "a speed", "flight.wind_speed")
+}
+
+fn launch_angle(s: &str) -> Result<f64, String> {
+    with_units(s, ANGLES, "an angle", "launch.launch_angle")
+}
+
+fn spray_angle(s: &str) -> Result<f64, String> {
+    with_units(s, ANGLES, "an angle", "launch.spray_angle")
 }
 
 fn spin(s: &str) -> Result<f64, String> {
-    with_units(
-        s,
-        &[("rpm", flight::RPM, 0.0), ("rad/s", 1.0, 0.0)],
-        "a spin",
-    )
+    with_units(s, SPINS, "a spin", "launch.spin")
 }
 
-fn length(s: &str) -> Result<f64, String> {
-    with_units(s, &[("ft", FOOT, 0.0), ("m", 1.0, 0.0)], "a length")
+fn height(s: &str) -> Result<f64, String> {
+    with_units(s, LENGTHS, "a length", "launch.height")
+}
+
+fn elevation(s: &str) -> Result<f64, String> {
+    with_units(s, LENGTHS, "a length", "flight.elevation")
+}
+
+fn humidity(s: &str) -> Result<f64, String> {
+    with_units(
+        s,
+        &[("", 1.0, 0.0), ("%", 0.01, 0.0)],
+        "a fraction",
+        "flight.humidity",
+    )
 }
 
 fn temperature(s: &str) -> Result<f64, String> {
     let f = flight::fahrenheit_to_kelvin(0.0);
     let c = flight::celsius_to_kelvin(0.0);
-    let units = [("F", 5.0 / 9.0, f), ("C", 1.0, c), ("K", 1.0, 0.0)];
-    with_units(s, &units, "a temperature")
+    let units = [("K", 1.0, 0.0), ("F", 5.0 / 9.0, f), ("C", 1.0, c)];
+    with_units(s, &units, "a temperature", "flight.temperature")
 }
 
 fn pressure(s: &str) -> Result<f64, String> {
     // 1 inHg = 3386.389 Pa (NIST SP 811, at 0 °C)
-    with_units(
-        s,
-        &[("inHg", 3386.389, 0.0), ("Pa", 1.0, 0.0)],
-        "a pressure",
-    )
+    let units = [("Pa", 1.0, 0.0), ("inHg", 3386.389, 0.0)];
+    with_units(s, &units, "a pressure", "flight.pressure")
 }
 
 /// The launch and the air the arguments describe.
@@ -132,6 +182,12 @@ fn inputs(a: &FlyArgs) -> (Launch, Atmosphere) {
 }
 
 pub(super) fn cmd_fly(a: &FlyArgs) -> i32 {
+    if let Some(path) = &a.trajectory {
+        if let Err(e) = super::common::side_output_ok(path, "--trajectory", &[]) {
+            eprintln!("{e}");
+            return EXIT_BAD_INPUT;
+        }
+    }
     let (launch, atm) = inputs(a);
     let opts = FlightOptions {
         record_trajectory: a.trajectory.is_some(),

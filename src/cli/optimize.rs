@@ -150,16 +150,23 @@ fn settings(study: Study, a: &OptimizeArgs) -> Result<(Study, Design, PathBuf, u
     // the final run writes beside the output first: a file there that is not a leftover
     // results file would be found only after the whole search
     check_output_of(&study, &optimum_path(&output), true, Existing::Overwrite).map_err(bad)?;
-    if journal_path(&output).exists() && !a.resume && !a.force {
-        return Err(bad(StudyError::new(
-            &study.path,
-            "an interrupted search of this output exists",
-        )
-        .field("--output")
-        .value(journal_path(&output).display().to_string())
-        .allowed("--resume to continue it, or --force to start over")));
-    }
     Ok((study, design, output, jobs))
+}
+
+/// An interrupted search's journal is continued only when asked (`--resume`) or replaced
+/// (`--force`); checked under the output's lock, so that a search still running is
+/// reported as busy, not as interrupted.
+fn check_interrupted(study: &Study, output: &Path, a: &OptimizeArgs) -> Result<(), RunFailure> {
+    if !journal_path(output).exists() || a.resume || a.force {
+        return Ok(());
+    }
+    Err(bad(StudyError::new(
+        &study.path,
+        "an interrupted search of this output exists",
+    )
+    .field("--output")
+    .value(journal_path(output).display().to_string())
+    .allowed("--resume to continue it, or --force to start over")))
 }
 
 /// `batstudy optimize` without the terminal: check, search, run the best design, write.
@@ -177,6 +184,7 @@ pub fn optimize_study(
             .store(design.block.max_evaluations, Ordering::Relaxed);
     }
     let _lock = lock_output(&output).map_err(|(c, m)| failure(c, m))?;
+    check_interrupted(&study, &output, a)?;
     let started = std::time::Instant::now();
     let io = |e: crate::store::StoreError| failure(EXIT_RUN_FAILED, format!("error: {e}"));
     let (journal, recorded) = match a.resume && journal_path(&output).exists() {
@@ -377,7 +385,7 @@ fn table_of(design: &Design, cands: &[Candidate], stopped: Option<Stop>) -> Opti
     OptimizeTable {
         method: match design.block.method {
             OptimizeMethod::NelderMead => "nelder_mead (argmin 0.11)".into(),
-            OptimizeMethod::CmaEs => format!("cma_es (seed {})", design.block.seed),
+            OptimizeMethod::CmaEs => format!("cma_es (seed {})", design.block.seed()),
         },
         objective: design.objective.quantity.name().into(),
         objective_units: design.objective.quantity.units().into(),

@@ -8,7 +8,9 @@
 use super::profile_shape::{self, Shape};
 use super::quantity::Quantity;
 use super::rules::{rule_limits, Limit};
-use crate::study::optimize_block::{Aggregate, Bounds, Constraint, Knot, OptimizeBlock};
+use crate::study::optimize_block::{
+    Aggregate, Bounds, Constraint, Knot, OptimizeBlock, OptimizeMethod,
+};
 use crate::study::paths::{known_paths, meta, set_path};
 use crate::study::plan::related;
 use crate::study::source::{keys, Seg, SourceMap};
@@ -218,6 +220,10 @@ pub fn checked(study: Study) -> Result<Study, StudyError> {
     Ok(study)
 }
 
+/// The largest `optimize.tolerance`: a spread of a hundredth of the start's objective or of
+/// a variable's span.
+pub const MAX_TOLERANCE: f64 = 0.01;
+
 /// The study's `optimize` block, checked (None: the study has none).
 pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
     let Some(block) = study.file.optimize.clone() else {
@@ -233,15 +239,29 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
         .value(block.max_evaluations.to_string())
         .allowed("1 to 100000 candidates"));
     }
-    if block.tolerance.is_nan() || block.tolerance < 0.0 {
+    // both measures are relative (the objective over its start, the variables scaled to
+    // [0, 1]): a tolerance near 1 stops a search at its first candidates
+    if !(0.0..=MAX_TOLERANCE).contains(&block.tolerance) {
         return Err(located(
             study,
             &at(&["tolerance"]),
-            "`optimize.tolerance` must be >= 0".into(),
+            "`optimize.tolerance` out of range".into(),
         )
         .field("optimize.tolerance")
         .value(block.tolerance.to_string())
-        .allowed("a number >= 0"));
+        .allowed(format!(
+            "0 to {MAX_TOLERANCE} (a relative spread; default 1e-6)"
+        )));
+    }
+    if block.seed.is_some() && block.method != OptimizeMethod::CmaEs {
+        return Err(located(
+            study,
+            &at(&["seed"]),
+            "`optimize.seed` is set, but Nelder–Mead draws no random numbers".into(),
+        )
+        .field("optimize.seed")
+        .value(block.seed().to_string())
+        .allowed("leave it out, or `method: cma_es`"));
     }
     let mut variables = path_variables(study, &block)?;
     let profile = match &block.profile {

@@ -356,7 +356,7 @@ fn nelder_mead(design: &Design, problem: &Problem) {
 /// generation at a time, until the budget, a stop, or its spread falls below the tolerance.
 fn cma_es(design: &Design, problem: &Problem) {
     let start = design.start_unit();
-    let mut es = Cmaes::new(&start, CMA_ES_STEP, design.block.seed);
+    let mut es = Cmaes::new(&start, CMA_ES_STEP, design.block.seed());
     if problem.cost(&start).is_err() || problem.has_stopped() {
         return;
     }

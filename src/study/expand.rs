@@ -654,6 +654,26 @@ fn check_unused(
     plan: &Plan,
     unused: &super::unused::Tally,
 ) -> Result<(), StudyError> {
+    if let Some(i) = file.history.as_ref().and_then(|h| {
+        h.fields
+            .iter()
+            .position(|f| *f == crate::model::outcome::HistoryField::Trajectory)
+    }) {
+        if !unused.flies {
+            return Err(cx
+                .err(
+                    &[
+                        Seg::Key("history".into()),
+                        Seg::Key("fields".into()),
+                        Seg::Index(i),
+                    ],
+                    "`trajectory` is asked for, but no point of the study flies its batted ball",
+                )
+                .field(format!("history.fields[{i}]"))
+                .value("trajectory")
+                .allowed("a `flight` block (in base or a block), or leave `trajectory` out"));
+        }
+    }
     let Some(rule) = unused.unused() else {
         return Ok(());
     };

@@ -17,9 +17,9 @@ pub struct OptimizeBlock {
     #[serde(default)]
     pub method: OptimizeMethod,
     /// The seed of `cma_es`'s random numbers (the same seed asks for the same candidates).
-    /// Default 1.
-    #[serde(default = "default_seed")]
-    pub seed: u64,
+    /// Default 1. Only with `method: cma_es` (Nelder–Mead draws no random numbers).
+    #[serde(default)]
+    pub seed: Option<u64>,
     /// Most candidates evaluated (1 to 100000). Default 300.
     #[serde(default = "default_max_evaluations")]
     pub max_evaluations: usize,
@@ -53,8 +53,14 @@ pub struct OptimizeBlock {
 fn default_max_evaluations() -> usize {
     300
 }
-fn default_seed() -> u64 {
-    1
+/// `cma_es`'s seed when the block sets none.
+pub const DEFAULT_SEED: u64 = 1;
+
+impl OptimizeBlock {
+    /// The seed of `cma_es`'s random numbers.
+    pub fn seed(&self) -> u64 {
+        self.seed.unwrap_or(DEFAULT_SEED)
+    }
 }
 fn default_tolerance() -> f64 {
     1e-6

@@ -204,7 +204,17 @@ pub fn dotted(path: &str) -> Vec<Seg> {
     if path.is_empty() {
         return Vec::new();
     }
-    path.split('.').map(|s| Seg::Key(s.to_string())).collect()
+    // `layers[2]` is the key `layers` and its element 2
+    let mut segs = Vec::new();
+    for part in path.split('.') {
+        let (key, index) = match part.strip_suffix(']').and_then(|p| p.split_once('[')) {
+            Some((k, i)) if i.parse::<usize>().is_ok() => (k, i.parse().ok()),
+            _ => (part, None),
+        };
+        segs.push(Seg::Key(key.to_string()));
+        segs.extend(index.map(Seg::Index));
+    }
+    segs
 }
 
 #[cfg(test)]

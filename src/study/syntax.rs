@@ -200,6 +200,14 @@ pub(super) fn validate_history(cx: &Ctx, f: &StudyFile) -> Result<(), StudyError
             format!(">= history.interval ({} s)", h.interval),
         );
     }
+    let longest = crate::model::collision::wave::MAX_TIME;
+    if h.interval * h.n_samples() as f64 > longest {
+        return bad(
+            "duration",
+            h.duration,
+            format!("at most {longest} s (the longest time a collision is simulated)"),
+        );
+    }
     if h.n_samples() > 10_000_000 {
         return bad(
             "duration",

@@ -67,6 +67,17 @@ fn a_bat(t: &Value) -> bool {
     !matches!(text(t, "bat.preset", "r161"), "wall" | "cylinder")
 }
 
+/// Whether the bat has a wall that can breathe: a shell, a bore, or a hollow preset.
+fn hollow(t: &Value) -> bool {
+    let set = |p: &str| get_path(t, p).is_some_and(|v| !v.is_null());
+    set("bat.shell")
+        || set("bat.bore")
+        || matches!(
+            text(t, "bat.preset", "r161"),
+            "aluminum" | "corked" | "alloy_bbcor" | "composite_bbcor"
+        )
+}
+
 /// A bat field the wall ignores.
 macro_rules! bat_field {
     ($field:literal) => {
@@ -160,8 +171,15 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         field: "hoop.patch_radius",
-        used_when: "with hoop.from_geometry: true",
-        uses: |t| get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true),
+        used_when: "with hoop.from_geometry: true on a hollow bat (a shell, a bore or a hollow preset)",
+        uses: |t| {
+            get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true) && hollow(t)
+        },
+    },
+    Rule {
+        field: "bat.shell.break_in",
+        used_when: "by the wave model (the rigid model sees a wall's mass, not its stiffness)",
+        uses: wave,
     },
     Rule {
         field: "bat.grip.stiffness",
@@ -191,6 +209,8 @@ pub const RULES: &[Rule] = &[
 pub struct Tally {
     set: Vec<bool>,
     used: Vec<bool>,
+    /// Whether any point flies its batted ball (a `flight` block).
+    pub flies: bool,
 }
 
 impl Tally {
@@ -198,11 +218,13 @@ impl Tally {
         Tally {
             set: vec![false; RULES.len()],
             used: vec![false; RULES.len()],
+            flies: false,
         }
     }
 
     /// Count one point's parameter tree (as written: base plus the blocks' values).
     pub fn add(&mut self, tree: &Value) {
+        self.flies |= get_path(tree, "flight").is_some_and(|v| !v.is_null());
         for (i, r) in RULES.iter().enumerate() {
             if get_path(tree, r.field).is_some_and(|v| !v.is_null()) {
                 self.set[i] = true;

@@ -397,6 +397,22 @@ pub const RANGES: &[Range] = &[
         get: |s| s.batter.as_ref().map(|b| b.bat_speed),
     },
     Range {
+        path: "batter.bat_speed_at",
+        min: 0.3,
+        max: 1.2,
+        unit: "m",
+        reason: "swing speeds are quoted at a point of the barrel, about 0.5-0.8 m from the knob (28 in is 0.71 m)",
+        get: |s| s.batter.as_ref().map(|b| b.bat_speed_at),
+    },
+    Range {
+        path: "batter.pivot",
+        min: 0.0,
+        max: 0.5,
+        unit: "m",
+        reason: "the swing turns about a point near the knob at contact (Nathan et al. 2011), well inside the handle",
+        get: |s| s.batter.as_ref().map(|b| b.pivot),
+    },
+    Range {
         path: "batter.reference_moi",
         min: 0.05,
         max: 1.0,
@@ -443,6 +459,59 @@ pub const RANGES: &[Range] = &[
         unit: "m/s",
         reason: "game winds rarely exceed 15 m/s; 30 is a gale",
         get: |s| s.flight.as_ref().map(|f| f.wind_speed),
+    },
+    Range {
+        path: "flight.humidity",
+        min: 0.0,
+        max: 1.0,
+        unit: "1",
+        reason: "relative humidity is a fraction, 0 dry to 1 saturated",
+        get: |s| s.flight.as_ref().map(|f| f.humidity),
+    },
+];
+
+/// Ranges of a batted ball's launch as `batstudy fly` and the Python package take it (the
+/// flight block's air is in [`RANGES`]); no collision spec holds these, so `get` is empty.
+pub const LAUNCH_RANGES: &[Range] = &[
+    Range {
+        path: "launch.exit_speed",
+        min: 0.0,
+        max: 60.0,
+        unit: "m/s",
+        reason: "the hardest-hit balls on record leave at about 54 m/s (122 mph)",
+        get: |_| None,
+    },
+    Range {
+        path: "launch.launch_angle",
+        min: -1.5707963267948966,
+        max: 1.5707963267948966,
+        unit: "rad",
+        reason: "a batted ball leaves between straight down and straight up (±90 degrees)",
+        get: |_| None,
+    },
+    Range {
+        path: "launch.spray_angle",
+        min: -1.5707963267948966,
+        max: 1.5707963267948966,
+        unit: "rad",
+        reason: "fair territory is ±45 degrees; ±90 degrees reaches the backstop's line",
+        get: |_| None,
+    },
+    Range {
+        path: "launch.spin",
+        min: -1000.0,
+        max: 1000.0,
+        unit: "rad/s",
+        reason: "batted balls spin up to about 6000 rpm (630 rad/s)",
+        get: |_| None,
+    },
+    Range {
+        path: "launch.height",
+        min: 0.0,
+        max: 2.5,
+        unit: "m",
+        reason: "balls are met between the ground and a batter's reach, about 0.3-1.5 m up",
+        get: |_| None,
     },
 ];
 
@@ -494,14 +563,86 @@ pub const PROFILE_RANGES: &[Range] = &[
     },
 ];
 
+/// Plausible layers of a wall (`bat.shell.layers`), in m: a ply from the thinnest prepregs
+/// (about 0.03 mm) up; each wall between gaps, and the stack, as thick as
+/// `bat.shell.thickness` allows; a gap between two walls of a double-wall barrel.
+pub const PLY_THICKNESS: (f64, f64) = (2.0e-5, 0.05);
+/// A gap's thickness in m: double-wall barrels leave well under a millimetre to a few.
+pub const GAP_THICKNESS: (f64, f64) = (1.0e-5, 0.01);
+/// A fibre's angle from the bat's axis, rad: ±90° covers every direction; a larger number
+/// is an angle in degrees.
+pub const FIBRE_ANGLE: f64 = std::f64::consts::FRAC_PI_2;
+
+/// The first implausible layer, wall or stack of `bat.shell.layers`.
+fn check_layers(spec: &CollisionSpec) -> Result<(), ModelError> {
+    let Some(layers) = spec.bat.shell.as_ref().and_then(|s| s.layers.as_ref()) else {
+        return Ok(());
+    };
+    let out = |path: String, value: f64, allowed: String| ModelError::OutOfRange {
+        path,
+        value,
+        allowed: format!("{allowed}; a what-if study beyond it sets `allow_implausible: true`"),
+    };
+    let wall = range_of("bat.shell.thickness").expect("the shell's range");
+    let mut walls = vec![0.0];
+    for (i, l) in layers.iter().enumerate() {
+        let gap = l.material == "gap";
+        let (lo, hi) = if gap { GAP_THICKNESS } else { PLY_THICKNESS };
+        if !(lo..=hi).contains(&l.thickness) {
+            let what = if gap {
+                "a gap between two walls"
+            } else {
+                "a ply or a metal layer"
+            };
+            return Err(out(
+                format!("bat.shell.layers[{i}].thickness"),
+                l.thickness,
+                format!("{lo} to {hi} m ({what})"),
+            ));
+        }
+        if l.angle.abs() > FIBRE_ANGLE {
+            let degrees = if l.angle.abs() <= 180.0 {
+                format!("; {} degrees is {:.4} rad", l.angle, l.angle.to_radians())
+            } else {
+                String::new()
+            };
+            return Err(out(
+                format!("bat.shell.layers[{i}].angle"),
+                l.angle,
+                format!("-{FIBRE_ANGLE:.4} to {FIBRE_ANGLE:.4} rad (±90 degrees from the axis){degrees}"),
+            ));
+        }
+        match gap {
+            true => walls.push(0.0),
+            false => *walls.last_mut().expect("one wall at least") += l.thickness,
+        }
+    }
+    let total: f64 = layers.iter().map(|l| l.thickness).sum();
+    let thinnest = walls.iter().copied().fold(f64::INFINITY, f64::min);
+    for (what, v) in [("each wall between gaps", thinnest), ("the stack", total)] {
+        if !(wall.min..=wall.max).contains(&v) {
+            return Err(out(
+                "bat.shell.layers".into(),
+                v,
+                format!("{what}: {} to {} m ({})", wall.min, wall.max, wall.reason),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The plausible range of a path, if it has one.
 pub fn range_of(path: &str) -> Option<&'static Range> {
-    RANGES.iter().chain(PROFILE_RANGES).find(|r| r.path == path)
+    RANGES
+        .iter()
+        .chain(PROFILE_RANGES)
+        .chain(LAUNCH_RANGES)
+        .find(|r| r.path == path)
 }
 
 /// The first value of `spec` outside its plausible range.
 pub fn check_plausible(spec: &CollisionSpec) -> Result<(), ModelError> {
-    for r in RANGES.iter().chain(PROFILE_RANGES) {
+    for r in RANGES.iter().chain(PROFILE_RANGES).chain(LAUNCH_RANGES) {
         if let Some(v) = (r.get)(spec) {
             if !(v >= r.min && v <= r.max) {
                 return Err(ModelError::OutOfRange {
@@ -515,7 +656,7 @@ pub fn check_plausible(spec: &CollisionSpec) -> Result<(), ModelError> {
             }
         }
     }
-    Ok(())
+    check_layers(spec)
 }
 
 /// The ranges as a JSON Schema fragment for the `base` block: nested `properties` with

@@ -22,7 +22,10 @@ pub enum StoreError {
     WrongStudy { path: PathBuf, what: String },
     #[error("{}: cannot merge: {what}", path.display())]
     CannotMerge { path: PathBuf, what: String },
-    #[error("{}: damaged journal: {what}", path.display())]
+    #[error(
+        "{}: damaged journal: {what}; what it holds cannot be resumed: --force starts the output over",
+        path.display()
+    )]
     BadJournal { path: PathBuf, what: String },
     #[error("{}: not a batstudy results file: {what}", path.display())]
     BadFile { path: PathBuf, what: String },

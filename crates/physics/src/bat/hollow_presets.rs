@@ -88,7 +88,8 @@ pub fn expand(bat: &BatSpec) -> BatSpec {
     out.length = out.length.or(Some(LENGTH));
     let mut shell = out.shell.unwrap_or_default();
     shell.from = shell.from.or(Some(0.0));
-    if shell.thickness.is_none() && shell.thickness_knots.is_none() {
+    // a wall the study describes (a thickness, knots or layers) replaces the preset's
+    if shell.thickness.is_none() && shell.thickness_knots.is_none() && shell.layers.is_none() {
         shell.thickness_knots = Some(if composite {
             composite_wall()
         } else {

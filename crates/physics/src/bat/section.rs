@@ -79,6 +79,7 @@ pub struct BatGeometry {
 impl BatGeometry {
     /// Apply the preset, then the spec's overrides, and check the result.
     pub fn resolve(bat: &BatSpec) -> Result<Self, ModelError> {
+        stack_at_thickest_knot(bat.shell.as_ref())?;
         let expanded = super::hollow_presets::expand(bat);
         let bat = &expanded;
         let profile = match &bat.profile {
@@ -448,6 +449,30 @@ fn shell_knots(spec: Option<&ShellSpec>) -> Result<Vec<[f64; 2]>, ModelError> {
     }
 }
 
+/// A study that gives both a wall's layers and its thickness knots gives the layers as the
+/// wall where it is thickest (elsewhere each scales), so that every layer's thickness means
+/// what it says. (A preset's own stack scales with whatever knots the study gives.)
+fn stack_at_thickest_knot(spec: Option<&ShellSpec>) -> Result<(), ModelError> {
+    let Some((knots, layers)) =
+        spec.and_then(|s| s.thickness_knots.as_ref().zip(s.layers.as_ref()))
+    else {
+        return Ok(());
+    };
+    let thickest = knots.iter().map(|p| p[1]).fold(0.0, f64::max);
+    let stack: f64 = layers.iter().map(|l| l.thickness).sum();
+    if (thickest - stack).abs() <= 1e-9 * thickest {
+        return Ok(());
+    }
+    Err(out_of_range(
+        "bat.shell.layers",
+        stack,
+        &format!(
+            "layers adding up to {thickest} m, the thickest of bat.shell.thickness_knots \
+             (the layers are the wall where it is thickest; elsewhere each scales)"
+        ),
+    ))
+}
+
 /// The hollow part: the study's shell (its missing fields from the preset's), else the
 /// preset's.
 fn shell_of(
@@ -488,6 +513,10 @@ fn shell_of(
     )))
 }
 
+/// The most layers a wall may have: real barrels have a few tens of plies; the cap bounds
+/// the work and memory a study file can ask for.
+pub const MAX_LAYERS: usize = 200;
+
 /// The wall's layers (materials looked up, thicknesses and angles checked, the break-in
 /// applied), if the shell lists them.
 fn laminate_of(spec: Option<&ShellSpec>) -> Result<Option<Laminate>, ModelError> {
@@ -500,8 +529,22 @@ fn laminate_of(spec: Option<&ShellSpec>) -> Result<Option<Laminate>, ModelError>
         ));
     }
     let Some(specs) = &s.layers else {
-        return Ok(None);
+        return match s.break_in {
+            0.0 => Ok(None),
+            b => Err(out_of_range(
+                "bat.shell.break_in",
+                b,
+                "0 for a wall without composite plies (break-in softens a polymer matrix)",
+            )),
+        };
     };
+    if specs.is_empty() || specs.len() > MAX_LAYERS {
+        return Err(out_of_range(
+            "bat.shell.layers",
+            specs.len() as f64,
+            &format!("1 to {MAX_LAYERS} layers"),
+        ));
+    }
     let mut layers = Vec::with_capacity(specs.len());
     for (i, l) in specs.iter().enumerate() {
         let path = format!("bat.shell.layers[{i}]");
@@ -513,11 +556,11 @@ fn laminate_of(spec: Option<&ShellSpec>) -> Result<Option<Laminate>, ModelError>
                 "(0, ∞) m",
             ));
         }
-        if !l.angle.is_finite() {
+        if !l.angle.is_finite() || (l.angle != 0.0 && !ply.is_some_and(|p| p.matrix)) {
             return Err(out_of_range(
                 &format!("{path}.angle"),
                 l.angle,
-                "a finite angle in rad",
+                "a finite angle in rad for a fibre ply; 0 (or unset) for a metal or a gap",
             ));
         }
         layers.push(Layer {
@@ -532,6 +575,13 @@ fn laminate_of(spec: Option<&ShellSpec>) -> Result<Option<Laminate>, ModelError>
             "bat.shell.layers",
             f64::NAN,
             "a stack that starts and ends with a material (a gap only between two walls)",
+        ));
+    }
+    if s.break_in != 0.0 && !layers.iter().any(|l| l.ply.is_some_and(|p| p.matrix)) {
+        return Err(out_of_range(
+            "bat.shell.break_in",
+            s.break_in,
+            "0 for a wall without composite plies (break-in softens a polymer matrix)",
         ));
     }
     Ok(Some(Laminate { layers }.broken_in(s.break_in)))

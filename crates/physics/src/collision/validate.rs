@@ -261,8 +261,8 @@ fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
     check(
         "batter.bat_speed_at",
         b.bat_speed_at,
-        b.bat_speed_at > b.pivot,
-        "a finite number > batter.pivot m (from the knob)",
+        b.bat_speed_at - b.pivot >= MIN_SWING_ARM,
+        &format!("at least {MIN_SWING_ARM} m beyond batter.pivot (the swing's rate is bat_speed over that distance)"),
     )?;
     check(
         "batter.reference_moi",
@@ -277,6 +277,10 @@ fn check_batter(spec: &CollisionSpec, wall: bool) -> Result<(), ModelError> {
         "[0, 1]",
     )
 }
+
+/// The shortest distance from the swing's pivot to where its speed is given, m: the rate
+/// `bat_speed / (bat_speed_at - pivot)` of a shorter arm is beyond any swing.
+pub const MIN_SWING_ARM: f64 = 0.05;
 
 /// The pitch block: a speed and two angles of a path that reaches the bat, with exactly
 /// one of it and `batter.pitch_speed` giving the pitch.
