@@ -10,6 +10,7 @@
 use super::common::{check_output_of, jobs_or_all, lock_output};
 use super::run::{run_settings, RunArgs, RunFailure, RunSettings};
 use super::{EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_POINTS_FAILED, EXIT_RUN_FAILED};
+use crate::optimize::at_design::study_at;
 use crate::optimize::pareto::{front, search_pareto};
 use crate::optimize::{design_of, Candidate, Design, Evaluation, Evaluator, Stop};
 use crate::store::optimize::{
@@ -18,7 +19,7 @@ use crate::store::optimize::{
 };
 use crate::study::optimize_block::OptimizeMethod;
 use crate::study::output::Existing;
-use crate::study::{self, LoadOptions, Study, StudyError, DEFAULT_MAX_POINTS};
+use crate::study::{Study, StudyError, DEFAULT_MAX_POINTS};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -296,35 +297,6 @@ fn optimum_path(output: &Path) -> PathBuf {
     let mut tmp = output.as_os_str().to_owned();
     tmp.push(".optimum.h5");
     PathBuf::from(tmp)
-}
-
-/// The study as a plain study at design `x`: its base with the design applied, without the
-/// `optimize` block and `output` (the results file's `study_yaml`).
-pub fn study_at(
-    study: &Study,
-    design: &Design,
-    x: &[f64],
-    max_points: usize,
-) -> Result<Study, StudyError> {
-    let mut root: yaml_serde::Value = yaml_serde::from_str(&study.text)
-        .map_err(|e| StudyError::new(&study.path, e.to_string()))?;
-    if let Some(m) = root.as_mapping_mut() {
-        let base = m
-            .get("base")
-            .cloned()
-            .filter(|b| b.is_mapping())
-            .unwrap_or_else(|| yaml_serde::Value::Mapping(Default::default()));
-        m.insert("base".into(), design.apply(x, &base));
-        m.remove("optimize");
-        m.remove("output");
-    }
-    let body =
-        yaml_serde::to_string(&root).map_err(|e| StudyError::new(&study.path, e.to_string()))?;
-    let text = format!(
-        "# `{}` at the best design `batstudy optimize` found\n{body}",
-        study.file.name
-    );
-    study::load_str(&text, &study.path, &LoadOptions { max_points })
 }
 
 fn row_of(c: &Candidate) -> CandidateRow {

@@ -840,5 +840,7 @@ fn check_start(study: &Study, design: &Design) -> Result<(), StudyError> {
             .allowed("start values (and fixed knots) that give a valid bat at every point"));
         }
     }
-    Ok(())
+    // and the whole study at the start, as the search's last run loads it
+    let max_points = study.plan.n_points().max(1);
+    super::at_design::study_at(study, design, &design.start(), max_points).map(|_| ())
 }

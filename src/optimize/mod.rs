@@ -10,6 +10,7 @@
 //! The record of the search (a journal while it runs, `/optimize` in the results file) is
 //! the store's (`store::optimize`); the command is `cli::optimize`.
 
+pub mod at_design;
 pub mod cmaes;
 pub mod design;
 pub mod evaluate;
