@@ -181,3 +181,32 @@ fn a_wall_given_twice_is_refused() {
         "{err}"
     );
 }
+
+/// The CSV never replaces the results file it was read from, nor another results file:
+/// `export-profile r.h5 -o r.h5` turned a finished file into 1.8 KB of text, exit 0.
+#[test]
+fn the_export_never_replaces_a_results_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "name: one\nbase: {}\ngrid:\n  impact.z: [0.7]\n";
+    let (_, out) = run_study(dir.path(), "one", text);
+    let (_, other) = run_study(dir.path(), "other", &text.replace("one", "other"));
+    let before = std::fs::read(&out).unwrap();
+    for target in [&out, &other] {
+        let o = common::batstudy_command(&[
+            "export-profile",
+            out.to_str().unwrap(),
+            "-o",
+            target.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("is an input of the same command") || err.contains("is an HDF5 file"),
+            "{err}"
+        );
+    }
+    assert_eq!(std::fs::read(&out).unwrap(), before);
+    batstudy::store::is_results_file(&other).unwrap();
+}

@@ -128,15 +128,23 @@ fn bad_input_names_the_flag() {
     ]);
     assert_eq!(code, Some(2));
     assert!(
-        err.contains("--exit-speed: 134.112") && err.contains("[0, 100] m/s"),
+        err.contains("--exit-speed")
+            && err.contains("`300mph` is 134.112 m/s (SI), outside the plausible 0 to 60 m/s"),
         "{err}"
     );
     let (_, err, code) = fly(&["--exit-speed=40", "--launch-angle=28degs"]);
     assert_eq!(code, Some(2));
-    assert!(err.contains("28degs") && err.contains("deg, rad"), "{err}");
+    assert!(
+        err.contains("28degs") && err.contains("(rad), or with one of deg"),
+        "{err}"
+    );
     let (_, err, code) = fly(&["--exit-speed=40", "--launch-angle=0.4", "--humidity=1.5"]);
     assert_eq!(code, Some(2));
-    assert!(err.contains("--humidity: 1.5"), "{err}");
+    assert!(
+        err.contains("--humidity")
+            && err.contains("`1.5` is 1.5 (SI), outside the plausible 0 to 1"),
+        "{err}"
+    );
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
 
@@ -159,4 +167,80 @@ fn a_planted_link_beside_the_trajectory_is_not_followed() {
     assert_eq!(code, Some(0), "{err}");
     assert_eq!(std::fs::read(&victim).unwrap(), b"keep me");
     assert!(std::fs::read_to_string(&csv).unwrap().contains("t_s,x_m"));
+}
+
+/// A bare number in the trade's unit where SI is expected (100 for 100 mph, 29.92 for
+/// 29.92 inHg, 5280 for a mile of elevation in feet) lies outside the plausible range of the
+/// same quantity in a study's `flight` block (model::plausible): refused, naming the suffix
+/// that says what was meant. Each flew before (29.92 Pa is near vacuum: 561 ft for 359).
+#[test]
+fn a_bare_number_in_the_trades_unit_is_refused_with_its_suffix() {
+    let base = ["--exit-speed=45", "--launch-angle=0.45", "--backspin=250"];
+    for (flag, bare, suffix) in [
+        ("--exit-speed", "100", "write `100mph`"),
+        ("--launch-angle", "28", "write `28deg`"),
+        ("--backspin", "2500", "write `2500rpm`"),
+        ("--pressure", "29.92", "write `29.92inHg`"),
+        ("--elevation", "5280", "write `5280ft`"),
+        ("--temperature", "70", "write `70F`"),
+        ("--height", "3", "write `3ft`"),
+        ("--humidity", "50", "write `50%`"),
+    ] {
+        let mut args: Vec<String> = base
+            .iter()
+            .filter(|a| !a.starts_with(&format!("{flag}=")))
+            .map(|a| a.to_string())
+            .collect();
+        args.push(format!("{flag}={bare}"));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (out, err, code) = fly(&args);
+        assert_eq!(code, Some(2), "{flag} {bare}: {out}{err}");
+        assert!(err.contains(flag) && err.contains(suffix), "{flag}: {err}");
+    }
+    // with their units the same numbers fly
+    let (_, err, code) = fly(&[
+        "--exit-speed=100mph",
+        "--launch-angle=28deg",
+        "--backspin=2500rpm",
+        "--pressure=29.92inHg",
+        "--elevation=5280ft",
+        "--temperature=70F",
+        "--height=3ft",
+        "--humidity=50%",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+}
+
+/// The trajectory never replaces what is not a regular file: a pipe or a symbolic link at
+/// its path is refused before anything flies (`/dev/null` as root was replaced by a file).
+#[test]
+fn the_trajectory_never_replaces_a_pipe_or_a_link() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("fifo");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    let victim = dir.path().join("victim.csv");
+    std::fs::write(&victim, b"keep me").unwrap();
+    let link = dir.path().join("link.csv");
+    std::os::unix::fs::symlink(&victim, &link).unwrap();
+    for path in [&fifo, &link] {
+        let (_, err, code) = fly(&[
+            "--exit-speed=45",
+            "--launch-angle=0.45",
+            "--trajectory",
+            path.to_str().unwrap(),
+        ]);
+        assert_eq!(code, Some(2), "{err}");
+        assert!(err.contains("is not a regular file"), "{err}");
+    }
+    let fifo_kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+    assert!(std::os::unix::fs::FileTypeExt::is_fifo(&fifo_kind));
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(std::fs::read(&victim).unwrap(), b"keep me");
 }

@@ -13,9 +13,7 @@ use crate::run::Simulator;
 use crate::run::Sink;
 use crate::run::StoreSink;
 use crate::store;
-use crate::study;
 use crate::study::output::Existing;
-use crate::study::LoadOptions;
 use crate::study::Study;
 use crate::study::StudyError;
 use crate::study::DEFAULT_MAX_POINTS;
@@ -69,12 +67,8 @@ pub struct RunSettings {
 impl RunSettings {
     /// Validate raw flags and the study; touches nothing.
     pub fn from_args(a: &RunArgs) -> Result<RunSettings, StudyError> {
-        let study = study::load(
-            &a.study,
-            &LoadOptions {
-                max_points: a.max_points,
-            },
-        )?;
+        // the optimize block too: a file `validate` refuses is refused here
+        let study = super::common::load_checked(&a.study, a.max_points)?;
         Self::from_study(study, a)
     }
 

@@ -248,7 +248,7 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
             "`optimize.tolerance` out of range".into(),
         )
         .field("optimize.tolerance")
-        .value(block.tolerance.to_string())
+        .value(crate::model::error::number_text(block.tolerance))
         .allowed(format!(
             "0 to {MAX_TOLERANCE} (a relative spread; default 1e-6)"
         )));

@@ -79,6 +79,70 @@ def test_a_file_without_savants_columns_is_refused_by_name(tmp_path):
         tracking.read(bad)
 
 
+def _with_column(text, column, edit):
+    """The CSV text with ``edit(value)`` applied to ``column`` of every row."""
+    import csv
+    import io
+
+    rows = list(csv.DictReader(io.StringIO(text)))
+    out = io.StringIO()
+    w = csv.DictWriter(out, fieldnames=list(rows[0]), lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        r[column] = edit(r[column])
+        w.writerow(r)
+    return out.getvalue()
+
+
+def test_a_device_or_a_huge_file_is_refused_before_it_is_read(tmp_path, monkeypatch):
+    # /dev/zero has no end and no newline: a reader without a bound grows until killed
+    with pytest.raises(ValueError, match="not a regular file"):
+        tracking.read("/dev/zero")
+    monkeypatch.setattr(tracking, "MAX_BYTES", 100)
+    with pytest.raises(ValueError, match="more than a season"):
+        tracking.read(DATA)
+
+
+def test_rows_that_are_not_pitches_raise_value_error_with_their_line(tmp_path):
+    bad = tmp_path / "bad.csv"
+    text = DATA.read_text()
+    # a pitch that never reaches the plate (vy0 = 0, ay = 0 divided by zero before)
+    bad.write_text(_with_column(_with_column(text, "vy0", lambda v: "0"), "ay", lambda v: "0"))
+    with pytest.raises(ValueError, match=r"bad.csv:2: vy0 0.0"):
+        tracking.read(bad)
+    # a short row: DictReader gives None for its missing columns (a TypeError before)
+    header, first = text.splitlines()[:2]
+    names, values = header.split(","), first.split(",")
+    keep = max(names.index("bat_speed"), names.index("stand")) + 1
+    short = [v if n in ("bat_speed", "stand") else "" for n, v in zip(names, values)][:keep]
+    bad.write_text(header + "\n" + ",".join(short) + "\n")
+    with pytest.raises(ValueError, match=r"bad.csv:2: "):
+        tracking.read(bad)
+
+
+def test_bat_speeds_in_metres_per_second_are_refused():
+    # Savant's column is mph; the same swings in m/s are 0.447 of it, a median near 32
+    ds = tracking.read(DATA)
+    assert 60 < float(np.median(ds.bat_speed)) / tracking.MPH < 80
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        bad = Path(d) / "ms.csv"
+        bad.write_text(_with_column(DATA.read_text(), "bat_speed",
+                                    lambda v: f"{float(v) * tracking.MPH:.2f}" if v else v))
+        with pytest.raises(ValueError, match="median bat_speed is 3[0-9].[0-9], where tracked"):
+            tracking.read(bad)
+
+
+def test_a_dataframe_reads_as_its_csv():
+    pd = pytest.importorskip("pandas")
+    frame = pd.read_csv(DATA, dtype={"stand": str, "type": str})
+    a, b = tracking.read(DATA), tracking.read(frame)
+    assert a.sizes == b.sizes
+    np.testing.assert_allclose(a.exit_speed.values, b.exit_speed.values, equal_nan=True)
+    assert b.attrs["source"] == "DataFrame"
+
+
 def test_the_figure_draws_both_populations():
     import matplotlib
     matplotlib.use("Agg")

@@ -85,7 +85,7 @@ impl ModelError {
                 path,
                 value,
                 allowed,
-            } => (path.clone(), value.to_string(), allowed.clone()),
+            } => (path.clone(), number_text(*value), allowed.clone()),
             ModelError::Missing { path, allowed } => {
                 (path.clone(), "missing".into(), allowed.clone())
             }
@@ -159,5 +159,16 @@ pub(crate) fn out_of_range(path: &str, value: f64, allowed: &str) -> ModelError 
         path: path.to_string(),
         value,
         allowed: allowed.to_string(),
+    }
+}
+
+/// A value as a reader takes it in: plain decimals from 1e-6 to 1e9, else with an exponent
+/// (1e-300 is not three hundred zeros).
+pub fn number_text(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && a.is_finite() && !(1e-6..1e9).contains(&a) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
     }
 }

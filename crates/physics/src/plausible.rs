@@ -600,7 +600,8 @@ fn check_layers(spec: &CollisionSpec) -> Result<(), ModelError> {
                 format!("{lo} to {hi} m ({what})"),
             ));
         }
-        if l.angle.abs() > FIBRE_ANGLE {
+        // 1e-4 rad of slack: π/2 written as 1.5708
+        if l.angle.abs() > FIBRE_ANGLE + 1e-4 {
             let degrees = if l.angle.abs() <= 180.0 {
                 format!("; {} degrees is {:.4} rad", l.angle, l.angle.to_radians())
             } else {
