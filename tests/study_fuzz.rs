@@ -98,6 +98,24 @@ const TOKENS: &[&str] = &[
     "{quantity: exit_speed, max: -100}",
     "{maximize: sweet_spot.exit_speed}",
     "objective: {minimize: bat.mass}",
+    // the newer blocks: layers, pitch, pareto, cma_es, a robust objective
+    "{material: gap, thickness: 1.0e-6}",
+    "{material: al6061, thickness: 1.0e-4}",
+    "{material: carbon_epoxy, thickness: 0.001, angle: 45}",
+    "{material: unobtainium, thickness: 0.001}",
+    "break_in: 0.99",
+    "thickness_knots: [[0, 0.002], [0.84, 0.006]]",
+    "pitch: {speed: 40, descent_angle: 1.6}",
+    "horizontal_angle: -3",
+    "bat_speed_at: 1.0e-300",
+    "pivot: 0.8",
+    "pareto: {minimize: approach_speed, points: 1000000}",
+    "method: cma_es",
+    "seed: 18446744073709551615",
+    "tolerance: 1.0e308",
+    "over: {quantile: 0}",
+    "fields: [trajectory]",
+    "duration: 0.05",
 ];
 
 fn mutate(text: &str, rng: &mut Rng) -> String {
@@ -168,6 +186,7 @@ fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
     if plan.n_points() > 64 || cost > 0.05 {
         return false;
     }
+    let implausible = study.file.allow_implausible;
     let args = RunArgs {
         study: study.path.clone(),
         output: Some(out.to_path_buf()),
@@ -188,6 +207,9 @@ fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
             let code = batstudy::cli::exit_code(&done.report);
             assert!(code == 0 || code == 1, "exit {code}");
             assert!(out.is_file(), "no output");
+            if !implausible {
+                physical_outcomes(out);
+            }
             for side in [".journal", ".partial", ".lock"] {
                 let p = format!("{}{side}", out.display());
                 assert!(!Path::new(&p).exists(), "{p} left beside a finished run");
@@ -201,8 +223,61 @@ fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
     true
 }
 
-/// A rigid design search and a sampled study, small enough that most mutants run.
-const SMALL_SEEDS: [(&str, &str); 2] = [
+/// Every point a finished run stores as computed is physical: its collision efficiency
+/// e_A = (e − r)/(1 + r), with 0 ≤ e ≤ 1 and r = m/M_eff ≥ 0, lies in (−1, 1) (a ball
+/// that passes through a bat of no mass gives −1: two 1-µm walls once gave −0.98).
+fn physical_outcomes(out: &Path) {
+    let back = batstudy::store::read_results(out).expect("a finished run reads back");
+    for r in &back.records {
+        if let Ok(o) = &r.result {
+            let e = o.collision_efficiency;
+            assert!(
+                !e.is_finite() || (-0.999..1.0).contains(&e),
+                "point {}: collision efficiency {e}",
+                r.index
+            );
+        }
+    }
+}
+
+/// A rigid design search and a sampled study, small enough that most mutants run; and the
+/// newer blocks: a layered double wall, an oblique pitch with a batter and its flight, a
+/// two-objective (pareto) search, CMA-ES, and a robust search over a sample.
+const SMALL_SEEDS: [(&str, &str); 7] = [
+    (
+        "layers.yaml",
+        "name: layers\nbase:\n  impact: {z: 0.7}\n  bat:\n    preset: aluminum\n    shell:\n      layers:\n\
+         \x20       - {material: al7050, thickness: 0.0015}\n        - {material: gap, thickness: 0.001}\n\
+         \x20       - {material: carbon_epoxy, thickness: 0.0008, angle: 0.5}\n        - {material: glass_epoxy, thickness: 0.0007, angle: 1.5}\n\
+         \x20     break_in: 0.1\ngrid:\n  bat.shell.from: [0.0, 0.5]\n",
+    ),
+    (
+        "pitch.yaml",
+        "name: pitch\nmodel: rigid\nbase:\n  impact: {z: 0.7, offset: 0.01}\n  ball: {preset: mlb}\n\
+         \x20 batter: {bat_speed: 31.3, reference_moi: 0.319, bat_speed_at: 0.7112, pivot: 0.0}\n\
+         \x20 pitch: {speed: 40.2, descent_angle: 0.107, horizontal_angle: 0.02}\n\
+         \x20 swing: {attack_angle: 0.15, attack_direction: 0.1, tilt: -0.5}\n\
+         \x20 flight: {temperature: 294, pressure: 101325, elevation: 1580, humidity: 0.5, wind_speed: 3}\n\
+         grid:\n  ball.spin: [0, 200]\n",
+    ),
+    (
+        "pareto.yaml",
+        "name: pareto\nmodel: rigid\nbase:\n  impact: {z: 0.6}\n  swing: {omega: -30}\noptimize:\n  max_evaluations: 20\n\
+         \x20 variables:\n    impact.z: {min: 0.40, max: 0.83}\n  objective: {maximize: exit_speed}\n\
+         \x20 pareto: {minimize: approach_speed, points: 3}\n",
+    ),
+    (
+        "cma_es.yaml",
+        "name: cma_es\nmodel: rigid\nbase:\n  impact: {z: 0.6}\n  swing: {omega: -30}\noptimize:\n  method: cma_es\n  seed: 3\n\
+         \x20 max_evaluations: 20\n  tolerance: 1.0e-6\n  variables:\n    impact.z: {min: 0.40, max: 0.83}\n\
+         \x20 objective: {maximize: exit_speed}\n",
+    ),
+    (
+        "robust.yaml",
+        "name: robust\nmodel: rigid\nbase:\n  impact: {z: 0.6}\n  swing: {omega: -30}\nsample:\n  n: 4\n  seed: 5\n  params:\n\
+         \x20   ball.law.cor: {uniform: {min: 0.45, max: 0.55}}\noptimize:\n  max_evaluations: 20\n\
+         \x20 variables:\n    impact.z: {min: 0.40, max: 0.83}\n  objective: {maximize: exit_speed, over: {quantile: 0.1}}\n",
+    ),
     (
         "search.yaml",
         "name: search\nmodel: rigid\nbase:\n  impact: {z: 0.6}\n  swing: {omega: -30}\ngrid:\n  ball.speed: [30, 40]\n\
@@ -379,4 +454,15 @@ fn fuzz_half(half: usize) -> [usize; 4] {
         }
     }
     [runs, refused, ran, searched]
+}
+
+/// The seeds themselves are valid studies (a seed refused as written fuzzes nothing of its
+/// block).
+#[test]
+fn every_small_seed_is_accepted() {
+    for (name, text) in SMALL_SEEDS {
+        let loaded = load_str(text, Path::new(name), &LoadOptions::default());
+        let study = loaded.unwrap_or_else(|e| panic!("{name}: {e}\n{text}"));
+        batstudy::optimize::design_of(&study).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
 }

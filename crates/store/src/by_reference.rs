@@ -76,10 +76,7 @@ pub struct Recovered {
 /// link, and only read.
 pub fn bring_back(journal: &Path, scan: &Scan, prev: &Path) -> Result<Recovered, StoreError> {
     let read_err = |e| StoreError::io(journal, "read the journal", e);
-    let mut r = BufReader::with_capacity(
-        1 << 20,
-        File::open(journal).map_err(|e| StoreError::io(journal, "open the journal", e))?,
-    );
+    let mut r = BufReader::with_capacity(1 << 20, super::journal::open_journal(journal)?);
     let mut header = vec![0u8; scan.header_len as usize];
     r.read_exact(&mut header).map_err(read_err)?;
     let prev = std::fs::OpenOptions::new()

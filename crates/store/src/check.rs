@@ -35,9 +35,24 @@ pub fn damaged(path: &Path, what: String) -> StoreError {
     }
 }
 
+/// Refuse anything but a regular file before it is opened: opening a pipe waits for a
+/// writer that may never come, and a device (`/dev/zero`) has no end to read to.
+pub fn regular_file(path: &Path) -> Result<(), StoreError> {
+    let meta =
+        std::fs::metadata(path).map_err(|e| StoreError::io(path, "open the results file", e))?;
+    if meta.is_file() {
+        return Ok(());
+    }
+    Err(StoreError::BadFile {
+        path: path.to_path_buf(),
+        what: "not a regular file (a folder, a device or a pipe)".into(),
+    })
+}
+
 /// Refuse `path` if it is not HDF5, is shorter than its superblock says, or holds a global
 /// heap collection HDF5 could not read to its end. Reads the file once.
 pub fn check_structure(path: &Path) -> Result<(), StoreError> {
+    regular_file(path)?;
     let mut f = File::open(path).map_err(|e| StoreError::io(path, "open the results file", e))?;
     let size = f
         .metadata()

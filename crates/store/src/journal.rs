@@ -171,8 +171,7 @@ pub fn ends_in_header(path: &Path) -> Result<bool, StoreError> {
     let io = |e| StoreError::io(path, "read the journal", e);
     let len = std::fs::metadata(path).map_err(io)?.len();
     let mut head = Vec::new();
-    File::open(path)
-        .map_err(io)?
+    open_journal(path)?
         .take(12)
         .read_to_end(&mut head)
         .map_err(io)?;
@@ -187,16 +186,29 @@ pub fn ends_in_header(path: &Path) -> Result<bool, StoreError> {
     Ok(n <= 1 << 24 && len < 12 + n + 4)
 }
 
+/// A journal opened for reading, once it is known to be a regular file: a pipe planted at
+/// its path would block the open until a writer came, a device never end.
+pub fn open_journal(path: &Path) -> Result<File, StoreError> {
+    let meta = std::fs::metadata(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+    if !meta.is_file() {
+        return Err(StoreError::BadJournal {
+            path: path.to_path_buf(),
+            what: "not a regular file (a folder, a device or a pipe)".into(),
+        });
+    }
+    File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))
+}
+
 /// A journal's header alone (what a resume checks before it touches anything).
 pub fn header(path: &Path) -> Result<JournalHeader, StoreError> {
-    let file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+    let file = open_journal(path)?;
     read_header(&mut BufReader::new(file), path).map(|(h, _)| h)
 }
 
 /// Read a journal's header and check every record, handing each valid one to `visit` in file
 /// order. Memory: one record (the payloads are checksummed, not kept).
 pub fn scan(path: &Path, mut visit: impl FnMut(RecordMeta)) -> Result<Scan, StoreError> {
-    let file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+    let file = open_journal(path)?;
     let file_len = file
         .metadata()
         .map_err(|e| StoreError::io(path, "stat the journal", e))?
@@ -289,7 +301,7 @@ impl RecordReader {
     /// than the summaries of records with histories, which are skipped over by seeking
     /// (a large buffer would read them anyway).
     pub fn open_with_buffer(path: &Path, scan: &Scan, capacity: usize) -> Result<Self, StoreError> {
-        let mut file = File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
+        let mut file = open_journal(path)?;
         file.seek(SeekFrom::Start(scan.header_len))
             .map_err(|e| StoreError::io(path, "read the journal", e))?;
         Ok(RecordReader {

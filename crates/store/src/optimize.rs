@@ -109,8 +109,7 @@ impl OptimizeJournal {
         shape: (usize, usize),
     ) -> Result<(Self, Vec<CandidateRow>), StoreError> {
         let path = journal_path(output);
-        let io = |e| StoreError::io(&path, "read the search's journal", e);
-        let f = std::fs::File::open(&path).map_err(io)?;
+        let f = super::journal::open_journal(&path)?;
         let mut lines = std::io::BufReader::new(f).lines();
         let head: serde_json::Value = lines
             .next()

@@ -67,6 +67,7 @@ pub(super) fn shown(v: &VarLenUnicode) -> String {
 /// root attribute `layout_version`): what `--force` may replace. Files from older versions
 /// of batstudy are results files too.
 pub fn is_results_file(path: &Path) -> Result<(), StoreError> {
+    super::check::regular_file(path)?;
     let f = hdf5::File::open(path).map_err(|e| bad(path, format!("HDF5 cannot open it ({e})")))?;
     f.attr("layout_version")
         .and_then(|a| a.read_scalar::<i64>())
