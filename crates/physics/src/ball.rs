@@ -80,15 +80,94 @@ pub const MLB_ALPHA: f64 = 1.84;
 /// cylinder test's balls weighed 145.2 ± 1.0 g).
 pub const MLB_MASS: f64 = 0.145;
 
-/// The `mlb` ball's COR curve e(v) = e₀ − (e₀ − e_spec) (v / v_spec)^q through its three
-/// anchors (Cross's 1 m/s, the specification's 25.9 m/s, the cylinder's 53.6 m/s): (e₀, q).
+/// The radius of the cylinder the 36 balls were fired at, m. Not stated in anything this
+/// project could read (data/mlb_balls_cylinder_2014_2016.md; WSU calls the surface
+/// "intended to approximate the bat"): taken as 3.0 cm, the middle of barrel radii
+/// (2 1/4-in softball barrels 2.86 cm, 2 5/8-in BBCOR barrels 3.33 cm), with 2.5–3.5 cm as
+/// its uncertainty (docs/physics.md, "The calibrated ball").
+pub const TEST_CYLINDER_RADIUS: f64 = 0.030;
+/// The range [`TEST_CYLINDER_RADIUS`]'s uncertainty spans, m.
+pub const TEST_CYLINDER_RADIUS_RANGE: (f64, f64) = (0.025, 0.035);
+
+/// Hertz's factor on a loading's stiffness for a target whose surface has radius
+/// `target_radius` across the ball's path (`None`: a flat wall), against a flat wall at the
+/// same compression: √(R_e / R_b), where R_e = √(R′ R″) is the effective radius of a sphere
+/// (R_b) on a cylinder (R) with crossed axes, 1/R′ = 1/R_b + 1/R and R″ = R_b (Johnson,
+/// "Contact Mechanics", §4.2): (R / (R_b + R))^(1/4).
+pub fn curvature_factor(ball_radius: f64, target_radius: Option<f64>) -> f64 {
+    match target_radius {
+        Some(r) if r > 0.0 && r.is_finite() => (r / (ball_radius + r)).powf(0.25),
+        _ => 1.0,
+    }
+}
+
+/// The law a ball meets a target with, and the speed its COR curve is read at: for a law
+/// that sees curvature (`ball.law.curvature`), the loading scaled by [`curvature_factor`] g
+/// and the flat-wall speed of the same peak contact strain. On a rigid target the loading's
+/// work at the largest compression is the ball's energy, s_max ∝ (v² / (k g))^(1/(α+1)),
+/// and Hertz's mean strain is √(s_max / R_e) with R_e = R_b g²: equal strains need
+/// v_flat = v g^(−(α + 1.5)). Any other law unchanged, at `v`.
+pub fn on_target(
+    law: &BallLaw,
+    v: f64,
+    ball_radius: f64,
+    target_radius: Option<f64>,
+) -> (BallLaw, f64) {
+    if law.kind != BallLawKind::SpeedDependent || law.curvature != Some(true) {
+        return (law.clone(), v);
+    }
+    let g = curvature_factor(ball_radius, target_radius);
+    let alpha = match law.loading.unwrap_or_default() {
+        Loading::Power => law.alpha,
+        Loading::Linear => 1.0,
+    };
+    let mut on = law.clone();
+    on.k1 *= g;
+    on.stiffness *= g;
+    (on, v * g.powf(-(alpha + 1.5)))
+}
+
+/// The COR a ball meeting a target of radius `target_radius` at normal speed `v` returns
+/// with ([`on_target`], then [`cor_at_speed`]): the rigid model's e.
+pub fn cor_on_target(law: &BallLaw, v: f64, ball_radius: f64, target_radius: Option<f64>) -> f64 {
+    let (on, v) = on_target(law, v, ball_radius, target_radius);
+    cor_at_speed(&on, v)
+}
+
+/// The contact law of a ball (`law`, its radius `ball_radius`) that meets a target of
+/// surface radius `target_radius` (`None`: flat) at normal speed `v` ([`on_target`]).
+pub fn contact_law_on(
+    law: &BallLaw,
+    v: f64,
+    ball_radius: f64,
+    target_radius: Option<f64>,
+) -> ContactLaw {
+    let (on, v) = on_target(law, v, ball_radius, target_radius);
+    ContactLaw::new(&on, v)
+}
+
+/// The cylinder anchor's flat-wall speed for the `mlb` ball (the 53.6-m/s test on a
+/// cylinder of radius `cylinder_radius` strains the ball as a flat wall at this speed).
+fn cylinder_anchor_speed(cylinder_radius: f64) -> f64 {
+    let g = curvature_factor(DEFAULT_BALL_RADIUS, Some(cylinder_radius));
+    CYLINDER_SPEED * g.powf(-(MLB_ALPHA + 1.5))
+}
+
+/// The `mlb` ball's COR curve e(v) = e₀ − (e₀ − e_spec) (v / v_spec)^q on a flat wall
+/// through its three anchors (Cross's 1 m/s and the specification's 25.9 m/s, both flat;
+/// the cylinder's 53.6 m/s at its flat-wall speed of equal strain, [`on_target`]): (e₀, q).
 /// Three anchors, three parameters: the curve meets each exactly.
 pub fn mlb_cor_curve() -> (f64, f64) {
     static CURVE: std::sync::OnceLock<(f64, f64)> = std::sync::OnceLock::new();
-    *CURVE.get_or_init(|| {
+    *CURVE.get_or_init(|| cor_curve_through(TEST_CYLINDER_RADIUS))
+}
+
+/// [`mlb_cor_curve`] for a test cylinder of radius `cylinder_radius` (its uncertainty).
+pub fn cor_curve_through(cylinder_radius: f64) -> (f64, f64) {
+    {
         let (low, high) = (
             CROSS_LOW_SPEED / MLB_SPEC_SPEED,
-            CYLINDER_SPEED / MLB_SPEC_SPEED,
+            cylinder_anchor_speed(cylinder_radius) / MLB_SPEC_SPEED,
         );
         // e₀ − e_spec as each outer anchor asks it at power q; they agree at the answer
         let from_low = |q: f64| (CROSS_LOW_SPEED_COR - MLB_SPEC_COR) / (1.0 - low.powf(q));
@@ -105,7 +184,7 @@ pub fn mlb_cor_curve() -> (f64, f64) {
         }
         let q = 0.5 * (a + b);
         (MLB_SPEC_COR + from_high(q), q)
-    })
+    }
 }
 
 /// The `mlb` ball's k₁ (N/m^α): a power-law loading F = k₁ s^α that gives the cylinder
@@ -113,10 +192,14 @@ pub fn mlb_cor_curve() -> (f64, f64) {
 /// largest compression, where the loading work is the ball's kinetic energy, so
 /// (F_peak / v)² / m = DS solves in closed form: k₁ = (DS m v²)^((α+1)/2) / C^α with
 /// C = (α + 1) m v² / 2.
+///
+/// That is the k₁ the ball shows on the test cylinder; the law keeps a flat wall's, the
+/// cylinder's over its [`curvature_factor`].
 pub fn mlb_k1() -> f64 {
     let (m, v, a) = (MLB_MASS, CYLINDER_SPEED, MLB_ALPHA);
     let c = (a + 1.0) * m * v * v / 2.0;
-    (CYLINDER_DYNAMIC_STIFFNESS * m * v * v).powf((a + 1.0) / 2.0) / c.powf(a)
+    let on_cylinder = (CYLINDER_DYNAMIC_STIFFNESS * m * v * v).powf((a + 1.0) / 2.0) / c.powf(a);
+    on_cylinder / curvature_factor(DEFAULT_BALL_RADIUS, Some(TEST_CYLINDER_RADIUS))
 }
 
 /// The ball's radius, m: a 9.125-in circumference, the middle of the rule book's 9–9.25 in
@@ -145,6 +228,7 @@ pub fn preset_law(preset: BallPreset) -> BallLaw {
                 loading: Some(Loading::Power),
                 k1: mlb_k1(),
                 alpha: MLB_ALPHA,
+                curvature: Some(true),
                 ..BallLaw::default()
             }
         }

@@ -4,7 +4,7 @@
 //! It has no time scale of its own: contact time, peak force and compression are NaN, the
 //! hoop mode is ignored, and the energy lost counts as lost in the ball.
 
-use crate::ball::cor_at_speed;
+use crate::ball::cor_on_target;
 use crate::bat::motion::grip_recoil_speed;
 use crate::bat::PreparedBat;
 use crate::collision::oblique::{rigid_oblique, Oblique, RigidOblique};
@@ -17,7 +17,12 @@ use crate::spec::CollisionSpec;
 /// Brody's model against an immovable wall: the ball comes back at e(v)·v.
 pub(super) fn rigid_wall(spec: &CollisionSpec) -> Outcome {
     let (m, v) = (spec.ball.mass, spec.ball.speed);
-    let e = cor_at_speed(&spec.ball.law, v);
+    let e = cor_on_target(
+        &spec.ball.law,
+        v,
+        spec.ball_radius(),
+        spec.rigid_target_radius(),
+    );
     Outcome {
         exit_speed: e * v,
         exit_speed_lab: e * v,
@@ -74,9 +79,11 @@ fn rigid_head_on(spec: &CollisionSpec, bat: &PreparedBat) -> Outcome {
         lever_arm,
         spec.swing.omega,
         // The COR at the relative normal speed of ball and bat surface at the impact point.
-        cor_at_speed(
+        cor_on_target(
             &spec.ball.law,
             spec.ball.speed - spec.swing.omega * lever_arm,
+            spec.ball_radius(),
+            Some(bat.geometry().outer_radius(spec.impact.z)),
         ),
     );
     Outcome {
@@ -144,7 +151,12 @@ fn rigid_oblique_outcome(spec: &CollisionSpec, bat: &PreparedBat, o: &Oblique) -
     let bat_speed = omega * lever_arm;
     let approach = v - bat_speed;
     let effective = free_effective_mass(p.mass, p.z_cm, p.moment_of_inertia, lever_arm + p.z_cm);
-    let cor = cor_at_speed(&spec.ball.law, o.normal_speed(approach));
+    let cor = cor_on_target(
+        &spec.ball.law,
+        o.normal_speed(approach),
+        spec.ball_radius(),
+        Some(bat.geometry().outer_radius(spec.impact.z)),
+    );
     let r = rigid_oblique(o, m, effective, (v, bat_speed), cor);
     let ball_exit = BallExit {
         along: r.velocity.0,

@@ -92,6 +92,14 @@ pub struct BallLaw {
     /// `speed_dependent`: the power of that curve (> 0). Default none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cor_power: Option<f64>,
+    /// `speed_dependent`: whether the law sees the curvature of what the ball meets (the
+    /// `mlb` ball does). Then `k1` (or `stiffness`) is a flat wall's, scaled on a target of
+    /// radius R across the ball's path (a cylinder, a bat's barrel) by Hertz's
+    /// (R / (R_b + R))^(1/4), and the COR curve is read at the flat-wall speed that strains
+    /// the ball as much (the peak contact strain √(s_max / R_e) of a rigid target):
+    /// v (R / (R_b + R))^(−(α + 1.5)/4). Default false (one law for every target).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature: Option<bool>,
     /// `speed_dependent`: a shift added to the COR at every speed: one ball (or lot) livelier
     /// or deader than the curve's, the whole curve moved in parallel. Default 0. The `mlb`
     /// ball's measured ball-to-ball SD is `ball::MLB_COR_SD` (0.005).
@@ -124,6 +132,7 @@ impl Default for BallLaw {
             cor_at_rest: None,
             cor_power: None,
             cor_shift: None,
+            curvature: None,
             friction: None,
             tangential_ratio: None,
         }

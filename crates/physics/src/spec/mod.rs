@@ -85,6 +85,19 @@ impl CollisionSpec {
             pitch: None,
         }
     }
+
+    /// The ball's radius, m (`ball.radius`, else the rule book's middle).
+    pub fn ball_radius(&self) -> f64 {
+        self.ball.radius.unwrap_or(crate::ball::DEFAULT_BALL_RADIUS)
+    }
+
+    /// The surface radius of a rigid target across the ball's path: the cylinder's; `None`
+    /// for the flat wall (and for a bat, whose radius is its profile's at the impact).
+    pub fn rigid_target_radius(&self) -> Option<f64> {
+        (self.bat.preset == BatPreset::Cylinder)
+            .then_some(self.bat.radius)
+            .flatten()
+    }
 }
 
 /// Built-in bats.
@@ -458,6 +471,7 @@ struct BallLawFields {
     cor_at_rest: Option<f64>,
     cor_power: Option<f64>,
     cor_shift: Option<f64>,
+    curvature: Option<bool>,
     friction: Option<f64>,
     tangential_ratio: Option<f64>,
 }
@@ -486,6 +500,7 @@ impl BallLawFields {
                 .cor_power
                 .filter(|_| self.cor_slope.is_none() && self.cor_exponent.is_none())),
             cor_shift: self.cor_shift.or(base.cor_shift),
+            curvature: self.curvature.or(base.curvature),
             friction: self.friction.or(base.friction),
             tangential_ratio: self.tangential_ratio.or(base.tangential_ratio),
         }

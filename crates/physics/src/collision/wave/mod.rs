@@ -230,9 +230,11 @@ fn collision_of(
         .grip_z
         .map_or(0.0, |zg| spec.swing.omega * (zg - bat.z_cm));
     // a speed-dependent ball takes its COR at the normal speed it meets the bat with
-    let law = ContactLaw::new(
+    let law = crate::ball::contact_law_on(
         &spec.ball.law,
         oblique.map_or(approach, |o| o.normal_speed(approach)),
+        spec.ball_radius(),
+        Some(bat.geometry().outer_radius(spec.impact.z)),
     );
     Ok(Collision {
         law,

@@ -34,7 +34,12 @@ pub(super) fn contact_omega(
 /// resolution limit well inside its stability limit (see `MODAL_MAX_STEP_FRACTION`).
 pub fn stability_limit(spec: &CollisionSpec, bat: &PreparedBat) -> f64 {
     let approach = approach_speed(spec, bat);
-    let law = ContactLaw::new(&spec.ball.law, approach.abs());
+    let law = crate::ball::contact_law_on(
+        &spec.ball.law,
+        approach.abs(),
+        spec.ball_radius(),
+        Some(bat.geometry().outer_radius(spec.impact.z)),
+    );
     let hoop = resolve_hoop(spec).ok().flatten();
     let wc = contact_omega(spec, hoop, &law, approach.abs());
     match spec.numerics.integrator {

@@ -21,7 +21,12 @@ pub fn simulate_wall(
     history: Option<&HistoryRequest>,
 ) -> Result<(Outcome, Diagnostics), ModelError> {
     let (m, v0) = (spec.ball.mass, spec.ball.speed);
-    let law = ContactLaw::new(&spec.ball.law, v0);
+    let law = crate::ball::contact_law_on(
+        &spec.ball.law,
+        v0,
+        spec.ball_radius(),
+        spec.rigid_target_radius(),
+    );
     let h = wall_step(spec, &law)?;
     let budget = super::checked_step_budget(spec, h, "numerics.max_steps")?;
     let h2_over_6m = h * h / (6.0 * m);
