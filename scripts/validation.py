@@ -141,13 +141,6 @@ def wall_cor(f: Files, speed: float, law: int = 1) -> float:
     return float(w.exit_speed / w.approach_speed)
 
 
-def power_between_anchors(speed: float) -> float:
-    """The COR at `speed` of e ∝ v^−γ through the rule book's 0.546 at 25.9 m/s and the
-    cylinder balls' 0.492 at 53.6 m/s: the curve's shape between them, another way."""
-    gamma = math.log(0.546 / 0.492) / math.log(CYLINDER_SPEED / 25.9)
-    return 0.546 * (speed / 25.9) ** -gamma
-
-
 # The calibrated ball's anchors (speed m/s, COR, standard uncertainty, why that uncertainty):
 # docs/physics.md, "The calibrated ball". A test's band carries what they leave open.
 ANCHORS = (
@@ -158,10 +151,29 @@ ANCHORS = (
 )
 
 
-def anchor_curve(e1: float, e25: float, e53: float) -> Callable[[float], float]:
-    """The calibrated ball's COR curve e(v) = e₀ − (e₀ − e₂₅)(v / 25.9)^q through three anchors (the
-    form batstudy's `ball.preset: mlb` takes), to carry the anchors' uncertainty to other speeds."""
-    lo, hi = 1.0 / 25.9, 53.6448 / 25.9
+# The ball's radius (a 9.125-in circumference), the test cylinder's (unknown: 3.0 cm, taken as
+# uniform over 2.5–3.5 cm) and a wood barrel's (the R161's 2.57-in diameter, 3.27 cm), m; the
+# loading's exponent. docs/physics.md, "The calibrated ball".
+BALL_RADIUS = 9.125 * 0.0254 / (2 * math.pi)
+TEST_CYLINDER = (0.030, 0.010 / math.sqrt(12))
+BARREL_RADIUS = 0.0327
+ALPHA = 1.84
+
+
+def flat_speed(speed: float, radius: float | None) -> float:
+    """The flat-wall speed that strains the ball as `speed` on a surface of `radius` does
+    (batstudy's `ball::on_target`: v g^−(α+1.5), g = (R/(R_b+R))^(1/4))."""
+    if radius is None:
+        return speed
+    g = (radius / (BALL_RADIUS + radius)) ** 0.25
+    return speed * g ** -(ALPHA + 1.5)
+
+
+def anchor_curve(e1: float, e25: float, e53: float, cylinder: float = TEST_CYLINDER[0]) -> Callable[[float], float]:
+    """The calibrated ball's COR curve on a flat wall, e(v) = e₀ − (e₀ − e₂₅)(v / 25.9)^q, through
+    three anchors, the cylinder's at its flat-wall speed of equal strain (the form batstudy's
+    `ball.preset: mlb` takes), to carry the anchors' uncertainty to other speeds."""
+    lo, hi = 1.0 / 25.9, flat_speed(53.6448, cylinder) / 25.9
     gap = lambda q: (e1 - e25) / (1 - lo**q) - (e25 - e53) / (hi**q - 1)  # noqa: E731
     a, b = 0.01, 4.0
     for _ in range(100):
@@ -174,10 +186,11 @@ def anchor_curve(e1: float, e25: float, e53: float) -> Callable[[float], float]:
 
 def calibration_sd(quantity: Callable[[Callable[[float], float]], float]) -> float:
     """The standard uncertainty a quantity of the ball's COR curve inherits from the anchors
-    (each moved by its standard uncertainty, the effects added in quadrature)."""
+    and the test cylinder's unknown radius (each moved by its standard uncertainty, the
+    effects added in quadrature)."""
     base = [a[1] for a in ANCHORS]
     at_base = quantity(anchor_curve(*base))
-    total = 0.0
+    total = (quantity(anchor_curve(*base, cylinder=sum(TEST_CYLINDER))) - at_base) ** 2
     for i, (_, _, sd, _) in enumerate(ANCHORS):
         moved = list(base)
         moved[i] += sd
@@ -185,9 +198,16 @@ def calibration_sd(quantity: Callable[[Callable[[float], float]], float]) -> flo
     return math.sqrt(total)
 
 
-def cor_sd_at(speed: float) -> float:
-    """The calibrated ball's COR uncertainty at `speed`, m/s."""
-    return calibration_sd(lambda e: e(speed))
+def barrel_cor(speed: float) -> float:
+    """The calibrated ball's COR on a wood barrel at normal speed `speed` (its curve at the
+    flat-wall speed of equal strain)."""
+    return anchor_curve(*[a[1] for a in ANCHORS])(flat_speed(speed, BARREL_RADIUS))
+
+
+def cor_sd_at(speed: float, radius: float | None = BARREL_RADIUS) -> float:
+    """The calibrated ball's COR uncertainty at `speed`, m/s, on a surface of `radius` (a wood
+    barrel's by default; None: a flat wall)."""
+    return calibration_sd(lambda e: e(flat_speed(speed, radius)))
 
 
 def bbcor_per_cor(f: Files, speed: float) -> float:
@@ -344,10 +364,18 @@ def spin_per_degree(f: Files) -> float:
     return float(x @ y / (x @ x))
 
 
+def r_of(f: Files, bat: str) -> float:
+    """r = m/M_e of a bat at its best point at the e_A test's speed, from the run's own e_A and
+    ball–bat COR (e_A = (e − r)/(1 + r))."""
+    row = best(cert(f), bat, CORK_TEST_SPEED, "collision_efficiency")
+    e, ea = best_bbcor(f, bat), float(row.collision_efficiency)
+    return (e - ea) / (1 + ea)
+
+
 def cor_needed(f: Files, bat: str, speed: float, target: float) -> float:
     """The ball COR at `speed` that would give e_A = target on this bat: e_A = (e − r)/(1 + r)
     with r read from the run's own e_A and COR (rigid-body relation, BPF ≈ 1 for wood)."""
-    e = wall_cor(f, speed)
+    e = barrel_cor(speed)
     ea = float(best(cert(f), bat, speed, "collision_efficiency").collision_efficiency)
     r = (e - ea) / (1 + ea)
     return target * (1 + r) + r
@@ -528,8 +556,8 @@ PREDICTION = [
         lambda f: float(best(cert(f), "wood", BBCOR_SPEED).bbcor), fmt(3), None, diff(0.50), True, counted=True,
         bounds=lambda f: (0.47 - 2 * ncaa_cal(f), 0.50 + 2 * ncaa_cal(f)),
         reason=lambda f: (
-            f"a wood bat's BBCOR at its best point is the ball's COR at {BBCOR_SPEED} m/s (calibrated ball: "
-            f"{wall_cor(f, BBCOR_SPEED):.3f}); a ball one ball-to-ball SD less lively gives "
+            f"a wood bat's BBCOR at its best point is the ball's COR at {BBCOR_SPEED} m/s (calibrated ball on a "
+            f"wood barrel: {barrel_cor(BBCOR_SPEED):.3f}); a ball one ball-to-ball SD less lively gives "
             f"{float(best(cert(f), 'cor_low', BBCOR_SPEED).bbcor):.3f}: the NCAA's balls are not known here"),
         band=lambda f: (f"{0.47 - 2 * ncaa_cal(f):.3f}–{0.50 + 2 * ncaa_cal(f):.3f}: 'just under' read as 0.47–0.50 "
                         f"(a judgement: the memo gives no number), widened by 2 × the calibration's "
@@ -540,8 +568,12 @@ PREDICTION = [
         fmt(3), within(0.204, 0.224), diff(0.214), False,
         reason=lambda f: (
             f"the ball: e_A 0.214 needs a ball COR of {cor_needed(f, 'test_bat', CORK_TEST_SPEED, 0.214):.3f} at "
-            f"{CORK_TEST_SPEED} m/s, where the calibrated ball has {wall_cor(f, CORK_TEST_SPEED):.3f}; the "
-            f"test bat's profile and MOI are not known"),
+            f"{CORK_TEST_SPEED} m/s on a wood barrel, where the calibrated ball has {barrel_cor(CORK_TEST_SPEED):.3f} "
+            f"(± {cor_sd_at(CORK_TEST_SPEED):.3f}, its calibration). Not the ball alone: with the ball–bat COR "
+            f"measured on the same kind of bat (RW01, 0.4898), e_A 0.214 needs r = m/M_e = "
+            f"{(0.4898 - 0.214) / 1.214:.3f} where the model's bat has {r_of(f, 'test_bat'):.3f}: a bat "
+            f"{1 - r_of(f, 'test_bat') / ((0.4898 - 0.214) / 1.214):.0%} lighter in effective mass at its best "
+            f"point; the test bat's profile and MOI are not known"),
         band="±0.010 (stated tolerance)"),
     Row("prediction", "e_A, drilled and corked minus solid", f"the same bat {DRILLED}, {CORK_TEST_SPEED} m/s",
         "0.193 − 0.214 = −0.021", CORK_2ND,
@@ -590,10 +622,9 @@ PREDICTION = [
         bounds=lambda f: (0.4898 - 2 * rw01_sd(f), 0.4898 + 2 * rw01_sd(f)),
         reason=lambda f: (
             f"the ball: a wood bat's BBCOR at its best point is about the ball's COR at {CORK_TEST_SPEED} m/s "
-            f"(calibrated ball: {wall_cor(f, CORK_TEST_SPEED):.3f}, on its curve between the anchors at 25.9 m/s "
-            f"and 53.6 m/s, where the 2014–16 balls had {wall_cor(f, CYLINDER_SPEED, 2):.3f}); a power law through "
-            f"those two anchors gives {power_between_anchors(CORK_TEST_SPEED):.3f} there, and the lots of 2014–16 "
-            f"differ by up to 0.006: the test's balls (of 2003) are not known here"),
+            f"(calibrated ball on a wood barrel: {barrel_cor(CORK_TEST_SPEED):.3f}, on a flat wall "
+            f"{wall_cor(f, CORK_TEST_SPEED):.3f}: a barrel strains it about as the test cylinder does, where the "
+            f"2014–16 balls had {wall_cor(f, CYLINDER_SPEED, 2):.3f} at 53.6 m/s), and the lots of 2014–16 differ by up to 0.006: the test's balls (of 2003) are not known here"),
         band=lambda f: (f"±{2 * rw01_sd(f):.4f}: 2 × (the s.d. of the mean 0.0021 ⊕ the calibration's "
                         f"{bbcor_per_cor(f, CORK_TEST_SPEED) * cor_sd_at(CORK_TEST_SPEED):.4f}, the ball's COR at "
                         f"{CORK_TEST_SPEED} m/s)")),
@@ -605,7 +636,7 @@ PREDICTION = [
         sigmas(*cork_difference("drilled"), 4), False, counted=True,
         reason=lambda f: (
             f"a loss the beam cannot have. A bound: the solid bat loses "
-            f"{1 - (best_bbcor(f, 'test_bat') / wall_cor(f, CORK_TEST_SPEED)) ** 2:.1%} of the rebound energy to all "
+            f"{1 - (best_bbcor(f, 'test_bat') / barrel_cor(CORK_TEST_SPEED)) ** 2:.1%} of the rebound energy to all "
             f"its bending vibrations at its best point (its BBCOR over the ball's COR, squared), the drop needs "
             f"{1 - (0.4814 / 0.4898) ** 2:.1%} more; the bore changes the barrel's bending stiffness by "
             f"{(0.0127 / 0.0318) ** 4:.1%} and its mass by {(0.0127 / 0.0318) ** 2:.0%} where the ball hits (a "
@@ -678,7 +709,7 @@ PREDICTION = [
         "head-on, its best point (`/bat/best_q`)",
         "0.23, the q_max of Baseball Savant's 'squared-up' (derived here from its glossary's two worked "
         "examples: 0.227 and 0.230 with the plate speed; Savant states no q)", SAVANT,
-        lambda f: r161(f, "best_q"), fmt(3), within(0.21, 0.25), diff(0.23), False,
+        lambda f: r161(f, "best_q"), fmt(3), within(0.21, 0.25), diff(0.23), True,
         reason=lambda f: (
             f"the bat's mass: q_max holds for every bat in Savant's metric, and q rises with the bat's mass "
             f"(r = m/M_e falls): the 34-in, 30.5-oz test bat has {bat_value(f, 'test_bat', 'best_q'):.3f}, a "

@@ -201,7 +201,10 @@ fn the_cylinder_strains_the_ball_more_than_the_wall() {
 /// calibration's dependence on the one dimension no source gave.
 #[test]
 fn the_test_cylinders_unknown_radius_moves_bbcor_by_less_than_a_measurement() {
-    use batstudy::model::ball::{cor_curve_through, curvature_factor, DEFAULT_BALL_RADIUS, TEST_CYLINDER_RADIUS, TEST_CYLINDER_RADIUS_RANGE};
+    use batstudy::model::ball::{
+        cor_curve_through, curvature_factor, DEFAULT_BALL_RADIUS, TEST_CYLINDER_RADIUS,
+        TEST_CYLINDER_RADIUS_RANGE,
+    };
     let spec = CollisionSpec::base_case(0.7);
     let bat = prepare_bat(&spec.bat, &spec.numerics).unwrap();
     let best = |radius: f64| {
@@ -217,8 +220,14 @@ fn the_test_cylinders_unknown_radius_moves_bbcor_by_less_than_a_measurement() {
     let at = best(TEST_CYLINDER_RADIUS);
     for r in [TEST_CYLINDER_RADIUS_RANGE.0, TEST_CYLINDER_RADIUS_RANGE.1] {
         let moved = best(r) - at;
-        eprintln!("test cylinder {r} m: the R161's BBCOR {:.4} ({moved:+.4})", at + moved);
-        assert!(moved.abs() < 0.005, "radius {r}: BBCOR {at} moves by {moved}");
+        eprintln!(
+            "test cylinder {r} m: the R161's BBCOR {:.4} ({moved:+.4})",
+            at + moved
+        );
+        assert!(
+            moved.abs() < 0.005,
+            "radius {r}: BBCOR {at} moves by {moved}"
+        );
     }
 }
 

@@ -99,9 +99,10 @@ fn a_stiff_bat_gives_the_rigid_closed_form_when_the_ball_slides() {
         let ball = BallContact::of(&spec.ball);
         let r = ball.radius;
         let reach = bat.geometry().outer_radius(z) + r;
-        // the ball's COR at the normal speed, as the wall gives it
+        // the ball's COR at the normal speed, as a rigid surface of the barrel's radius gives it
         let v_n = spec.ball.speed * (1.0 - (offset / reach).powi(2)).sqrt();
-        let cor = batstudy::model::ball::cor_at_speed(&spec.ball.law, v_n);
+        let barrel = Some(bat.geometry().outer_radius(z));
+        let cor = batstudy::model::ball::cor_on_target(&spec.ball.law, v_n, r, barrel);
         let (along, across, spin) = closed_form(
             (spec.ball.mass, r, ball.inertia),
             (

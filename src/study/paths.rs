@@ -470,6 +470,12 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
     ),
     ("ball.preset", "", "ball", "built-in calibrated ball"),
     (
+        "ball.law.curvature",
+        "",
+        "ball sees curvature",
+        "whether the ball's law sees the target's curvature (Hertz's stiffness, the COR at equal strain)",
+    ),
+    (
         "ball.law.loading",
         "",
         "ball loading",

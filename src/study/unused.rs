@@ -160,6 +160,11 @@ pub const RULES: &[Rule] = &[
         uses: speed_dependent,
     },
     Rule {
+        field: "ball.law.curvature",
+        used_when: "by ball.law.kind speed_dependent",
+        uses: speed_dependent,
+    },
+    Rule {
         field: "ball.law.cor_shift",
         used_when: "by ball.law.kind speed_dependent",
         uses: speed_dependent,

@@ -12,7 +12,7 @@ pub enum Target {
     /// A bat: geometry, beam, modes, properties.
     Bat(Box<PreparedBat>),
     /// A rigid, immovable target: the wall, or the cylinder (whose curvature the ball's
-    /// law does not see).
+    /// law reads from the spec's `bat.radius`).
     Wall,
 }
 

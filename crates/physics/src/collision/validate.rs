@@ -448,9 +448,10 @@ fn check_step_budget(spec: &CollisionSpec, length: f64) -> Result<(), ModelError
                 loading_only.cor_exponent = None;
                 // a curved target softens the loading: bound it by the thinnest bat
                 // surface (a 3-mm handle) so that ω stays a lower bound
-                let thinnest = crate::plausible::range_of(crate::plausible::PROFILE_RADIUS)
-                    .map(|r| r.min);
-                loading_only = crate::ball::on_target(&loading_only, approach, spec.ball_radius(), thinnest).0;
+                let thinnest =
+                    crate::plausible::range_of(crate::plausible::PROFILE_RADIUS).map(|r| r.min);
+                loading_only =
+                    crate::ball::on_target(&loading_only, approach, spec.ball_radius(), thinnest).0;
             }
             let law = crate::ball::ContactLaw::new(&loading_only, approach);
             let omega = (law.max_tangent(spec.ball.mass, approach) / spec.ball.mass).sqrt();

@@ -9,10 +9,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum BallPreset {
-    /// An MLB baseball: `speed_dependent`, its COR falling from its value at rest through
-    /// Cross's 0.64 at 1 m/s, the rule book's 0.546 at 25.9 m/s and 36 game balls' 0.492 on a
-    /// cylinder at 53.6 m/s; a power-law loading with Nathan's (2000) α 1.84 and the k₁ that
-    /// gives those balls' dynamic stiffness (docs/physics.md, "The calibrated ball").
+    /// An MLB baseball: `speed_dependent` and seeing the target's curvature, its COR falling
+    /// with the ball's strain from its value at rest through Cross's 0.64 at 1 m/s and the
+    /// rule book's 0.546 at 25.9 m/s (flat) and 36 game balls' 0.492 on a cylinder at
+    /// 53.6 m/s; a power-law loading with Nathan's (2000) α 1.84 and the k₁ that gives those
+    /// balls' dynamic stiffness (docs/physics.md, "The calibrated ball").
     Mlb,
 }
 

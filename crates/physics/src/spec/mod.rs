@@ -126,8 +126,9 @@ pub enum BatPreset {
     /// A rigid, immovable cylinder of radius `bat.radius` with its axis across the ball's
     /// path: the target of the ball's cylindrical COR and dynamic-stiffness test (ASTM
     /// F2845), shaped like a bat's barrel. As for `wall`, the other bat fields, `impact.z`
-    /// and `swing` do not apply. The ball's law takes no account of the target's
-    /// curvature (docs/physics.md, "The calibrated ball", says why one law serves both).
+    /// and `swing` do not apply. A ball whose law sees curvature (`ball.law.curvature`, the
+    /// `mlb` ball) meets it softer and strained harder than a wall (docs/physics.md, "The
+    /// calibrated ball").
     Cylinder,
 }
 
