@@ -293,6 +293,14 @@ pub const RANGES: &[Range] = &[
         get: |s| s.hoop.as_ref().and_then(|h| h.patch_radius),
     },
     Range {
+        path: "hoop.footprint_ratio",
+        min: 0.5,
+        max: 1.0,
+        unit: "1",
+        reason: "from Hertz's elastic contact (0.5 of the bodies' overlap) to a ball flattened over all of it (1)",
+        get: |s| s.hoop.as_ref().and_then(|h| h.footprint_ratio),
+    },
+    Range {
         path: "impact.offset",
         min: -0.08,
         max: 0.08,

@@ -297,12 +297,19 @@ impl ShellModes {
     }
 
     /// Mode `j`'s radial shape averaged over a circular contact patch of radius `patch`
-    /// centred at axial position x on a wall of outer radius `radius` (the ball's force
-    /// spread over the patch: the generalised force per newton, and the patch's mean
-    /// displacement per unit modal coordinate). A 4×4 Gauss rule over the patch's square
-    /// in polar form.
+    /// centred at axial position x on a wall of outer radius `radius` ([`Self::over_footprint`]
+    /// with both semi-axes `patch`).
     pub fn over_patch(&self, j: usize, x: f64, patch: f64, radius: f64) -> f64 {
-        if patch <= 0.0 {
+        self.over_footprint(j, x, (patch, patch), radius)
+    }
+
+    /// Mode `j`'s radial shape averaged over an elliptic footprint with semi-axes
+    /// (along the bat, around it) = `axes`, m, centred at axial position x on a wall of
+    /// outer radius `radius` (the ball's force spread evenly over it: the generalised force
+    /// per newton, and the footprint's mean displacement per unit modal coordinate). A 4×4
+    /// Gauss rule over the footprint's square in polar form.
+    pub fn over_footprint(&self, j: usize, x: f64, axes: (f64, f64), radius: f64) -> f64 {
+        if axes.0 <= 0.0 || axes.1 <= 0.0 {
             return self.radial(j, x);
         }
         let n = f64::from(self.modes[j].wave_number);
@@ -310,10 +317,9 @@ impl ShellModes {
         let mut weight = 0.0;
         for &(r, wr) in &GAUSS {
             for &(t, wt) in &GAUSS {
-                let rho = r * patch;
                 let phi = t * std::f64::consts::TAU;
-                let (dx, ds) = (rho * phi.cos(), rho * phi.sin());
-                let w = wr * wt * rho;
+                let (dx, ds) = (r * axes.0 * phi.cos(), r * axes.1 * phi.sin());
+                let w = wr * wt * r;
                 sum += w * self.radial(j, x + dx) * (n * ds / radius).cos();
                 weight += w;
             }

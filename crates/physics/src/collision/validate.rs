@@ -371,6 +371,17 @@ fn check_hoop(hoop: &crate::spec::HoopSpec, ball_mass: f64) -> Result<(), ModelE
         if let Some(r) = hoop.patch_radius {
             check("hoop.patch_radius", r, r > 0.0 && r <= 0.05, "(0, 0.05] m")?;
         }
+        if let Some(c) = hoop.footprint_ratio {
+            check("hoop.footprint_ratio", c, c > 0.0 && c <= 1.0, "(0, 1]")?;
+            if hoop.patch_radius.is_some() {
+                check(
+                    "hoop.footprint_ratio",
+                    c,
+                    false,
+                    "unset with hoop.patch_radius (a fixed patch has no footprint to scale)",
+                )?;
+            }
+        }
         return Ok(());
     }
     for (path, v) in [("hoop.frequency", hoop.frequency), ("hoop.mass", hoop.mass)] {

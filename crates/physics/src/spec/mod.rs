@@ -593,10 +593,19 @@ pub struct HoopSpec {
     /// (before a shell or bore starts) there is none. Default false.
     #[serde(default)]
     pub from_geometry: bool,
-    /// Radius of the ball's contact patch over which the shell's modes are loaded and
-    /// felt (`from_geometry`), m. Default 0.02.
+    /// A fixed contact patch instead of the contact's own footprint (`from_geometry`): its
+    /// radius, m, over which the shell's modes are loaded and felt throughout the contact
+    /// (a what-if; the BBCOR then rests on it). Default none: the footprint follows the
+    /// contact (`footprint_ratio`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub patch_radius: Option<f64>,
+    /// The footprint's area over the area where the undeformed ball and barrel overlap at
+    /// the same compression (`from_geometry`): 0.5 is Hertz's contact (a² = R s against the
+    /// overlap's 2 R s; Johnson, "Contact Mechanics" §4.2), 1 a ball flattened over all of
+    /// the overlap. Its semi-axes grow as √s along the bat (the ball's radius) and around it
+    /// (the ball's and the barrel's radii in series). Default 0.5.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub footprint_ratio: Option<f64>,
 }
 
 /// Where the ball hits.

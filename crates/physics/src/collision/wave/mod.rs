@@ -40,7 +40,9 @@ mod wall;
 use contact::Contact;
 pub use hoop::{resolve_hoop, Hoop};
 use modal::run_modal;
-pub use shell_contact::{resolve_shell, ShellContact, DEFAULT_PATCH_RADIUS};
+pub use shell_contact::{
+    footprint_axes, resolve_shell, Footprint, ShellContact, HERTZ_FOOTPRINT_RATIO,
+};
 use step::contact_omega;
 pub use step::{approach_speed, checked_step_budget, stability_limit, step_budget, time_step};
 use verlet::run_verlet;

@@ -74,6 +74,10 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
     let h2 = s.h * s.h;
     let w_free = state.w + s.h * state.v - h2 * state.force / (3.0 * c.ball_mass);
     let n0 = state.contact_force();
+    if let Some(sh) = &c.shell {
+        // the footprint this step loads: the contact's at the step's start
+        state.shell.follow(sh, state.s);
+    }
     let shell_part = s
         .shell
         .as_ref()

@@ -51,34 +51,36 @@ pub(super) struct Setup<'b> {
     pub(super) shell: Option<ShellStep>,
 }
 
-/// The shell's modes over one step: their propagators (each mode's response already
-/// weighted by its patch shape φ), and the contact point's compliance through them.
+/// The shell's modes over one step: their propagators under a unit generalised force (the
+/// footprint's shape φ, which follows the contact, is applied at each step).
 pub(super) struct ShellStep {
     pub(super) omega: Vec<f64>,
-    pub(super) phi: Vec<f64>,
     pub(super) zeta: f64,
     pub(super) h: f64,
     pub(super) st: ModalStep,
     pub(super) half: Option<ModalStep>,
-    pub(super) g_start: f64,
-    pub(super) g_end: f64,
 }
 
 impl ShellStep {
     fn new(shell: &ShellContact, h: f64) -> Self {
-        let (omega, phi, zeta) = (&shell.omega, &shell.phi, shell.zeta);
-        let st = ModalStep::new(omega, zeta, phi, h);
-        let half = (zeta > 0.0).then(|| ModalStep::new(omega, zeta, phi, 0.5 * h));
+        let (omega, zeta) = (&shell.omega, shell.zeta);
+        let unit = vec![1.0; omega.len()];
+        let st = ModalStep::new(omega, zeta, &unit, h);
+        let half = (zeta > 0.0).then(|| ModalStep::new(omega, zeta, &unit, 0.5 * h));
         ShellStep {
-            g_start: dot_n(&st.q_start, phi),
-            g_end: dot_n(&st.q_end, phi),
             omega: omega.clone(),
-            phi: phi.clone(),
             zeta,
             h,
             st,
             half,
         }
+    }
+
+    /// The footprint's displacement under a start and an end force of one newton over the
+    /// step, for the footprint shape `phi`.
+    pub(super) fn compliances(&self, phi: &[f64]) -> (f64, f64) {
+        let weighted = |r: &[f64]| r.iter().zip(phi).map(|(r, p)| r * p * p).sum::<f64>();
+        (weighted(&self.st.q_start), weighted(&self.st.q_end))
     }
 }
 

@@ -1,15 +1,19 @@
 //! The barrel's breathing modes in a modal step: stepped exactly, as the beam's modes are,
 //! under the contact's normal force (linear over the step), beside the beam.
 
+use super::super::ShellContact;
 use super::propagator::damping_rate;
-use super::setup::{dot_n, ShellStep};
+use super::setup::ShellStep;
 
-/// The shell's coordinates and velocities, its displacement at the contact (inward, along
-/// the contact normal) and what its damping has taken.
+/// The shell's coordinates and velocities, the footprint's shape this step (φ of each
+/// mode), its displacement at the contact (inward, along the contact normal: the work
+/// conjugate of the contact force, the footprint's displacement summed step by step) and
+/// what its damping has taken.
 #[derive(Debug, Clone, Default)]
 pub(super) struct ShellState {
     pub(super) q: Vec<f64>,
     pub(super) qd: Vec<f64>,
+    pub(super) phi: Vec<f64>,
     pub(super) r: f64,
     pub(super) damping: f64,
 }
@@ -20,6 +24,7 @@ impl ShellState {
         ShellState {
             q: vec![0.0; modes],
             qd: vec![0.0; modes],
+            phi: vec![0.0; modes],
             ..Self::default()
         }
     }
@@ -30,6 +35,11 @@ impl ShellState {
             .map(|j| 0.5 * (self.qd[j].powi(2) + (sh.omega[j] * self.q[j]).powi(2)))
             .sum()
     }
+
+    /// The footprint for a step that starts at compression `s`.
+    pub(super) fn follow(&mut self, contact: &ShellContact, s: f64) {
+        contact.phi_at(s, &mut self.phi);
+    }
 }
 
 /// Where the shell's contact point goes over the step without the end force (free motion
@@ -37,27 +47,39 @@ impl ShellState {
 pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
     let st = &sh.st;
     let moved: f64 = (0..shell.q.len())
-        .map(|j| sh.phi[j] * (st.cos[j] * shell.q[j] + st.sin_over_omega[j] * shell.qd[j]))
+        .map(|j| {
+            let q_free = st.cos[j] * shell.q[j] + st.sin_over_omega[j] * shell.qd[j];
+            shell.phi[j] * (q_free - shell.q[j])
+        })
         .sum();
-    (moved + sh.g_start * n0, sh.g_end)
+    let (g_start, g_end) = sh.compliances(&shell.phi);
+    (shell.r + moved + g_start * n0, g_end)
 }
 
-/// The modes' exact update under the normal force (n0 → n1), and their damping's losses
-/// over the step (Simpson's rule, the mid-step velocities from an exact half step).
+/// The modes' exact update under the normal force (n0 → n1) over the footprint, and their
+/// damping's losses over the step (Simpson's rule, the mid-step velocities from an exact
+/// half step).
 pub(super) fn advance(sh: &ShellStep, shell: &mut ShellState, (n0, n1): (f64, f64)) {
     let rate = |qd: &[f64]| damping_rate(&sh.omega, sh.zeta, qd);
     if let Some(hs) = &sh.half {
         let nm = 0.5 * (n0 + n1);
         let mid: Vec<f64> = (0..shell.q.len())
-            .map(|j| hs.advance(j, (shell.q[j], shell.qd[j]), (n0, nm)).1)
+            .map(|j| {
+                let p = shell.phi[j];
+                hs.advance(j, (shell.q[j], shell.qd[j]), (p * n0, p * nm)).1
+            })
             .collect();
         shell.damping += sh.h / 6.0 * (rate(&shell.qd) + 4.0 * rate(&mid));
     }
     for j in 0..shell.q.len() {
-        (shell.q[j], shell.qd[j]) = sh.st.advance(j, (shell.q[j], shell.qd[j]), (n0, n1));
+        let p = shell.phi[j];
+        let before = shell.q[j];
+        (shell.q[j], shell.qd[j]) = sh
+            .st
+            .advance(j, (shell.q[j], shell.qd[j]), (p * n0, p * n1));
+        shell.r += p * (shell.q[j] - before);
     }
     if sh.half.is_some() {
         shell.damping += sh.h / 6.0 * rate(&shell.qd);
     }
-    shell.r = dot_n(&sh.phi, &shell.q);
 }
