@@ -74,3 +74,19 @@ fn the_patch_radius_changes_a_hollow_bat() {
     eprintln!("patch 1.5 cm {small}, 2.5 cm {large}");
     assert_ne!(small.to_bits(), large.to_bits());
 }
+
+#[test]
+fn the_footprint_ratio_changes_a_hollow_bat() {
+    let hertz = outcome(
+        "{preset: alloy_bbcor}",
+        "{from_geometry: true, footprint_ratio: 0.5}",
+    )
+    .0;
+    let flat = outcome(
+        "{preset: alloy_bbcor}",
+        "{from_geometry: true, footprint_ratio: 1.0}",
+    )
+    .0;
+    eprintln!("footprint 0.5 {hertz}, 1.0 {flat}");
+    assert_ne!(hertz.to_bits(), flat.to_bits());
+}

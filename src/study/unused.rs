@@ -182,6 +182,13 @@ pub const RULES: &[Rule] = &[
         },
     },
     Rule {
+        field: "hoop.footprint_ratio",
+        used_when: "with hoop.from_geometry: true on a hollow bat (a shell, a bore or a hollow preset)",
+        uses: |t| {
+            get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true) && hollow(t)
+        },
+    },
+    Rule {
         field: "bat.shell.break_in",
         used_when: "by the wave model (the rigid model sees a wall's mass, not its stiffness)",
         uses: wave,
