@@ -112,33 +112,22 @@ const ANGLES: &[(&str, f64, f64)] = &[("rad", 1.0, 0.0), ("deg", DEG, 0.0)];
 const SPINS: &[(&str, f64, f64)] = &[("rad/s", 1.0, 0.0), ("rpm", flight::RPM, 0.0)];
 const LENGTHS: &[(&str, f64, f64)] = &[("m", 1.0, 0.0), ("ft", FOOT, 0.0)];
 
-fn exit_speed(s: &str) -> Result<f64, String> {
-    with_units(s, SPEEDS, "a speed", "launch.exit_speed")
+/// A flag's value parser: `with_units` over `units`, held to the plausible range `range`.
+macro_rules! parser {
+    ($name:ident, $units:expr, $what:literal, $range:literal) => {
+        fn $name(s: &str) -> Result<f64, String> {
+            with_units(s, $units, $what, $range)
+        }
+    };
 }
 
-fn wind(s: &str) -> Result<f64, String> {
-    with_units(s, SPEEDS, "a speed", "flight.wind_speed")
-}
-
-fn launch_angle(s: &str) -> Result<f64, String> {
-    with_units(s, ANGLES, "an angle", "launch.launch_angle")
-}
-
-fn spray_angle(s: &str) -> Result<f64, String> {
-    with_units(s, ANGLES, "an angle", "launch.spray_angle")
-}
-
-fn spin(s: &str) -> Result<f64, String> {
-    with_units(s, SPINS, "a spin", "launch.spin")
-}
-
-fn height(s: &str) -> Result<f64, String> {
-    with_units(s, LENGTHS, "a length", "launch.height")
-}
-
-fn elevation(s: &str) -> Result<f64, String> {
-    with_units(s, LENGTHS, "a length", "flight.elevation")
-}
+parser!(exit_speed, SPEEDS, "a speed", "launch.exit_speed");
+parser!(wind, SPEEDS, "a speed", "flight.wind_speed");
+parser!(launch_angle, ANGLES, "an angle", "launch.launch_angle");
+parser!(spray_angle, ANGLES, "an angle", "launch.spray_angle");
+parser!(spin, SPINS, "a spin", "launch.spin");
+parser!(height, LENGTHS, "a length", "launch.height");
+parser!(elevation, LENGTHS, "a length", "flight.elevation");
 
 fn humidity(s: &str) -> Result<f64, String> {
     with_units(

@@ -78,6 +78,11 @@ fn hollow(t: &Value) -> bool {
         )
 }
 
+/// Whether the bat's wall breathes in this point: a hoop from the geometry of a hollow bat.
+fn breathes(t: &Value) -> bool {
+    get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true) && hollow(t)
+}
+
 /// A bat field the wall ignores.
 macro_rules! bat_field {
     ($field:literal) => {
@@ -177,16 +182,12 @@ pub const RULES: &[Rule] = &[
     Rule {
         field: "hoop.patch_radius",
         used_when: "with hoop.from_geometry: true on a hollow bat (a shell, a bore or a hollow preset)",
-        uses: |t| {
-            get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true) && hollow(t)
-        },
+        uses: breathes,
     },
     Rule {
         field: "hoop.footprint_ratio",
         used_when: "with hoop.from_geometry: true on a hollow bat (a shell, a bore or a hollow preset)",
-        uses: |t| {
-            get_path(t, "hoop.from_geometry").and_then(Value::as_bool) == Some(true) && hollow(t)
-        },
+        uses: breathes,
     },
     Rule {
         field: "bat.shell.break_in",
