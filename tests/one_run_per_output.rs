@@ -238,3 +238,56 @@ fn a_what_if_study_runs_and_says_so_in_the_file() {
     let out = batstudy(&["validate", &study]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// A search still running on an output (its journal beside it, its lock held) is reported
+/// as busy, not as an interrupted search to `--resume` (which would then fight over it).
+#[test]
+fn a_busy_search_is_reported_busy() {
+    let _serial = SERIAL.lock().unwrap_or_else(|p| p.into_inner());
+    let dir = tempfile::tempdir().unwrap();
+    let study = study_file(
+        dir.path(),
+        "name: busy\nmodel: rigid\nbase: {impact: {z: 0.7}}\noptimize:\n  max_evaluations: 5\n  \
+         variables: {impact.z: {min: 0.5, max: 0.8}}\n  objective: {maximize: exit_speed}\n",
+    );
+    let out = dir.path().join("busy.h5");
+    let journal = dir.path().join("busy.h5.optimize");
+    std::fs::write(&journal, b"{}\n").unwrap();
+    let held = batstudy::store::lock::OutputLock::acquire(&out).unwrap();
+    let o = batstudy(&["optimize", &study, "-o", out.to_str().unwrap(), "-q"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("in use by another batstudy process"), "{err}");
+    assert!(!err.contains("an interrupted search"), "{err}");
+    drop(held);
+    assert_eq!(
+        std::fs::read(&journal).unwrap(),
+        b"{}\n",
+        "the journal untouched"
+    );
+}
+
+/// A journal whose header is damaged cannot be resumed; the refusal says how to start over.
+#[test]
+fn a_damaged_journal_names_the_way_out() {
+    let _serial = SERIAL.lock().unwrap_or_else(|p| p.into_inner());
+    let dir = tempfile::tempdir().unwrap();
+    let study = study_file(
+        dir.path(),
+        "name: dmg\nmodel: rigid\nbase: {impact: {z: 0.7}}\n",
+    );
+    let out = dir.path().join("dmg.h5");
+    std::fs::write(dir.path().join("dmg.h5.journal"), b"not a journal at all").unwrap();
+    let o = batstudy(&["run", &study, "-o", out.to_str().unwrap(), "--resume", "-q"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_ne!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("damaged journal") && err.contains("--force"),
+        "{err}"
+    );
+    batstudy_ok(&["run", &study, "-o", out.to_str().unwrap(), "--force", "-q"]);
+}
