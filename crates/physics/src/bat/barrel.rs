@@ -16,6 +16,33 @@ pub const MODES_PER_WAVE: usize = 4;
 /// Elements along the hollow part, besides the profile's and the wall's knots: the presets'
 /// BBCOR at their best point moves by at most 2e-6 from 24 to 80 elements.
 pub const ELEMENTS: usize = 24;
+/// The finest resolution a study may ask for (`numerics.shell_*`): bounds on the solve's
+/// size and time.
+pub const MAX_ELEMENTS: usize = 400;
+pub const MAX_WAVE_NUMBER: u32 = 12;
+pub const MAX_MODES_PER_WAVE: usize = 16;
+
+/// The shell's resolution: elements, wave numbers and modes per wave number.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShellResolution {
+    pub elements: usize,
+    pub wave_numbers: Vec<u32>,
+    pub per_wave: usize,
+}
+
+impl ShellResolution {
+    /// A study's numerics, the defaults where it says nothing.
+    pub fn of(numerics: &crate::spec::NumericsSpec) -> Self {
+        ShellResolution {
+            elements: numerics.shell_elements.unwrap_or(ELEMENTS),
+            wave_numbers: numerics
+                .shell_wave_numbers
+                .clone()
+                .unwrap_or_else(|| WAVE_NUMBERS.to_vec()),
+            per_wave: numerics.shell_modes_per_wave.unwrap_or(MODES_PER_WAVE),
+        }
+    }
+}
 
 /// The wall of a bat's hollow part at each station.
 struct BarrelWall<'g>(&'g BatGeometry);
@@ -38,7 +65,10 @@ impl WallAlong for BarrelWall<'_> {
 /// there; the knob end of a tube is free. At the barrel's end a hollow bat's end cap, or a
 /// bore's plug where the bore is filled, holds the wall round (w = v = 0, a supported end:
 /// the cap's own flexibility is left out); an empty bore's end is open and free.
-pub fn barrel_modes(g: &BatGeometry) -> Result<Option<ShellModes>, ModelError> {
+pub fn barrel_modes(
+    g: &BatGeometry,
+    resolution: &ShellResolution,
+) -> Result<Option<ShellModes>, ModelError> {
     let (start, capped) = match (g.shell, g.bore) {
         (Some((_, from)), _) => (from, true),
         (None, Some((_, from))) => (from, g.fill_density > 0.0),
@@ -54,13 +84,13 @@ pub fn barrel_modes(g: &BatGeometry) -> Result<Option<ShellModes>, ModelError> {
     } else {
         ShellEnd::Free
     };
-    let nodes = mesh(start, g.length, &g.breakpoints(), ELEMENTS);
+    let nodes = mesh(start, g.length, &g.breakpoints(), resolution.elements);
     ShellModes::solve(
         nodes,
         &BarrelWall(g),
         (start_end, barrel_end),
-        &WAVE_NUMBERS,
-        MODES_PER_WAVE,
+        &resolution.wave_numbers,
+        resolution.per_wave,
     )
     .map(Some)
 }

@@ -53,6 +53,8 @@ pub struct PreparedBat {
     /// first asks for them.
     pub(crate) shell_modes:
         std::sync::OnceLock<Result<Option<super::shell::ShellModes>, ModelError>>,
+    /// The resolution those modes are solved at (`numerics.shell_*`).
+    shell_resolution: super::barrel::ShellResolution,
     properties: BatProperties,
 }
 
@@ -128,6 +130,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         shape_max: std::sync::OnceLock::new(),
         static_shapes: Default::default(),
         shell_modes: std::sync::OnceLock::new(),
+        shell_resolution: super::barrel::ShellResolution::of(numerics),
         properties,
     })
 }
@@ -234,7 +237,7 @@ impl PreparedBat {
     /// The hollow part's breathing modes (`None` for a solid bat), solved on first use.
     pub fn shell_modes(&self) -> Result<Option<&super::shell::ShellModes>, ModelError> {
         self.shell_modes
-            .get_or_init(|| super::barrel::barrel_modes(&self.geometry))
+            .get_or_init(|| super::barrel::barrel_modes(&self.geometry, &self.shell_resolution))
             .as_ref()
             .map(Option::as_ref)
             .map_err(Clone::clone)

@@ -432,6 +432,46 @@ fn check_numerics(numerics: &crate::spec::NumericsSpec) -> Result<(), ModelError
             "a whole number >= 1",
         )?;
     }
+    check_shell_numerics(numerics)
+}
+
+/// The shell's resolution: bounded, so that a study cannot ask for a solve without end.
+fn check_shell_numerics(numerics: &crate::spec::NumericsSpec) -> Result<(), ModelError> {
+    use crate::bat::barrel::{MAX_ELEMENTS, MAX_MODES_PER_WAVE, MAX_WAVE_NUMBER};
+    if let Some(n) = numerics.shell_elements {
+        let ok = (4..=MAX_ELEMENTS).contains(&n);
+        check(
+            "numerics.shell_elements",
+            n as f64,
+            ok,
+            &format!("4 to {MAX_ELEMENTS}"),
+        )?;
+    }
+    if let Some(waves) = &numerics.shell_wave_numbers {
+        let distinct = waves
+            .iter()
+            .enumerate()
+            .all(|(i, w)| !waves[..i].contains(w));
+        let bad = waves.iter().find(|&&w| !(2..=MAX_WAVE_NUMBER).contains(&w));
+        if waves.is_empty() || !distinct || bad.is_some() {
+            let value = bad.map_or(waves.len() as f64, |&w| f64::from(w));
+            check(
+                "numerics.shell_wave_numbers",
+                value,
+                false,
+                &format!("distinct wave numbers from 2 to {MAX_WAVE_NUMBER}, at least one"),
+            )?;
+        }
+    }
+    if let Some(n) = numerics.shell_modes_per_wave {
+        let ok = (1..=MAX_MODES_PER_WAVE).contains(&n);
+        check(
+            "numerics.shell_modes_per_wave",
+            n as f64,
+            ok,
+            &format!("1 to {MAX_MODES_PER_WAVE}"),
+        )?;
+    }
     Ok(())
 }
 

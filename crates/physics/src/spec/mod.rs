@@ -658,6 +658,18 @@ pub struct NumericsSpec {
     /// seconds of computing; the base case takes about 600).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_steps: Option<u64>,
+    /// Elements along a hollow part solved as a shell (`hoop.from_geometry`), besides the
+    /// profile's and the wall's knots. Default 24 (docs/physics.md, "The barrel as a shell":
+    /// the presets' BBCOR moves by at most 2e-6 from 24 to 80).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shell_elements: Option<usize>,
+    /// The shell's circumferential wave numbers solved (each ≥ 2, the breathing modes).
+    /// Default [2, 3, 4].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shell_wave_numbers: Option<Vec<u32>>,
+    /// Axial modes kept per wave number. Default 4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shell_modes_per_wave: Option<usize>,
 }
 
 fn default_grip_z() -> f64 {
