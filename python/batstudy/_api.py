@@ -43,8 +43,9 @@ def _as_text(spec: Union[str, Mapping[str, Any]], what: str) -> str:
     if isinstance(spec, str):
         return spec
     if isinstance(spec, Mapping):
-        # JSON is YAML: one flow mapping, positions stay meaningful (line 1)
-        return json.dumps(spec, allow_nan=True)
+        # JSON is YAML: one flow mapping, positions stay meaningful (line 1); NumPy's
+        # numbers (np.int64(-30), np.float64) as the plain numbers they are
+        return json.dumps(spec, allow_nan=True, default=_plain)
     raise TypeError(f"{what} must be a dict or YAML text, not {type(spec).__name__}")
 
 
@@ -76,7 +77,7 @@ def simulate(
     if history is True:
         hist_text = json.dumps(DEFAULT_HISTORY)
     elif isinstance(history, Mapping):
-        hist_text = json.dumps({**DEFAULT_HISTORY, **history})
+        hist_text = json.dumps({**DEFAULT_HISTORY, **history}, default=_plain)
     elif history not in (False, None):
         raise TypeError("history must be True, False, None or a dict")
     try:

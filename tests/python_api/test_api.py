@@ -31,6 +31,15 @@ def test_simulate_matches_the_closed_form_of_a_wall():
         assert r["bbcor"] == pytest.approx(0.5, rel=2e-4)  # the wall's BBCOR is the ball's COR
 
 
+def test_simulate_takes_numpy_numbers_as_the_numbers_they_are():
+    # a NumPy integer or float in a spec is the number it holds (json.dumps refused np.int64)
+    plain = batstudy.simulate({"swing": {"omega": -30}, "impact": {"z": 0.7}})
+    numpy = batstudy.simulate({"swing": {"omega": np.int64(-30)}, "impact": {"z": np.float64(0.7)}})
+    assert numpy["exit_speed"] == plain["exit_speed"]
+    with pytest.raises(TypeError, match="a study holds numbers"):
+        batstudy.simulate({"impact": {"z": object()}})
+
+
 def test_simulate_conserves_energy():
     # Energy balance of the paper's base case: what the ball and bat hold after the
     # collision plus what the ball's hysteresis dissipated is the initial kinetic energy.
