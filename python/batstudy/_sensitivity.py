@@ -30,8 +30,15 @@ def _groups(source):
     if isinstance(source, xr.DataTree):
         sweet = source["sweet_spot"].to_dataset() if "sweet_spot" in source.children else None
         return source["summary"].to_dataset(), sweet
+    import h5py
+
     with xr.open_dataset(source, engine="h5netcdf", group="summary") as s:
         summary = s.load()
+    # a file without /sweet_spot (a run of one impact point) has only /summary, as its tree
+    with h5py.File(source, "r") as f:
+        has_sweet = "sweet_spot" in f
+    if not has_sweet:
+        return summary, None
     with xr.open_dataset(source, engine="h5netcdf", group="sweet_spot") as w:
         return summary, w.load()
 

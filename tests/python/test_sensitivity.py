@@ -116,3 +116,20 @@ def test_total_order_indices_from_saltellis_design_match_the_closed_form(tmp_pat
     assert r.returncode == 0, r.stderr
     with pytest.raises(ValueError, match="saltelli"):
         sobol_indices(tmp_path / "p.h5", "exit_speed", order="total")
+
+
+def test_a_path_without_sweet_spots_is_read_as_its_tree(tmp_path):
+    # a results file of the ball on the wall has no /sweet_spot group (no curve along the
+    # bat): the path works as the tree does. Reference: exit speed = e v on the wall, with
+    # e fixed, is the speed's alone, so its first-order index is 1.
+    import batstudy
+    from batstudy import sobol_indices
+
+    study, out = tmp_path / "w.yaml", tmp_path / "w.h5"
+    study.write_text("name: w\nbase: {bat: {preset: wall}, impact: {z: 0.7}}\nsample:\n  n: 64\n  seed: 1\n"
+                     "  params:\n    ball.speed: {uniform: {min: 20, max: 40}}\n")
+    r = subprocess.run([BIN, "run", str(study), "-o", str(out), "--quiet"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    by_path = sobol_indices(out, "exit_speed")
+    assert by_path == sobol_indices(batstudy.open_results(out), "exit_speed")
+    assert abs(by_path["ball.speed"][0] - 1.0) < 0.05
