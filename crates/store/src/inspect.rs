@@ -205,7 +205,16 @@ pub(crate) fn shot_name(json: &str) -> String {
     let hoop = if hoop.is_null() {
         "no hoop".to_string()
     } else if hoop["from_geometry"].as_bool() == Some(true) {
-        "hoop from the wall".to_string()
+        // what a hollow bat's BBCOR rests on: the load's footprint on the wall
+        match (hoop["patch_radius"].as_f64(), hoop["footprint_ratio"].as_f64()) {
+            (Some(r), _) => format!("hoop from the wall, a fixed {r} m patch (a what-if)"),
+            (None, ratio) => format!(
+                "hoop from the wall under the ball's growing footprint (ratio {}{}), \
+                 on which a hollow BBCOR rests",
+                ratio.unwrap_or(0.5),
+                if ratio.is_none() { ", Hertz's" } else { "" }
+            ),
+        }
     } else {
         format!("hoop {} Hz", hoop["frequency"])
     };
