@@ -4,10 +4,11 @@
 //!
 //! The walls are not measured bats': no wall thickness or layup of a real BBCOR bat was found
 //! in the literature this project could read (data/hollow_bats.md). They are what batstudy's
-//! own design search gave for the geometry (docs/design.md, "The hollow presets") under a fixed
-//! 2-cm contact patch: the alloy wall the lightest-hitting legal one in the 30-oz class; the composite a balanced ±30°
-//! carbon stack between hoop-wound glass plies, as patents describe (fibres near axial
-//! inside, near hoop outside), thick enough to certify after break-in.
+//! own design search gave for the geometry (docs/design.md, "The hollow presets") under a
+//! fixed 2-cm contact patch: the alloy wall the lightest-hitting legal one in the 30-oz
+//! class; the composite a balanced ±30° carbon stack between hoop-wound glass plies, as
+//! patents describe (fibres near axial inside, near hoop outside), thick enough to certify
+//! after break-in.
 
 use crate::spec::{BatPreset, BatSpec, LayerSpec, MaterialSpec, ProfileSpec};
 
