@@ -80,6 +80,7 @@ fn a_gripping_ball_s_tangential_cor_does_not_depend_on_the_angle() {
     let at_2 = e_x(2.0);
     for degrees in [10.0, 20.0, 30.0, 40.0] {
         let at = e_x(degrees);
+        eprintln!("gripping: e_x {at:.4} at {degrees}°, {at_2:.4} at 2°");
         assert!(
             (at - at_2).abs() < 2e-3,
             "{degrees}°: {at} against {at_2} at 2°"
@@ -161,6 +162,7 @@ fn the_outgoing_spin_hardly_depends_on_the_incident_spin() {
         let (_, with_back) = shot(46.0, degrees, 200.0);
         let (_, with_top) = shot(46.0, degrees, -200.0);
         let share = (with_back - with_top) / 400.0;
+        eprintln!("{degrees}°: share of the incident spin kept {share:.3}");
         assert!(share.abs() < 0.15, "{degrees}°: share {share}");
     }
 }

@@ -206,7 +206,10 @@ pub(crate) fn shot_name(json: &str) -> String {
         "no hoop".to_string()
     } else if hoop["from_geometry"].as_bool() == Some(true) {
         // what a hollow bat's BBCOR rests on: the load's footprint on the wall
-        match (hoop["patch_radius"].as_f64(), hoop["footprint_ratio"].as_f64()) {
+        match (
+            hoop["patch_radius"].as_f64(),
+            hoop["footprint_ratio"].as_f64(),
+        ) {
             (Some(r), _) => format!("hoop from the wall, a fixed {r} m patch (a what-if)"),
             (None, ratio) => format!(
                 "hoop from the wall under the ball's growing footprint (ratio {}{}), \
