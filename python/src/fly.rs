@@ -2,6 +2,7 @@
 //! little-endian f64 bytes for NumPy.
 
 use batstudy::model::flight::{self, Atmosphere, FlightOptions, Launch};
+use batstudy::model::plausible;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -30,6 +31,30 @@ pub fn fly<'py>(
     wind: [f64; 3],
     trajectory: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // the same plausible ranges as a study's `flight` block and `batstudy fly`: SI only
+    // (`batstudy.units` converts), so 100 meant as mph is refused, not flown
+    let checks = [
+        ("launch.exit_speed", exit_speed),
+        ("launch.launch_angle", launch_angle),
+        ("launch.spin", backspin),
+        ("launch.spin", sidespin),
+        ("launch.spray_angle", spray_angle),
+        ("launch.height", height),
+        ("flight.temperature", temperature),
+        ("flight.pressure", pressure),
+        ("flight.elevation", elevation),
+        ("flight.humidity", humidity),
+    ];
+    for (path, value) in checks
+        .into_iter()
+        .chain(wind.map(|w| ("flight.wind_speed", w)))
+    {
+        plausible::check_value(path, value).map_err(|e| {
+            PyValueError::new_err(format!(
+                "{e} (SI: batstudy.units converts mph, deg, rpm, ft)"
+            ))
+        })?;
+    }
     let launch = Launch {
         spray_angle_rad: spray_angle,
         sidespin_rad_s: sidespin,

@@ -649,6 +649,20 @@ pub fn range_of(path: &str) -> Option<&'static Range> {
         .find(|r| r.path == path)
 }
 
+/// `value` against the plausible range of `path` (a flag's or an argument's, where no
+/// study's `allow_implausible` applies): the error names the path, the value and the range.
+pub fn check_value(path: &str, value: f64) -> Result<(), ModelError> {
+    let r = range_of(path).expect("a path with a plausible range");
+    if value >= r.min && value <= r.max {
+        return Ok(());
+    }
+    Err(ModelError::OutOfRange {
+        path: path.to_string(),
+        value,
+        allowed: format!("{} to {} {} ({})", r.min, r.max, r.unit, r.reason),
+    })
+}
+
 /// The first value of `spec` outside its plausible range.
 pub fn check_plausible(spec: &CollisionSpec) -> Result<(), ModelError> {
     for r in RANGES.iter().chain(PROFILE_RANGES).chain(LAUNCH_RANGES) {
