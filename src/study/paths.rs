@@ -490,6 +490,36 @@ const PATH_META: &[(&str, &str, &str, &str)] = &[
     ("hoop.frequency", "Hz", "hoop f", "hoop-mode frequency"),
     ("hoop.mass", "kg", "hoop mass", "hoop-mode effective mass"),
     (
+        "hoop.patch_radius",
+        "m",
+        "patch radius",
+        "radius of a fixed contact patch over which the shell's modes are loaded",
+    ),
+    (
+        "hoop.footprint_ratio",
+        "1",
+        "footprint ratio",
+        "the ball's footprint on the wall over the overlap of ball and barrel",
+    ),
+    (
+        "numerics.shell_elements",
+        "1",
+        "shell elements",
+        "elements along the hollow part solved as a shell",
+    ),
+    (
+        "numerics.shell_wave_numbers",
+        "",
+        "shell wave numbers",
+        "circumferential wave numbers of the shell's modes",
+    ),
+    (
+        "numerics.shell_modes_per_wave",
+        "1",
+        "shell modes per wave",
+        "axial modes kept per wave number",
+    ),
+    (
         "numerics.segments",
         "1",
         "segments",
