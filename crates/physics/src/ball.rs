@@ -164,27 +164,25 @@ pub fn mlb_cor_curve() -> (f64, f64) {
 
 /// [`mlb_cor_curve`] for a test cylinder of radius `cylinder_radius` (its uncertainty).
 pub fn cor_curve_through(cylinder_radius: f64) -> (f64, f64) {
-    {
-        let (low, high) = (
-            CROSS_LOW_SPEED / MLB_SPEC_SPEED,
-            cylinder_anchor_speed(cylinder_radius) / MLB_SPEC_SPEED,
-        );
-        // e₀ − e_spec as each outer anchor asks it at power q; they agree at the answer
-        let from_low = |q: f64| (CROSS_LOW_SPEED_COR - MLB_SPEC_COR) / (1.0 - low.powf(q));
-        let from_high = |q: f64| (MLB_SPEC_COR - CYLINDER_COR) / (high.powf(q) - 1.0);
-        let gap = |q: f64| from_low(q) - from_high(q);
-        let (mut a, mut b) = (0.01, 4.0);
-        for _ in 0..200 {
-            let m = 0.5 * (a + b);
-            if (gap(m) > 0.0) == (gap(a) > 0.0) {
-                a = m;
-            } else {
-                b = m;
-            }
+    let (low, high) = (
+        CROSS_LOW_SPEED / MLB_SPEC_SPEED,
+        cylinder_anchor_speed(cylinder_radius) / MLB_SPEC_SPEED,
+    );
+    // e₀ − e_spec as each outer anchor asks it at power q; they agree at the answer
+    let from_low = |q: f64| (CROSS_LOW_SPEED_COR - MLB_SPEC_COR) / (1.0 - low.powf(q));
+    let from_high = |q: f64| (MLB_SPEC_COR - CYLINDER_COR) / (high.powf(q) - 1.0);
+    let gap = |q: f64| from_low(q) - from_high(q);
+    let (mut a, mut b) = (0.01, 4.0);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if (gap(m) > 0.0) == (gap(a) > 0.0) {
+            a = m;
+        } else {
+            b = m;
         }
-        let q = 0.5 * (a + b);
-        (MLB_SPEC_COR + from_high(q), q)
     }
+    let q = 0.5 * (a + b);
+    (MLB_SPEC_COR + from_high(q), q)
 }
 
 /// The `mlb` ball's k₁ (N/m^α): a power-law loading F = k₁ s^α that gives the cylinder

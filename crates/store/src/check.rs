@@ -38,15 +38,24 @@ pub fn damaged(path: &Path, what: String) -> StoreError {
 /// Refuse anything but a regular file before it is opened: opening a pipe waits for a
 /// writer that may never come, and a device (`/dev/zero`) has no end to read to.
 pub fn regular_file(path: &Path) -> Result<(), StoreError> {
-    let meta =
-        std::fs::metadata(path).map_err(|e| StoreError::io(path, "open the results file", e))?;
-    if meta.is_file() {
-        return Ok(());
+    match is_regular(path, "open the results file")? {
+        true => Ok(()),
+        false => Err(StoreError::BadFile {
+            path: path.to_path_buf(),
+            what: NOT_REGULAR.into(),
+        }),
     }
-    Err(StoreError::BadFile {
-        path: path.to_path_buf(),
-        what: "not a regular file (a folder, a device or a pipe)".into(),
-    })
+}
+
+/// What a reader says of a path that is not a regular file.
+pub(crate) const NOT_REGULAR: &str = "not a regular file (a folder, a device or a pipe)";
+
+/// Whether `path` is a regular file, asked without opening it (`opening`: what the error
+/// of a missing path says was being done).
+pub(crate) fn is_regular(path: &Path, opening: &str) -> Result<bool, StoreError> {
+    std::fs::metadata(path)
+        .map(|m| m.is_file())
+        .map_err(|e| StoreError::io(path, opening, e))
 }
 
 /// Refuse `path` if it is not HDF5, is shorter than its superblock says, or holds a global

@@ -189,11 +189,10 @@ pub fn ends_in_header(path: &Path) -> Result<bool, StoreError> {
 /// A journal opened for reading, once it is known to be a regular file: a pipe planted at
 /// its path would block the open until a writer came, a device never end.
 pub fn open_journal(path: &Path) -> Result<File, StoreError> {
-    let meta = std::fs::metadata(path).map_err(|e| StoreError::io(path, "open the journal", e))?;
-    if !meta.is_file() {
+    if !super::check::is_regular(path, "open the journal")? {
         return Err(StoreError::BadJournal {
             path: path.to_path_buf(),
-            what: "not a regular file (a folder, a device or a pipe)".into(),
+            what: super::check::NOT_REGULAR.into(),
         });
     }
     File::open(path).map_err(|e| StoreError::io(path, "open the journal", e))
