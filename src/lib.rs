@@ -3,11 +3,14 @@
 //! Data flow, one direction (see docs/architecture.md):
 //! study file → `study` (parse, validate, expand to points) → `model` (simulate one
 //! collision) → `results` (finished points) → `store` (HDF5) ← `run` (drives it all).
+//! `operations` holds what a user runs (a study to a file, a design search, a merge, a
+//! bat's export and card) for every front end: `cli` (the binary) and the Python binding.
 
 pub mod bench;
 pub mod cli;
 /// The physics (crates/physics): one fully specified collision in, one `Outcome` out.
 pub use batstudy_physics as model;
+pub mod operations;
 pub mod optimize;
 pub mod profile_export;
 pub mod run;

@@ -138,3 +138,96 @@ fn the_scan_finds_what_it_looks_for() {
     let toml = "[package]\nname = \"x\"\n[dependencies]\nserde = \"1\"\nrayon = \"1\"\n[dev-dependencies]\ntempfile = \"3\"\n";
     assert_eq!(section_keys(toml, "dependencies"), ["serde", "rayon"]);
 }
+
+/// The lines of every Rust file under `dir` (relative to the repository) that name one of
+/// `names`, outside comments: `file:line: name`.
+fn naming(dir: &str, names: &[&str], skip: &[&str]) -> Vec<String> {
+    let mut files = Vec::new();
+    rust_files(&Path::new(ROOT).join(dir), &mut files);
+    assert!(!files.is_empty(), "no Rust files under {dir}");
+    let mut found = Vec::new();
+    for file in files
+        .iter()
+        .filter(|f| !skip.iter().any(|s| f.ends_with(s)))
+    {
+        let text = std::fs::read_to_string(file).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            for name in names.iter().filter(|name| code.contains(*name)) {
+                found.push(format!("{}:{}: {name}", file.display(), n + 1));
+            }
+        }
+    }
+    found
+}
+
+/// The command line's names, as another module would spell them.
+const COMMAND_LINE: &[&str] = &["cli::", "crate::cli", "batstudy::cli", "clap", "RunArgs"];
+
+/// The Python binding is a front end of the operations, beside the command line: its API
+/// names nothing of the command line. The one exception is the `batstudy` command the wheel
+/// installs (python/src/command.rs), which is the command line, started with Python's argv.
+#[test]
+fn the_python_binding_calls_the_operations_not_the_command_line() {
+    let found = naming("python/src", COMMAND_LINE, &["command.rs"]);
+    assert!(
+        found.is_empty(),
+        "the Python API reaches into the command line:\n{}",
+        found.join("\n")
+    );
+    let command = std::fs::read_to_string(Path::new(ROOT).join("python/src/command.rs")).unwrap();
+    let named: Vec<&str> = command
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .flat_map(|l| l.match_indices("cli::").map(move |(i, _)| &l[i..]))
+        .collect();
+    assert!(
+        named
+            .iter()
+            .all(|n| n.starts_with("cli::Invocation") || n.starts_with("cli::main_exit_code_as")),
+        "python/src/command.rs names more of the command line than its entry: {named:?}"
+    );
+    let lib = std::fs::read_to_string(Path::new(ROOT).join("python/src/lib.rs")).unwrap();
+    assert!(lib.contains("batstudy::operations"), "the binding calls the operations");
+}
+
+/// The operations are the library under every front end: they name nothing of the command
+/// line, parse no flags, print nothing and end no process; no other library module names
+/// the command line either (only the binary's `main`).
+#[test]
+fn the_operations_know_no_front_end() {
+    let mut names = COMMAND_LINE.to_vec();
+    names.extend([
+        "println!",
+        "eprintln!",
+        "print!(",
+        "eprint!(",
+        "std::process::exit",
+        "indicatif",
+        "ctrlc",
+        "pyo3",
+    ]);
+    let found = naming("src/operations", &names, &[]);
+    assert!(
+        found.is_empty(),
+        "the operations reach a front end:\n{}",
+        found.join("\n")
+    );
+    let mut library = Vec::new();
+    for dir in ["src/run", "src/study", "src/optimize", "src/operations"] {
+        library.extend(naming(dir, COMMAND_LINE, &[]));
+    }
+    assert!(
+        library.is_empty(),
+        "library modules name the command line:\n{}",
+        library.join("\n")
+    );
+}
+
+/// A run's progress reaches a front end only through its observer: the run's own modules
+/// draw nothing.
+#[test]
+fn the_run_draws_nothing() {
+    let found = naming("src/run", &["indicatif", "eprintln!", "println!"], &[]);
+    assert!(found.is_empty(), "the run draws:\n{}", found.join("\n"));
+}

@@ -176,7 +176,7 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
 /// work). The oracle: no panic; a refusal or failure carries its exit code (2 or 3) and a
 /// message; a finished run left its file and nothing beside it.
 fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
-    use batstudy::cli::{run_settings, RunArgs, RunSettings};
+    use batstudy::operations::{run_study, RunRequest, RunSettings};
     let plan = &study.plan;
     let history = study.history_request(1.2);
     let cost: f64 = (0..plan.n_points().min(65))
@@ -187,24 +187,20 @@ fn run_if_small(study: batstudy::study::Study, out: &Path) -> bool {
         return false;
     }
     let implausible = study.file.allow_implausible;
-    let args = RunArgs {
-        study: study.path.clone(),
+    let request = RunRequest {
         output: Some(out.to_path_buf()),
         jobs: Some(2),
-        resume: false,
-        force: false,
-        fail_fast: false,
-        quiet: true,
-        max_points: 64,
-        shard: None,
+        ..RunRequest::default()
     };
     let stop = std::sync::atomic::AtomicBool::new(false);
-    let result = RunSettings::from_study(study, &args)
+    let result = RunSettings::new(study, &request)
         .map_err(|e| (2, e.to_string()))
-        .and_then(|s| run_settings(s, true, &stop, None).map_err(|f| (f.code, f.message)));
+        .and_then(|s| {
+            run_study(s, &stop, Default::default()).map_err(|f| (f.exit_code(), f.to_string()))
+        });
     match result {
         Ok(done) => {
-            let code = batstudy::cli::exit_code(&done.report);
+            let code = batstudy::operations::exit_code_of(done.outcome());
             assert!(code == 0 || code == 1, "exit {code}");
             assert!(out.is_file(), "no output");
             if !implausible {

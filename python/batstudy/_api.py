@@ -13,8 +13,14 @@ import numpy as np
 
 from . import _native
 
-# exit codes of `batstudy run` (README, "Exit codes")
-EXIT_OK, EXIT_POINTS_FAILED, EXIT_BAD_INPUT, EXIT_RUN_FAILED, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
+# how a native command ends beyond a plain success: one table in the library
+# (`operations::KINDS`), as (name, the CLI's exit status, the exception, what it means)
+ENDINGS = {name: (code, exception, meaning) for name, code, exception, meaning in _native.endings()}
+# the CLI's exit statuses (README, "Exit codes"), from that table
+EXIT_OK = 0
+EXIT_POINTS_FAILED, EXIT_BAD_INPUT, EXIT_RUN_FAILED, EXIT_INTERRUPTED = (
+    ENDINGS[n][0] for n in ("points_failed", "bad_input", "run_failed", "interrupted")
+)
 
 DEFAULT_HISTORY = {
     "fields": ["force", "compression", "ball_velocity", "displacement", "rigid_motion"],
@@ -197,39 +203,51 @@ def run(
     """
     path, text = _study_source(study)
     again = f"{path!r}" if path is not None else "<the same study>"
-    result, code, _message, report = _command(
+    result, ending, _message, report = _command(
         lambda bar: _native.run_study(
             path, text, None if output is None else os.fspath(output), jobs, resume, force, bar, _shard(shard)
         ),
         _progress_bar(progress),
         f"batstudy.run({again}, output={{output!r}}, resume=True)",
     )
-    if code == EXIT_POINTS_FAILED:
+    if ending == "points_failed":
         warnings.warn(report.strip(), RuntimeWarning, stacklevel=2)
     elif progress and report:
         print(report.strip(), file=sys.stderr)
     return result
 
 
+def _raise_ending(ending: Optional[str], message: str) -> None:
+    """Raise the exception the table of endings names for a refused or failed command."""
+    if ending is None:
+        return
+    code, exception, _meaning = ENDINGS[ending]
+    if exception == "StudyError":
+        raise StudyError(message)
+    if exception == "RunError":
+        raise RunError(message, code)
+
+
 def _command(call: Callable[[Any], tuple], bar: Any, resume_call: str) -> tuple:
-    """Run a native command (`call(bar)` → its exit code, message, output, report and
-    whether it was interrupted) with its progress bar, as the CLI's exit codes say: a bad
-    study raises StudyError, a failed run RunError, an interrupted one KeyboardInterrupt
-    naming `resume_call` (with ``{output!r}`` for the output). Returns (output path, exit
-    code, message, report) of a command that finished."""
+    """Run a native command (`call(bar)` → its ending's name, message, output, report,
+    whether it was interrupted, and its notes) with its progress bar, as the table of endings
+    says: a bad study raises StudyError, a failed run RunError, an interrupted one
+    KeyboardInterrupt naming `resume_call` (with ``{output!r}`` for the output); notes are
+    warnings. Returns (output path, ending, message, report) of a command that finished."""
     try:
-        code, message, out, report, interrupted = call(bar)
+        ending, message, out, report, interrupted, notes = call(bar)
     finally:
         if bar is not None:
             bar.close()  # type: ignore[attr-defined]
-    if code == EXIT_BAD_INPUT:
-        raise StudyError(message)
+    for note in notes:
+        warnings.warn(note, RuntimeWarning, stacklevel=3)
     if out is None:
-        raise RunError(message, code)
+        _raise_ending(ending, message)
+        raise RunError(message, ENDINGS["run_failed"][0])
     if interrupted:
         again = resume_call.replace("{output!r}", repr(os.fspath(out)))
         raise KeyboardInterrupt(f"{report.strip()}\n(in Python: {again})")
-    return pathlib.Path(out), code, message, report
+    return pathlib.Path(out), ending, message, report
 
 
 def merge(
@@ -248,17 +266,15 @@ def merge(
     missing or present twice (naming the shard and the call that finishes it), or an
     existing output without ``force``; :class:`RunError` when writing fails. A warning
     reports failed points (their messages are stored in the file)."""
-    code, message, _done, failed = _native.merge(
+    ending, message, _done, failed = _native.merge(
         os.fspath(output),
         [os.fspath(s) for s in shards],
         force,
         jobs,
         None if study is None else os.fspath(study),
     )
-    if code == EXIT_BAD_INPUT:
-        raise StudyError(message)
-    if code not in (EXIT_OK, EXIT_POINTS_FAILED):
-        raise RunError(message, code)
+    if ending != "points_failed":
+        _raise_ending(ending, message)
     if failed:
         warnings.warn(f"{output}: {failed} points failed (their messages are in /errors)", RuntimeWarning, stacklevel=2)
     return pathlib.Path(output)

@@ -8,7 +8,7 @@ import sys
 import warnings
 from typing import Optional, Union
 
-from ._api import EXIT_POINTS_FAILED, StudyLike, _command, _progress_bar, _study_source
+from ._api import StudyLike, _command, _progress_bar, _study_source
 
 
 def optimize(
@@ -43,14 +43,14 @@ def optimize(
     from ._open import open_results
 
     path, text = _study_source(study)
-    result, code, message, report = _command(
+    result, ending, message, report = _command(
         lambda bar: _native.optimize_study(
             path, text, None if output is None else os.fspath(output), jobs, resume, force, bar
         ),
         _progress_bar(progress, unit="candidates", desc="searching"),
         "batstudy.optimize(..., output={output!r}, resume=True)",
     )
-    if code == EXIT_POINTS_FAILED:
+    if ending == "points_failed":
         warnings.warn("\n".join(x for x in (message, report.strip()) if x), RuntimeWarning, stacklevel=2)
     elif not quiet and report:
         print(report.strip(), file=sys.stderr)

@@ -2,36 +2,21 @@
 //! (`python/batstudy/`) turns these plain results into NumPy arrays, exceptions, a progress
 //! bar and xarray trees; nothing here draws or prints.
 
+mod command;
 mod fly;
 
-use batstudy::cli::{self, RunArgs};
 use batstudy::model::outcome::Outcome;
-use batstudy::run::{self, PointCounter};
+use batstudy::operations::{self as ops, OpError, OptimizeRequest, RunRequest, RunSettings};
+use batstudy::run::{self, Observer, SharedObserver};
 use batstudy::store::layout as l;
 use batstudy::study::{self, LoadOptions, DEFAULT_MAX_POINTS};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
-
-/// Run the command line with `argv` (program name first); returns its exit code. Used by
-/// the `batstudy` command the wheel installs, so it behaves as the binary does: its own
-/// Ctrl-C handling, and a closed pipe ends it quietly.
-/// `command`: the words that start this same command again (the installed `batstudy`
-/// script, or `python -m batstudy`), for the Slurm scripts it writes.
-#[pyfunction]
-#[pyo3(signature = (argv, command=None))]
-fn cli_main(py: Python<'_>, argv: Vec<String>, command: Option<Vec<String>>) -> i32 {
-    // SAFETY: this process is the command now; Python set SIGPIPE to "ignore" at start-up.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
-    let invocation = cli::Invocation { command };
-    py.detach(|| cli::main_exit_code_as(argv, &invocation))
-}
 
 /// Lines the wrapper study puts before the user's spec (the spec's own line numbers are
 /// restored in error messages).
@@ -157,17 +142,35 @@ fn summary_dict<'py>(py: Python<'py>, o: &Outcome) -> PyResult<Bound<'py, PyDict
 
 /// The study a Python call names: a path, or YAML text (a dict arrives as JSON text) named
 /// `<study text>` in messages, its relative profile paths taken from the working folder.
-fn load_study(path: Option<PathBuf>, text: Option<&str>) -> Result<study::Study, (i32, String)> {
-    let opts = LoadOptions {
-        max_points: DEFAULT_MAX_POINTS,
-    };
-    match (path, text) {
-        (_, Some(t)) => study::load_str(t, Path::new("<study text>"), &opts),
-        (Some(p), None) => study::load(&p, &opts),
+fn load_study(path: Option<PathBuf>, text: Option<&str>) -> Result<study::Study, OpError> {
+    Ok(match (path, text) {
+        (_, Some(t)) => ops::load_checked_text(t, Path::new("<study text>"), DEFAULT_MAX_POINTS)?,
+        (Some(p), None) => ops::load_checked(&p, DEFAULT_MAX_POINTS)?,
         (None, None) => unreachable!("the Python side gives a path or text"),
-    }
-    .and_then(batstudy::optimize::checked)
-    .map_err(|e| (cli::EXIT_BAD_INPUT, e.to_string()))
+    })
+}
+
+/// What a finished native command hands the Python side: its ending's name (None for a
+/// plain success; `operations::KINDS` names them), the message of a refusal or failure,
+/// the output path, the report, whether it was interrupted, and the notes it made.
+type Ended = (
+    Option<&'static str>,
+    String,
+    Option<PathBuf>,
+    String,
+    bool,
+    Vec<String>,
+);
+
+fn refused(e: OpError) -> Ended {
+    (
+        Some(e.kind().info().name),
+        e.to_string(),
+        None,
+        String::new(),
+        false,
+        Vec::new(),
+    )
 }
 
 /// Run a study as `batstudy run` does, with the GIL released: from a file (`study`) or
@@ -188,55 +191,70 @@ fn run_study(
     force: bool,
     progress: Option<Bound<'_, PyAny>>,
     shard: Option<(usize, usize)>,
-) -> PyResult<(i32, String, Option<PathBuf>, String, bool)> {
+) -> PyResult<Ended> {
     let shard = match shard.map(|(i, n)| format!("{i}/{n}").parse::<run::Shard>()) {
         None => None,
         Some(Ok(s)) => Some(s),
-        Some(Err(e)) => {
-            return Ok((
-                cli::EXIT_BAD_INPUT,
-                format!("bad shard: {e}"),
-                None,
-                String::new(),
-                false,
-            ))
-        }
+        Some(Err(e)) => return Ok(refused(OpError::BadInput(format!("bad shard: {e}")))),
     };
-    let output_given = output.is_some();
-    let args = RunArgs {
-        study: study
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("<study text>")),
+    let request = RunRequest {
         output,
         jobs,
-        resume,
-        force,
-        fail_fast: false,
-        quiet: true,
-        max_points: DEFAULT_MAX_POINTS,
+        existing: ops::existing_from(resume, force),
         shard,
+        ..RunRequest::default()
     };
     let settings = match py.detach(|| {
         let loaded = load_study(study, text.as_deref())?;
-        cli::RunSettings::from_study(loaded, &args)
-            .map_err(|e| (cli::EXIT_BAD_INPUT, e.to_string()))
+        Ok::<_, OpError>(RunSettings::new(loaded, &request)?)
     }) {
         Ok(s) => s,
-        Err((code, message)) => return Ok((code, message, None, String::new(), false)),
+        Err(e) => return Ok(refused(e)),
     };
-    let (result, interrupted) = drive(py, progress, "batstudy-run", move |stop, counter| {
-        cli::run_settings(settings, output_given, &stop, Some(counter))
+    let (result, interrupted, notes) = drive(py, progress, "batstudy-run", move |stop, seen| {
+        ops::run_study(settings, &stop, seen)
     })?;
     Ok(match result {
-        Err(f) => (f.code, f.message, None, String::new(), false),
+        Err(e) => (
+            Some(e.kind().info().name),
+            e.to_string(),
+            None,
+            String::new(),
+            false,
+            notes,
+        ),
         Ok(done) => (
-            cli::exit_code(&done.report),
+            done.outcome().map(|k| k.info().name),
             String::new(),
             Some(done.settings.output.clone()),
-            done.report_text("batstudy"),
+            done.report_text(),
             done.report.interrupted || interrupted,
+            notes,
         ),
     })
+}
+
+/// What a native command tells the Python side while it runs: the count its progress bar
+/// shows, and the notes (warnings) it makes, raised as warnings once it has ended.
+#[derive(Default)]
+struct Seen {
+    done: AtomicUsize,
+    total: AtomicUsize,
+    notes: Mutex<Vec<String>>,
+}
+
+impl Observer for Seen {
+    fn progress(&self, done: usize, total: usize) {
+        self.total.store(total, Ordering::Relaxed);
+        self.done.store(done, Ordering::Relaxed);
+    }
+
+    fn note(&self, text: &str) {
+        self.notes
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .push(text.to_string());
+    }
 }
 
 /// Run `work` on a thread of its own with the GIL released, as a command runs: calls
@@ -244,20 +262,21 @@ fn run_study(
 /// (Ctrl-C, or raised by a signal handler or the progress bar) sets its stop flag, as the
 /// CLI's first Ctrl-C does, and is reported as `interrupted`; any other exception of the
 /// progress bar stops the work too and is raised once the work has stopped. Returns what
-/// `work` returned and whether it was interrupted.
+/// `work` returned, whether it was interrupted, and the notes it made.
 fn drive<T: Send + 'static>(
     py: Python<'_>,
     progress: Option<Bound<'_, PyAny>>,
     name: &str,
-    work: impl FnOnce(Arc<AtomicBool>, Arc<PointCounter>) -> T + Send + 'static,
-) -> PyResult<(T, bool)> {
+    work: impl FnOnce(Arc<AtomicBool>, SharedObserver) -> T + Send + 'static,
+) -> PyResult<(T, bool, Vec<String>)> {
     let stop = Arc::new(AtomicBool::new(false));
-    let counter = Arc::new(PointCounter::default());
+    let counter = Arc::new(Seen::default());
     let handle = {
-        let (stop, counter) = (Arc::clone(&stop), Arc::clone(&counter));
+        let stop = Arc::clone(&stop);
+        let seen = SharedObserver(Arc::clone(&counter) as Arc<dyn Observer>);
         std::thread::Builder::new()
             .name(name.into())
-            .spawn(move || work(stop, counter))
+            .spawn(move || work(stop, seen))
             .map_err(|e| PyValueError::new_err(format!("cannot start {name}: {e}")))?
     };
     let mut callback_error: Option<PyErr> = None;
@@ -309,7 +328,8 @@ fn drive<T: Send + 'static>(
     if let Some(e) = callback_error {
         return Err(e);
     }
-    Ok((result, interrupted))
+    let notes = std::mem::take(&mut *counter.notes.lock().unwrap_or_else(|p| p.into_inner()));
+    Ok((result, interrupted, notes))
 }
 
 /// Search a study's design as `batstudy optimize` does, in this process, with the GIL
@@ -330,47 +350,49 @@ fn optimize_study(
     resume: bool,
     force: bool,
     progress: Option<Bound<'_, PyAny>>,
-) -> PyResult<(i32, String, Option<PathBuf>, String, bool)> {
-    let args = cli::optimize::OptimizeArgs {
-        study: study
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("<study text>")),
+) -> PyResult<Ended> {
+    let request = OptimizeRequest {
         output,
         jobs,
         resume,
         force,
-        quiet: true,
-        max_points: DEFAULT_MAX_POINTS,
+        ..OptimizeRequest::for_study(
+            study
+                .clone()
+                .unwrap_or_else(|| PathBuf::from("<study text>")),
+        )
     };
     let loaded = match py.detach(|| load_study(study, text.as_deref())) {
         Ok(s) => s,
-        Err((code, message)) => return Ok((code, message, None, String::new(), false)),
+        Err(e) => return Ok(refused(e)),
     };
-    let (result, interrupted) = drive(py, progress, "batstudy-optimize", move |stop, counter| {
-        let done = cli::optimize::optimize_study(loaded, &args, &stop, Some(counter));
-        done.map(|d| {
-            (
-                d.exit_code(),
-                d.no_answer(),
-                cli::optimize::report_text(&d, &args),
-                d,
-            )
-        })
-    })?;
+    let (result, interrupted, notes) =
+        drive(py, progress, "batstudy-optimize", move |stop, seen| {
+            let done = ops::optimize_study(loaded, &request, &stop, seen);
+            done.map(|d| (ops::optimize::report_text(&d, &request), d))
+        })?;
     Ok(match result {
-        Err(f) => (f.code, f.message, None, String::new(), false),
-        Ok((code, no_answer, report, done)) => (
-            code,
-            no_answer.unwrap_or_default(),
+        Err(e) => (
+            Some(e.kind().info().name),
+            e.to_string(),
+            None,
+            String::new(),
+            false,
+            notes,
+        ),
+        Ok((report, done)) => (
+            done.outcome().map(|k| k.info().name),
+            done.no_answer().unwrap_or_default(),
             Some(done.output.clone()),
             report,
             done.interrupted || interrupted,
+            notes,
         ),
     })
 }
 
-/// Merge shard files into `output` as `batstudy merge` does. Returns (exit code, message,
-/// points stored, points failed); the message is empty on success.
+/// Merge shard files into `output` as `batstudy merge` does. Returns (ending's name or
+/// None, message, points stored, points failed); the message is empty on success.
 #[pyfunction]
 #[pyo3(signature = (output, shards, force=false, jobs=None, study=None))]
 fn merge(
@@ -380,27 +402,34 @@ fn merge(
     force: bool,
     jobs: Option<usize>,
     study: Option<PathBuf>,
-) -> (i32, String, usize, usize) {
-    if shards.is_empty() {
-        return (cli::EXIT_BAD_INPUT, "no shard files given".into(), 0, 0);
-    }
-    let args = cli::MergeArgs {
+) -> (Option<&'static str>, String, usize, usize) {
+    let request = ops::MergeRequest {
         output,
         shards,
         study,
         force,
         jobs,
-        quiet: true,
     };
-    match py.detach(|| cli::merge_shards(&args)) {
+    let seen = Seen::default();
+    match py.detach(|| ops::merge_shards(&request, &seen)) {
         Ok(sum) => (
-            cli::exit_code_of_failed(sum.n_failed),
+            ops::outcome_of_failed(sum.n_failed).map(|k| k.info().name),
             String::new(),
             sum.n_done,
             sum.n_failed,
         ),
-        Err(f) => (f.code, f.message, 0, 0),
+        Err(e) => (Some(e.kind().info().name), e.to_string(), 0, 0),
     }
+}
+
+/// The table of endings (`operations::KINDS`): (name, the command line's exit status, the
+/// Python exception, what it means), from which the Python side raises.
+#[pyfunction]
+fn endings() -> Vec<(&'static str, i32, &'static str, &'static str)> {
+    ops::KINDS
+        .iter()
+        .map(|k| (k.name, k.exit_code, k.python, k.meaning))
+        .collect()
 }
 
 /// What a study expands to (validating it as `batstudy validate` does): a dict with the
@@ -416,7 +445,7 @@ fn describe<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let loaded = py
         .detach(|| load_study(study, text.as_deref()))
-        .map_err(|(_, m)| PyValueError::new_err(m))?;
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let plan = &loaded.plan;
     let d = PyDict::new(py);
     d.set_item("name", &loaded.file.name)?;
@@ -455,7 +484,8 @@ fn export_profile(
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(describe, m)?)?;
-    m.add_function(wrap_pyfunction!(cli_main, m)?)?;
+    m.add_function(wrap_pyfunction!(command::cli_main, m)?)?;
+    m.add_function(wrap_pyfunction!(endings, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(run_study, m)?)?;
     m.add_function(wrap_pyfunction!(optimize_study, m)?)?;

@@ -1,9 +1,8 @@
-//! `batstudy export-profile`: a bat of a results file as a profile CSV
-//! (`profile_export`), written whole or not at all.
+//! `batstudy export-profile`: flags → `operations::export_profile`; the CSV on stdout or
+//! written whole to `--output`.
 
-use super::{EXIT_BAD_INPUT, EXIT_OK, EXIT_RUN_FAILED};
-use crate::profile_export::{profile_csv, Units};
-use crate::study::error::printable;
+use crate::operations;
+use crate::profile_export::Units;
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
@@ -23,33 +22,14 @@ pub struct ExportArgs {
 }
 
 pub(super) fn cmd_export(a: &ExportArgs) -> i32 {
-    if let Some(path) = &a.output {
-        if let Err(e) = super::common::side_output_ok(path, "--output", &[&a.file]) {
-            eprintln!("{e}");
-            return EXIT_BAD_INPUT;
+    match operations::export_profile(&a.file, a.bat.as_deref(), a.units, a.output.as_deref()) {
+        Ok(text) => {
+            print!("{}", text.unwrap_or_default());
+            operations::EXIT_OK
         }
-    }
-    let text = match profile_csv(&a.file, a.bat.as_deref(), a.units) {
-        Ok(t) => t,
         Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_BAD_INPUT;
+            eprintln!("{e}");
+            e.exit_code()
         }
-    };
-    match &a.output {
-        None => {
-            print!("{text}");
-            EXIT_OK
-        }
-        Some(path) => match crate::store::journal::write_whole(path, text.as_bytes()) {
-            Ok(()) => EXIT_OK,
-            Err(e) => {
-                eprintln!(
-                    "error: cannot write {}: {e}",
-                    printable(&path.display().to_string(), false)
-                );
-                EXIT_RUN_FAILED
-            }
-        },
     }
 }

@@ -1,10 +1,12 @@
-//! The command line: a thin layer over the library. Each command has its own module
-//! (`run`, `plan`, `validate`, `merge`, `slurm`, `optimize`, `export-profile`, `card`, `compare`; `inspect`, `schema` and `bench` are one
-//! call each, below); its raw flags become one validated settings value before anything
-//! runs or is written, then one library call. `common` holds what several commands share.
-//! Exit codes: 0 all points ok, 1 some points failed
-//! (results written), 2 bad input (message on stderr, nothing written), 3 a failure of
-//! the run itself (I/O), 130 interrupted (Ctrl-C; resume with `--resume`).
+//! The command line: a thin layer over the library's `operations`. Each command has its
+//! own module (`run`, `plan`, `validate`, `merge`, `slurm`, `optimize`, `export-profile`,
+//! `card`, `compare`, `fly`; `inspect`, `schema` and `bench` are one call each, below); its
+//! raw flags become one request value, checked before anything runs or is written, then
+//! one library call whose result is printed and whose ending becomes the exit status
+//! (`operations::KINDS`: 0 all points ok, 1 some points failed (results written), 2 bad
+//! input (message on stderr, nothing written), 3 a failure of the run itself (I/O), 130
+//! interrupted (Ctrl-C; resume with `--resume`)). `progress` draws a run's bar; `common`
+//! holds what several commands share.
 
 #![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
 
@@ -20,23 +22,18 @@ pub mod fly;
 pub mod merge;
 pub mod optimize;
 pub mod plan;
+mod progress;
 pub mod run;
 pub mod slurm;
 pub mod validate;
 
-pub use merge::{merge_shards, MergeArgs};
-pub use plan::PlanArgs;
-pub use run::{
-    exit_code, exit_code_of_failed, run_settings, run_study, run_with, shard_output, FinishedRun,
-    RunArgs, RunFailure, RunSettings,
+pub use crate::operations::{
+    EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK, EXIT_POINTS_FAILED, EXIT_RUN_FAILED,
 };
+pub use merge::MergeArgs;
+pub use plan::PlanArgs;
+pub use run::RunArgs;
 pub use slurm::SlurmArgs;
-
-pub const EXIT_OK: i32 = 0;
-pub const EXIT_POINTS_FAILED: i32 = 1;
-pub const EXIT_BAD_INPUT: i32 = 2;
-pub const EXIT_RUN_FAILED: i32 = 3;
-pub const EXIT_INTERRUPTED: i32 = 130;
 
 #[derive(Debug, Parser)]
 #[command(

@@ -4,6 +4,7 @@
 
 use super::common::check_output_of;
 use super::{EXIT_BAD_INPUT, EXIT_OK};
+use crate::operations::OutputNamed;
 use crate::study;
 use crate::study::output::Existing;
 use crate::study::LoadOptions;
@@ -14,7 +15,7 @@ pub(super) fn cmd_validate(files: &[PathBuf], max_points: usize) -> i32 {
     for f in files {
         let res = study::load(f, &LoadOptions { max_points }).and_then(|s| {
             let out = s.output_path(None);
-            check_output_of(&s, &out, false, Existing::Resume)?;
+            check_output_of(&s, &out, OutputNamed::ByStudy, Existing::Resume)?;
             crate::optimize::design_of(&s)?;
             Ok(s)
         });

@@ -8,7 +8,7 @@
 //! - `search`: argmin's Nelder–Mead with an exact penalty, resumable by replay.
 //!
 //! The record of the search (a journal while it runs, `/optimize` in the results file) is
-//! the store's (`store::optimize`); the command is `cli::optimize`.
+//! the store's (`store::optimize`); the operation that runs a search is `operations::optimize`.
 
 pub mod at_design;
 pub mod cmaes;

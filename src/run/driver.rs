@@ -6,6 +6,7 @@
 //! channel is bounded). Each point is independent and the sink stores by flat index, so
 //! results do not depend on the number of threads.
 
+use super::observer::{Observer, Phase, SharedObserver};
 use super::shard::Shard;
 use super::traits::{Encode, Simulator, Sink};
 use crate::model::field::squared_up;
@@ -29,14 +30,13 @@ pub struct RunOptions {
     pub jobs: usize,
     /// Stop dispatching at the first failed point.
     pub fail_fast: bool,
-    /// Show a progress bar (only drawn when stderr is a terminal).
-    pub progress: bool,
     /// Run only this shard's points.
     pub shard: Option<Shard>,
     /// Capacity of the channel to the writer.
     pub channel_capacity: usize,
-    /// Progress for an observer outside the run (the Python API's progress bar).
-    pub counter: Option<Arc<PointCounter>>,
+    /// Who is told the run's phase and progress (the command line's bar, the Python
+    /// binding's counter).
+    pub observer: SharedObserver,
 }
 
 impl Default for RunOptions {
@@ -44,20 +44,11 @@ impl Default for RunOptions {
         RunOptions {
             jobs: 1,
             fail_fast: false,
-            progress: false,
             shard: None,
             channel_capacity: 256,
-            counter: None,
+            observer: SharedObserver::default(),
         }
     }
-}
-
-/// The points of a run's range, and how many are done (written, or skipped as already
-/// done): read from another thread while the run goes on.
-#[derive(Debug, Default)]
-pub struct PointCounter {
-    pub total: AtomicUsize,
-    pub done: AtomicUsize,
 }
 
 /// What happened.
@@ -261,10 +252,8 @@ pub fn run_plan<S: Simulator, K: Sink>(
         super::shard::shard_range(plan, history, s)
     });
     let total = range.len();
-    let pb = super::progress::points_bar(opts.progress, total as u64);
-    if let Some(c) = &opts.counter {
-        c.total.store(total, Ordering::Relaxed);
-    }
+    opts.observer.phase(Phase::Simulating { total });
+    let done = AtomicUsize::new(0);
     let skip = skip_set(&sink, plan.n_points(), range.clone());
     // Asked before the workers start, like the skip set: encoding is the costly part of
     // storing a point, and runs on the worker that computed it.
@@ -273,8 +262,9 @@ pub fn run_plan<S: Simulator, K: Sink>(
     let sink = Mutex::new(sink);
     let (tx, rx) = crossbeam_channel::bounded(opts.channel_capacity.max(1));
     let progress = Progress {
-        bar: &pb,
-        counter: opts.counter.as_deref(),
+        observer: &*opts.observer,
+        done: &done,
+        total,
     };
     let dispatch = Dispatch {
         plan,
@@ -300,8 +290,9 @@ pub fn run_plan<S: Simulator, K: Sink>(
         writer
             .join()
             .map_err(|p| RunError::Sink(format!("writer thread panicked: {}", panic_text(p))))
-    })?;
-    pb.finish_and_clear();
+    });
+    opts.observer.phase(Phase::Done);
+    let written = written?;
     let sink = sink.into_inner().unwrap_or_else(|p| p.into_inner());
     let (ok, failed, failures) = written.map_err(RunError::Sink)?;
     let report = RunReport {
@@ -327,19 +318,18 @@ fn skip_set<K: Sink>(sink: &K, n: usize, range: std::ops::Range<usize>) -> Point
     skip
 }
 
-/// What a finished or skipped point advances: the bar and the outside observer's counter.
+/// What a finished or skipped point advances: the run's count, told to its observer.
 #[derive(Clone, Copy)]
 struct Progress<'a> {
-    bar: &'a indicatif::ProgressBar,
-    counter: Option<&'a PointCounter>,
+    observer: &'a dyn Observer,
+    done: &'a AtomicUsize,
+    total: usize,
 }
 
 impl Progress<'_> {
     fn done(&self, points: usize) {
-        self.bar.inc(points as u64);
-        if let Some(c) = self.counter {
-            c.done.fetch_add(points, Ordering::Relaxed);
-        }
+        let done = self.done.fetch_add(points, Ordering::Relaxed) + points;
+        self.observer.progress(done, self.total);
     }
 }
 
@@ -385,7 +375,7 @@ fn write_records<K: Sink>(
     // threads is on the critical path of a small study). In the run's pool, whose threads
     // have just finished their last points: the final file's parallel parts (deflate) start
     // on threads that are awake.
-    progress.bar.set_message("writing");
+    progress.observer.phase(Phase::Writing);
     let mut s = lock();
     let sink = &mut *s;
     pool.install(|| sink.finish())?;

@@ -1,9 +1,6 @@
-//! What a run shows on a terminal: the phase (preparing bats, simulating, writing), a bar
-//! with the points done, a rate in whole points per second, and an ETA that appears only
-//! once the rate means something. Nothing is drawn when stderr is not a terminal.
+//! A run's pace as text: a rate in whole points per second, an ETA that appears only once
+//! the rate means something, and durations (the report and the command line's bar use them).
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
-use std::io::IsTerminal;
 use std::time::Duration;
 
 /// The ETA is shown from this much running time on (the first points pay for cold caches
@@ -11,54 +8,6 @@ use std::time::Duration;
 const WARM_UP: Duration = Duration::from_secs(2);
 /// … and from this share of the points done.
 const WARM_UP_SHARE: f64 = 0.02;
-
-fn drawn(enabled: bool) -> bool {
-    enabled && std::io::stderr().is_terminal()
-}
-
-/// A spinner for a phase without a count (`preparing 14 bats`); hidden when not drawn.
-pub fn spinner(enabled: bool, message: String) -> ProgressBar {
-    if !drawn(enabled) {
-        return ProgressBar::hidden();
-    }
-    let pb = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-    pb.set_style(
-        ProgressStyle::with_template("{spinner} {msg}  {elapsed}")
-            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
-    );
-    pb.set_message(message);
-    pb.enable_steady_tick(Duration::from_millis(120));
-    pb
-}
-
-/// The bar of the simulating phase; `set_message("writing …")` names the last phase.
-pub fn points_bar(enabled: bool, total: u64) -> ProgressBar {
-    if !drawn(enabled) {
-        return ProgressBar::hidden();
-    }
-    let pb = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
-    pb.set_style(
-        ProgressStyle::with_template(
-            "{msg:11} {elapsed:>4} [{wide_bar}] {pos}/{len} points  {rate}  {eta_warm}",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .with_key("rate", |s: &ProgressState, w: &mut dyn std::fmt::Write| {
-            let _ = write!(w, "{}", rate_text(s.pos(), s.elapsed()));
-        })
-        .with_key(
-            "eta_warm",
-            |s: &ProgressState, w: &mut dyn std::fmt::Write| {
-                let _ = write!(
-                    w,
-                    "{}",
-                    eta_text(s.pos(), s.len().unwrap_or(0), s.elapsed())
-                );
-            },
-        ),
-    );
-    pb.set_message("simulating");
-    pb
-}
 
 /// `1234 points/s` (mean since the start; whole numbers, or one decimal below 10).
 pub fn rate_text(done: u64, elapsed: Duration) -> String {
