@@ -1,6 +1,7 @@
-//! A bat of a results file as a profile CSV (outer radius and wall along the bat) that a
-//! study reads back as the same bat (`bat.profile.csv`): `batstudy export-profile` and the
-//! Python package's `export_profile`.
+//! A bat of a results file as a profile CSV (stations from the knob, the outer diameter and
+//! the wall, rounded to what a lathe holds in the chosen unit) that a study reads back as the
+//! same bat (`bat.profile.csv`): `batstudy export-profile` and the Python package's
+//! `export_profile`.
 
 use crate::model::bat::export::{profile_rows, ProfileRow};
 use crate::model::bat::section::BatGeometry;
@@ -24,6 +25,17 @@ impl Units {
             Units::M => ("m", 1.0),
             Units::Mm => ("mm", 1e3),
             Units::In => ("in", 1.0 / 0.0254),
+        }
+    }
+
+    /// Decimals of a station and a diameter, and of a wall, in this unit: what a lathe holds
+    /// on a diameter (0.001 in, 0.01 mm) and a micrometer reads on a wall (0.0001 in,
+    /// 0.001 mm); stations as the diameters.
+    fn decimals(self) -> (usize, usize) {
+        match self {
+            Units::M => (5, 6),
+            Units::Mm => (2, 3),
+            Units::In => (3, 4),
         }
     }
 }
@@ -69,7 +81,7 @@ fn csv_text(rows: &[ProfileRow], g: &BatGeometry, label: &str, file: &str, units
     let hollow = rows.iter().any(|r| r.wall > 0.0);
     let mut s = format!(
         "# bat {} of {file}, written by batstudy export-profile\n\
-         # read back with bat.profile.csv; the CSV holds the outer radius{}, not the material:\n\
+         # read back with bat.profile.csv; the CSV holds the outer diameter{}, not the material:\n\
          # bat.material.density {} kg/m3, bat.material.youngs_modulus {} Pa{}\n",
         printable(label, false),
         if hollow {
@@ -85,15 +97,20 @@ fn csv_text(rows: &[ProfileRow], g: &BatGeometry, label: &str, file: &str, units
             String::new()
         }
     );
-    s.push_str(&format!("z_{u},radius_{u}"));
+    s.push_str(&format!("z_{u},diameter_{u}"));
     if hollow {
         s.push_str(&format!(",wall_{u}"));
     }
     s.push('\n');
+    let (d, w) = units.decimals();
     for r in rows {
-        s.push_str(&format!("{},{}", r.z * scale, r.radius * scale));
+        s.push_str(&format!(
+            "{:.d$},{:.d$}",
+            r.z * scale,
+            2.0 * r.radius * scale
+        ));
         if hollow {
-            s.push_str(&format!(",{}", r.wall * scale));
+            s.push_str(&format!(",{:.w$}", r.wall * scale));
         }
         s.push('\n');
     }

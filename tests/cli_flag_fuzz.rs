@@ -106,6 +106,10 @@ fn fly_under_random_flags_exits_2_or_flies_a_physical_ball() {
             let value = VALUES[rng.below(VALUES.len())];
             args.push(format!("{flag}={value}"));
         }
+        // the spin is required: a plausible one unless the draw gave its own
+        if !args.iter().any(|a| a.starts_with("--backspin")) {
+            args.push("--backspin=200".into());
+        }
         let (out, err, code) = run(&args);
         match code {
             0 => {

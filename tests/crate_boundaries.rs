@@ -188,7 +188,10 @@ fn the_python_binding_calls_the_operations_not_the_command_line() {
         "python/src/command.rs names more of the command line than its entry: {named:?}"
     );
     let lib = std::fs::read_to_string(Path::new(ROOT).join("python/src/lib.rs")).unwrap();
-    assert!(lib.contains("batstudy::operations"), "the binding calls the operations");
+    assert!(
+        lib.contains("batstudy::operations"),
+        "the binding calls the operations"
+    );
 }
 
 /// The operations are the library under every front end: they name nothing of the command

@@ -73,9 +73,24 @@ fn an_exported_profile_reads_back_as_the_same_bat() {
             ]);
             let header = std::fs::read_to_string(&csv).unwrap();
             assert!(
-                header.contains(&format!("z_{units},radius_{units}")),
+                header.contains(&format!("z_{units},diameter_{units}")),
                 "{header}"
             );
+            // shop-ready: stations and diameters to what a lathe holds (0.001 in, 0.01 mm),
+            // walls to what a micrometer reads (0.0001 in, 0.001 mm)
+            let (d, w) = match units {
+                "in" => (3, 4),
+                "mm" => (2, 3),
+                _ => (5, 6),
+            };
+            for row in header.lines().filter(|l| !l.starts_with('#')).skip(1) {
+                let decimals: Vec<usize> = row
+                    .split(',')
+                    .map(|f| f.split_once('.').map_or(0, |(_, frac)| frac.len()))
+                    .collect();
+                assert_eq!(&decimals[..2], &[d, d], "{units}: {row}");
+                assert!(decimals.len() == 2 || decimals[2] == w, "{units}: {row}");
+            }
             // the material the CSV leaves to the study (the composite's: its stack's)
             let back = if *back == "COMPOSITE" {
                 format!(

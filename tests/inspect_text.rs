@@ -147,7 +147,22 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
         line.trim_end().ends_with("passes")
     };
     assert!(verdict(cards[0], "one piece of solid wood"));
-    assert!(!verdict(cards[1], "one piece of solid wood"));
+    // MLB's rules are for wood bats: a hollow alloy bat is not judged by them (it does not
+    // "fail" them); its NCAA lines stay, with the trade's units beside SI
+    let not_for = cards[1].lines().find(|l| l.contains("mlb_wood:")).unwrap();
+    assert!(not_for.contains("not for this bat"), "{not_for}");
+    assert!(
+        !cards[1]
+            .lines()
+            .any(|l| l.contains("mlb_wood") && l.contains("FAILS")),
+        "{}",
+        cards[1]
+    );
+    assert!(
+        cards[1].contains("m       margin") && cards[1].contains(" in)"),
+        "{}",
+        cards[1]
+    );
     assert!(cards[0].contains("none (a solid bat)"));
     assert!(cards[1].contains("breathing mode"));
     // the best q in the field's convention, where the bat's BBCOR scan is
@@ -159,10 +174,21 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
     let table = stdout_of("compare", &out);
     let rows: Vec<&str> = table.lines().skip(2).collect();
     assert_eq!(rows.len(), 2, "{table}");
-    for (row, card) in rows.iter().zip(&cards) {
+    for ((row, card), judged) in rows.iter().zip(&cards).zip([6, 3]) {
         let kept = card.matches("passes").count();
-        assert!(row.contains(&format!(" {kept}/6 ")), "{row}\n{card}");
+        assert!(row.contains(&format!(" {kept}/{judged} ")), "{row}\n{card}");
     }
+    // several files in one table, each bat named by its file
+    let path = out.to_str().unwrap();
+    let o = command("compare", &out, &[path]);
+    let both = String::from_utf8(o.stdout).unwrap();
+    assert!(o.status.success(), "{both}");
+    let rows: Vec<&str> = both.lines().skip(2).collect();
+    assert_eq!(rows.len(), 4, "{both}");
+    assert!(
+        rows.iter().all(|r| r.contains(&format!("{path}: "))),
+        "{both}"
+    );
     // one bat by label; an unknown one is refused with the labels allowed (exit 2)
     let o = Command::new(env!("CARGO_BIN_EXE_batstudy"))
         .args(["card", out.to_str().unwrap(), "--bat", "1"])

@@ -60,7 +60,9 @@ def bat_card(tree, bat=None):
     NaN for a solid bat), ``best_q`` and where (``best_q_position``: the best collision
     efficiency in the field's convention, exit = q pitch + (1 + q) bat speed 6 in from the
     end, at a 70-mph swing meeting an 82-mph pitch); along ``rule_check`` each rule's ``rule_value``, ``rule_margin``
-    (negative: the bat breaks it), ``rule_units`` and ``rule_passes``. The trade's units
+    (negative: the bat breaks it), ``rule_units``, ``rule_passes`` and ``rule_applies``
+    (False where the rule set is not for the bat: MLB's wood-bat rules on a hollow bat, as
+    ``batstudy card`` shows them). The trade's units
     beside: ``length_in``, ``mass_oz``, ``balance_point_in``, the swing weights in
     ``oz in^2``, ``barrel_diameter_in``, ``sweet_zone_length_in``.
 
@@ -93,6 +95,11 @@ def bat_card(tree, bat=None):
         card[name] = card[si] * scale
         card[name].attrs = {"units": units, "long_name": f"{si.replace('_', ' ')} ({units})"}
     margin = card["rule_margin"]
+    card["rule_applies"] = _rule_applies(card)
+    card["rule_applies"].attrs = {
+        "units": "1",
+        "long_name": "the rule set is for this bat (a wood-bat rule set is not for a bat that is not one piece of solid wood)",
+    }
     card["rule_passes"] = xr.where(np.isfinite(margin), margin >= 0, False)
     card["rule_passes"].attrs = {"units": "1", "long_name": "the bat keeps the rule"}
     if bat is not None:
@@ -107,3 +114,27 @@ def bat_card(tree, bat=None):
         else:
             raise ValueError(f"bat {bat!r} is not a bat of the file; allowed: {labels}")
     return card
+
+
+# The check of a wood-bat rule set (`mlb_wood`), valued 1 for a bat of one piece of solid
+# wood: a bat that fails it is one the rule set is not for (`outcome::SOLID_WOOD_CHECK`).
+SOLID_WOOD_CHECK = "one piece of solid wood"
+
+
+def _rule_applies(card):
+    """(bat, rule_check): whether each rule's set is for each bat, as the terminal card says."""
+    import numpy as np
+    import xarray as xr
+
+    labels = [str(x) for x in card["rule_check"].values]
+    sets = [label.split(":")[0] for label in labels]
+    value = np.atleast_2d(card["rule_value"].values)
+    applies = np.ones(value.shape, dtype=bool)
+    for k, label in enumerate(labels):
+        if label.endswith(SOLID_WOOD_CHECK):
+            not_wood = value[:, k] != 1.0
+            for j, s in enumerate(sets):
+                if s == sets[k]:
+                    applies[:, j] &= ~not_wood
+    return xr.DataArray(applies.reshape(card["rule_value"].shape), dims=card["rule_value"].dims,
+                        coords=card["rule_value"].coords)

@@ -23,7 +23,7 @@ _COLUMNS = {
 def fly(
     exit_speed: float,
     launch_angle: float,
-    spin: float = 0.0,
+    spin: float,
     spin_axis: float = 0.0,
     *,
     spray_angle: float = 0.0,
@@ -38,7 +38,9 @@ def fly(
 
     SI throughout (``batstudy.units`` converts: ``fly(units.mph(103), units.deg(27.5),
     units.rpm(2500))``): ``exit_speed`` m/s; ``launch_angle`` rad above the horizontal;
-    ``spin`` rad/s, the spin's magnitude; ``spin_axis`` rad, the tilt of the spin axis from
+    ``spin`` rad/s, the spin's magnitude, required (a ball without spin is a knuckleball
+    that carries tens of feet less: give 0 for one; batted balls leave with about
+    1,000–3,000 rpm); ``spin_axis`` rad, the tilt of the spin axis from
     pure backspin (0) toward sidespin that curves the ball to the left-field side (π/2; −π/2
     curves it to the right-field side, π is topspin): backspin = spin·cos(spin_axis),
     sidespin = spin·sin(spin_axis); ``spray_angle`` rad from straight-away centre field,

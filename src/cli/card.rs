@@ -17,13 +17,15 @@ pub struct CardArgs {
 
 #[derive(Debug, clap::Args)]
 pub struct CompareArgs {
-    /// A results file.
-    pub file: PathBuf,
+    /// Results files: every bat of each, in the order given.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
 }
 
-/// `batstudy compare`: every bat of the file in one table, a row per bat.
+/// `batstudy compare`: every bat of the files in one table, a row per bat (named by its file
+/// too when there are several files).
 pub(super) fn cmd_compare(a: &CompareArgs) -> i32 {
-    show(operations::cards(&a.file, None).map(|c| render_table(&c)))
+    show(operations::cards_of_files(&a.files).map(|c| render_table(&c)))
 }
 
 pub(super) fn cmd_card(a: &CardArgs) -> i32 {

@@ -18,8 +18,10 @@ pub struct FlyArgs {
     /// Launch angle above the horizontal: rad, or `deg`.
     #[arg(long, value_parser = launch_angle, allow_hyphen_values = true)]
     pub launch_angle: f64,
-    /// Backspin (negative: topspin): rad/s, or `rpm`.
-    #[arg(long, value_parser = spin, default_value = "0", allow_hyphen_values = true)]
+    /// Backspin (negative: topspin): rad/s, or `rpm`. Required: a batted ball without spin
+    /// is a knuckleball that carries tens of feet less (give `0` for one); line drives and
+    /// fly balls leave with about 1,000–3,000 rpm.
+    #[arg(long, value_parser = spin, allow_hyphen_values = true)]
     pub backspin: f64,
     /// Sidespin, positive curving toward the left-field side: rad/s, or `rpm`.
     #[arg(long, value_parser = spin, default_value = "0", allow_hyphen_values = true)]

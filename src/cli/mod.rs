@@ -92,16 +92,16 @@ pub enum Command {
     /// Search a study's design (its `optimize` block) within its rules; store every
     /// candidate in `/optimize` and the study at the best design.
     Optimize(optimize::OptimizeArgs),
-    /// Write a bat of a results file as a profile CSV (outer radius and wall along the bat,
+    /// Write a bat of a results file as a profile CSV (outer diameter and wall along the bat,
     /// in m, mm or in) that `bat.profile.csv` reads back as the same bat.
     ExportProfile(export::ExportArgs),
     /// Each bat of a results file as the trade states it: length, weight and drop, balance
     /// point, swing weights, BBCOR with its ball, sweet zone, bending and hoop frequencies,
     /// and the margin to each rule.
     Card(card::CardArgs),
-    /// Every bat of a results file in one table, a row per bat, in the trade's units (oz,
-    /// in, oz in^2): weight and drop, balance point, swing weights, diameter, BBCOR, sweet
-    /// zone, bending and hoop frequencies, the rules kept.
+    /// Every bat of one or more results files in one table, a row per bat, in the trade's
+    /// units (oz, in, oz in^2): weight and drop, balance point, swing weights, diameter,
+    /// BBCOR, sweet zone, bending and hoop frequencies, the rules kept of those for the bat.
     Compare(card::CompareArgs),
     /// One batted ball's flight on its own, as Nathan's trajectory calculator takes it: exit
     /// speed, launch angle, spin and the air (SI, or with a unit: `100mph`, `28deg`,

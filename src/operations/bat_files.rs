@@ -48,3 +48,19 @@ pub fn cards(results: &Path, bat: Option<&str>) -> Result<Vec<BatCard>, OpError>
     }
     Ok(cards)
 }
+
+/// Every bat of several results files, in the order given; with more than one file each
+/// label says its file (`FILE: label`).
+pub fn cards_of_files(files: &[std::path::PathBuf]) -> Result<Vec<BatCard>, OpError> {
+    let mut all = Vec::new();
+    for file in files {
+        let mut cards = cards(file, None)?;
+        if files.len() > 1 {
+            for c in &mut cards {
+                c.label = format!("{}: {}", file.display(), c.label);
+            }
+        }
+        all.extend(cards);
+    }
+    Ok(all)
+}

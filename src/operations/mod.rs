@@ -13,7 +13,7 @@ pub mod merge;
 pub mod optimize;
 pub mod run;
 
-pub use bat_files::{cards, export_profile};
+pub use bat_files::{cards, cards_of_files, export_profile};
 pub use failure::{
     exit_code_of, Kind, KindInfo, OpError, EXIT_BAD_INPUT, EXIT_INTERRUPTED, EXIT_OK,
     EXIT_POINTS_FAILED, EXIT_RUN_FAILED, KINDS,

@@ -16,7 +16,7 @@
 use super::quantity::{BatQuantity, Quantity};
 use crate::model::measures::metrics::{bbcor_scan_mapped, BbcorShot};
 use crate::model::measures::sweet::find_maximum;
-use crate::model::outcome::{BatProperties, RuleCheck};
+use crate::model::outcome::{BatProperties, RuleCheck, SOLID_WOOD_CHECK};
 use crate::model::spec::BatSpec;
 use crate::model::spec::CollisionSpec;
 use crate::model::Target;
@@ -169,7 +169,7 @@ pub fn rule_checks(p: &BatProperties, spec: &BatSpec) -> Vec<RuleCheck> {
         if rules == RuleSet::MlbWood {
             let value = if spec.is_solid_wood() { 1.0 } else { 0.0 };
             out.push(RuleCheck {
-                label: format!("{name}: one piece of solid wood"),
+                label: format!("{name}: {SOLID_WOOD_CHECK}"),
                 units: "1".into(),
                 value,
                 margin: value - 1.0,

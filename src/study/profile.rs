@@ -3,11 +3,11 @@
 //! `bat.shell.thickness_knots`).
 //!
 //! Formats, told apart by the header line (lines starting with `#` are comments):
-//! - `z,radius` with an optional third column `wall`: knots, z from the knob, increasing
-//!   from 0, linear between rows. Each column may name its unit as a suffix: `_m` (the
-//!   default), `_mm` or `_in` (`z_in,radius_in,wall_in`). A wall of 0 is solid; the
-//!   hollow part starts at the first row with a wall and stays hollow to the end
-//!   (`batstudy export-profile` writes this form).
+//! - `z,radius` (or `z,diameter`) with an optional third column `wall`: knots, z from the
+//!   knob, increasing from 0, linear between rows. Each column may name its unit as a
+//!   suffix: `_m` (the default), `_mm` or `_in` (`z_in,diameter_in,wall_in`). A wall of 0 is
+//!   solid; the hollow part starts at the first row with a wall and stays hollow to the end
+//!   (`batstudy export-profile` writes this form, with diameters).
 //! - `slice_end_cm,diameter_mm` (the R161 table in `data/`): row k is the 1-cm slice from
 //!   (k−1) cm to k cm with that outer diameter. Converted to knots at each slice's middle,
 //!   plus the two ends (z = 0 with the first slice's radius, z = L with the last's).
@@ -38,7 +38,10 @@ fn header_scales(cols: &[String]) -> Option<Option<(f64, f64, Option<f64>)>> {
         return Some(None);
     }
     let z = column_scale(cols.first()?, "z")?;
-    let r = column_scale(cols.get(1)?, "radius")?;
+    let second = cols.get(1)?;
+    // a diameter column (as a lathe's drawing gives it) is half a radius's
+    let r =
+        column_scale(second, "radius").or_else(|| Some(0.5 * column_scale(second, "diameter")?))?;
     let wall = match cols.get(2) {
         None => None,
         Some(c) => Some(column_scale(c, "wall")?),
@@ -61,9 +64,9 @@ pub fn parse_profile_csv(text: &str) -> Result<ProfileTable, String> {
     // first line a quoting message would print), so they say where, not what.
     let scales = header_scales(&cols).ok_or_else(|| {
         format!(
-            "line {header_line}: not a profile header; expected `z,radius` with an optional \
-             `wall` column, each in m or with a unit suffix `_m`, `_mm`, `_in` \
-             (`z_mm,radius_mm,wall_mm`), or `slice_end_cm,diameter_mm`"
+            "line {header_line}: not a profile header; expected `z,radius` or `z,diameter` with \
+             an optional `wall` column, each in m or with a unit suffix `_m`, `_mm`, `_in` \
+             (`z_mm,diameter_mm,wall_mm`), or `slice_end_cm,diameter_mm`"
         )
     })?;
     let width = cols.len();

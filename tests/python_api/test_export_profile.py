@@ -18,7 +18,7 @@ def test_a_hollow_bat_reads_back_as_itself(tmp_path):
     )
     csv = tmp_path / "alloy.csv"
     text = batstudy.export_profile(out, units="in", path=csv)
-    assert text.splitlines()[3] == "z_in,radius_in,wall_in"
+    assert text.splitlines()[3] == "z_in,diameter_in,wall_in"
     assert csv.read_text() == text
     study = tmp_path / "back.yaml"
     study.write_text(

@@ -56,18 +56,28 @@ def test_the_spin_axis_splits_backspin_and_sidespin():
 
 def test_a_value_out_of_range_is_named():
     with pytest.raises(ValueError, match="launch.exit_speed"):
-        batstudy.fly(300.0, 0.4)
+        batstudy.fly(300.0, 0.4, 200.0)
     with pytest.raises(ValueError, match="flight.humidity"):
-        batstudy.fly(40.0, 0.4, humidity=1.5)
+        batstudy.fly(40.0, 0.4, 200.0, humidity=1.5)
 
 
 def test_a_number_in_the_trades_unit_is_refused_not_flown():
     # the ranges of a study's flight block and of `batstudy fly`: 100 meant as mph would fly
     # at 100 m/s (832 ft), 29.92 meant as inHg in near vacuum
     with pytest.raises(ValueError, match="launch.exit_speed.*batstudy.units"):
-        batstudy.fly(100.0, 0.4)
+        batstudy.fly(100.0, 0.4, 200.0)
     with pytest.raises(ValueError, match="flight.pressure"):
-        batstudy.fly(45.0, 0.4, pressure=29.92)
+        batstudy.fly(45.0, 0.4, 200.0, pressure=29.92)
     with pytest.raises(ValueError, match="launch.launch_angle"):
-        batstudy.fly(45.0, 28.0)
+        batstudy.fly(45.0, 28.0, 200.0)
     assert float(batstudy.fly(units.mph(100), units.deg(28), units.rpm(2000)).carry) > 100
+
+
+def test_a_flight_without_spin_is_asked_for_not_flown_as_a_knuckleball():
+    # a batted ball leaves with 1,000-3,000 rpm; one without spin carries tens of feet less
+    # (100 mph at 28 deg: 358 ft against 408.6 ft with 2,000 rpm), so the spin has no default
+    with pytest.raises(TypeError, match="spin"):
+        batstudy.fly(units.mph(100), units.deg(28))
+    knuckle = float(batstudy.fly(units.mph(100), units.deg(28), 0.0).carry)
+    spun = float(batstudy.fly(units.mph(100), units.deg(28), units.rpm(2000)).carry)
+    assert spun - knuckle > 10 * 0.3048, (knuckle, spun)

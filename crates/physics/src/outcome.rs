@@ -360,6 +360,11 @@ impl BatProperties {
 }
 
 /// One limit of a rule book applied to a bat.
+/// The check of a rule set for wood bats alone (`mlb_wood`): its label after the rule set's
+/// name; valued 1 for a bat of one piece of solid wood and 0 otherwise. A bat it fails is one
+/// the rule set is not for, not one that breaks it.
+pub const SOLID_WOOD_CHECK: &str = "one piece of solid wood";
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct RuleCheck {
     /// The rule set and its limit, e.g. `ncaa_bbcor: bat.bbcor <= 0.5`.

@@ -8,6 +8,7 @@ use super::inspect::shot_name;
 use super::layout as l;
 use super::read::{open_checked, shown};
 use crate::results::printable;
+use batstudy_physics::outcome::SOLID_WOOD_CHECK;
 use batstudy_physics::units::{INCH, OUNCE, OUNCE_SQUARE_INCH};
 use hdf5::types::VarLenUnicode;
 use std::fmt::Write as _;
@@ -20,6 +21,52 @@ pub struct CardRule {
     pub units: String,
     pub value: f64,
     pub margin: f64,
+}
+
+impl CardRule {
+    /// The rule set it belongs to (`ncaa_bbcor`, `mlb_wood`).
+    pub fn rule_set(&self) -> &str {
+        self.label.split(':').next().unwrap_or("")
+    }
+
+    /// The value in the trade's unit beside SI (`0.066660 m` is 2.624 in), or nothing.
+    fn trade_value(&self) -> String {
+        match self.units.as_str() {
+            "m" => format!(" ({:.3} in)", self.value / INCH),
+            "kg m^2" | "kg m2" => format!(" ({:.0} oz in^2)", self.value / OUNCE_SQUARE_INCH),
+            "kg" => format!(" ({:.2} oz)", self.value / OUNCE),
+            _ => String::new(),
+        }
+    }
+}
+
+impl BatCard {
+    /// Whether a rule set is for this bat: a rule set for wood bats alone (one with the
+    /// solid-wood check) is not for a bat that fails that check; every other rule set is.
+    pub fn rule_set_applies(&self, rule_set: &str) -> bool {
+        !self.rules.iter().any(|r| {
+            r.rule_set() == rule_set && r.label.ends_with(SOLID_WOOD_CHECK) && r.value != 1.0
+        })
+    }
+
+    /// The limits of the rule sets that are for this bat.
+    pub fn applicable_rules(&self) -> impl Iterator<Item = &CardRule> {
+        self.rules
+            .iter()
+            .filter(|r| self.rule_set_applies(r.rule_set()))
+    }
+
+    /// The rule sets that are not for this bat, once each.
+    pub fn rule_sets_not_for(&self) -> Vec<&str> {
+        let mut sets: Vec<&str> = self
+            .rules
+            .iter()
+            .map(CardRule::rule_set)
+            .filter(|set| !self.rule_set_applies(set))
+            .collect();
+        sets.dedup();
+        sets
+    }
 }
 
 /// A bat's card, SI (as `/bat` stores it).
@@ -256,7 +303,7 @@ fn render_one(c: &BatCard, s: &mut String) {
         s,
         "  rules (margin: how far inside the limit; negative breaks it)"
     );
-    for r in &c.rules {
+    for r in c.applicable_rules() {
         let verdict = if r.margin >= 0.0 {
             "passes"
         } else if r.margin < 0.0 {
@@ -266,17 +313,26 @@ fn render_one(c: &BatCard, s: &mut String) {
         };
         let _ = writeln!(
             s,
-            "    {:<46} {:>12.6} {:<7} margin {:>+12.6}  {verdict}",
+            "    {:<46} {:>12.6} {:<7} margin {:>+12.6}  {verdict}{}",
             printable(&r.label, false),
             r.value,
             printable(&r.units, false),
-            r.margin
+            r.margin,
+            r.trade_value()
+        );
+    }
+    for set in c.rule_sets_not_for() {
+        let _ = writeln!(
+            s,
+            "    {:<46} not for this bat: a rule set for bats of {SOLID_WOOD_CHECK}",
+            format!("{}:", printable(set, false))
         );
     }
 }
 
 /// The cards as one table, a row per bat, in the trade's units (`batstudy compare`): the bats'
-/// numbers side by side, each bat's rules as how many it keeps and the first it breaks.
+/// numbers side by side, each bat's rules as how many of those for it (a wood-bat rule set is
+/// not for a hollow bat) it keeps, and the first it breaks.
 pub fn render_table(cards: &[BatCard]) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -302,9 +358,10 @@ pub fn render_table(cards: &[BatCard]) -> String {
         "", "", "", "", "oz in^2", "oz in^2", "in", "", "", "in", "Hz", "Hz", "kept"
     );
     for (i, c) in cards.iter().enumerate() {
-        let kept = c.rules.iter().filter(|r| r.margin >= 0.0).count();
-        let broken = c.rules.iter().find(|r| r.margin < 0.0);
-        let unknown = c.rules.iter().find(|r| r.margin.is_nan());
+        let applicable: Vec<&CardRule> = c.applicable_rules().collect();
+        let kept = applicable.iter().filter(|r| r.margin >= 0.0).count();
+        let broken = applicable.iter().find(|r| r.margin < 0.0);
+        let unknown = applicable.iter().find(|r| r.margin.is_nan());
         let _ = writeln!(
             s,
             "{i:>3} {:>7.2} {:>+6.2} {:>7.2} {:>8.0} {:>8.0} {:>6.3} {:>7.4} {:>6.3} {:>6.2} {:>6.0} {:>6.0} {:>5}  {}{}",
@@ -319,7 +376,7 @@ pub fn render_table(cards: &[BatCard]) -> String {
             (c.sweet_zone_end - c.sweet_zone_start) / INCH,
             c.bending_frequency,
             c.hoop_mode_frequency,
-            format!("{kept}/{}", c.rules.len()),
+            format!("{kept}/{}", applicable.len()),
             printable(&c.label, false),
             match (broken, unknown) {
                 (Some(r), _) => format!(" (breaks {})", printable(&r.label, false)),
