@@ -6,7 +6,8 @@
 //! `21C`, `29.92inHg`.
 
 use super::{EXIT_BAD_INPUT, EXIT_OK};
-use crate::model::flight::{self, Atmosphere, FlightError, FlightOptions, Launch, FOOT};
+use crate::model::flight::{self, Atmosphere, FlightError, FlightOptions, Launch};
+use crate::model::units::{meant_of, split_quantity, suffixes, units_of, Unit, FOOT};
 use crate::model::plausible;
 use std::path::PathBuf;
 
@@ -53,33 +54,31 @@ pub struct FlyArgs {
     pub trajectory: Option<PathBuf>,
 }
 
-/// A number with an optional unit suffix, times the unit's factor plus its offset, inside
-/// the plausible range of `range` (`model::plausible`). The first unit is SI; a bare number
-/// outside the range that one of the others would put inside it is refused with that unit
-/// named (`--exit-speed 100` is 100 mph, not 100 m/s).
-fn with_units(s: &str, units: &[(&str, f64, f64)], what: &str, range: &str) -> Result<f64, String> {
-    let t = s.trim();
-    let suffixed = units
-        .iter()
-        .filter(|(u, _, _)| !u.is_empty())
-        .find_map(|(u, f, o)| t.strip_suffix(u).map(|n| (n, (*f, *o))));
-    let (number, (factor, offset)) = suffixed.unwrap_or((t, (1.0, 0.0)));
-    let names: Vec<&str> = units.iter().map(|u| u.0).collect();
-    let x = match number.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() => x,
-        _ => {
-            return Err(format!(
-                "`{s}` is not {what}: a number in SI units{}, or with one of {}",
-                Some(names[0])
-                    .filter(|n| !n.is_empty())
-                    .map(|n| format!(" ({n})"))
-                    .unwrap_or_default(),
-                names[1..].join(", ")
-            ))
-        }
-    };
+/// A number with an optional unit suffix, in SI (`model::units`), inside the plausible range
+/// of `range` (`model::plausible`), whose SI unit gives the units allowed (`units`, when
+/// given, instead). A bare number outside the range that one of the trade's units would put
+/// inside it is refused with that unit named (`--exit-speed 100` is 100 mph, not 100 m/s).
+fn with_units(s: &str, units: Option<&[Unit]>, what: &str, range: &str) -> Result<f64, String> {
     let r = plausible::range_of(range).expect("every flag has a plausible range");
-    let v = x * factor + offset;
+    let units = units.unwrap_or_else(|| units_of(r.unit));
+    let t = s.trim();
+    let parsed = match split_quantity(t) {
+        Some((x, suffix)) => units
+            .iter()
+            .find(|u| u.suffix == suffix)
+            .map(|u| (x, x * u.factor + u.offset, true)),
+        None => t.parse::<f64>().ok().map(|x| (x, x, false)),
+    };
+    let Some((x, v, suffixed)) = parsed.filter(|p| p.1.is_finite()) else {
+        return Err(format!(
+            "`{s}` is not {what}: a number in SI units{}, or with one of {}",
+            Some(units[0].suffix)
+                .filter(|n| !n.is_empty())
+                .map(|n| format!(" ({n})"))
+                .unwrap_or_default(),
+            suffixes(&units[1..])
+        ));
+    };
     if (r.min..=r.max).contains(&v) {
         return Ok(v);
     }
@@ -90,10 +89,9 @@ fn with_units(s: &str, units: &[(&str, f64, f64)], what: &str, range: &str) -> R
             format!(" {u}")
         }
     };
-    let meant = units[1..]
-        .iter()
-        .find(|(_, f, o)| suffixed.is_none() && (r.min..=r.max).contains(&(x * f + o)))
-        .map(|(u, _, _)| format!("; if {x} {u} is meant, write `{x}{u}`"))
+    let meant = meant_of(units, x, r.min, r.max)
+        .filter(|_| !suffixed)
+        .map(|u| format!("; if {x} {} is meant, write `{x}{}`", u.suffix, u.suffix))
         .unwrap_or_default();
     // four decimals: a bound of ±π/2 reads as 1.5708
     let num = |v: f64| (v * 1e4).round() / 1e4;
@@ -108,49 +106,39 @@ fn with_units(s: &str, units: &[(&str, f64, f64)], what: &str, range: &str) -> R
     ))
 }
 
-const DEG: f64 = std::f64::consts::PI / 180.0;
-const SPEEDS: &[(&str, f64, f64)] = &[("m/s", 1.0, 0.0), ("mph", flight::MPH, 0.0)];
-const ANGLES: &[(&str, f64, f64)] = &[("rad", 1.0, 0.0), ("deg", DEG, 0.0)];
-const SPINS: &[(&str, f64, f64)] = &[("rad/s", 1.0, 0.0), ("rpm", flight::RPM, 0.0)];
-const LENGTHS: &[(&str, f64, f64)] = &[("m", 1.0, 0.0), ("ft", FOOT, 0.0)];
-
-/// A flag's value parser: `with_units` over `units`, held to the plausible range `range`.
+/// A flag's value parser: `with_units` held to the plausible range `range`, in its units.
 macro_rules! parser {
-    ($name:ident, $units:expr, $what:literal, $range:literal) => {
+    ($name:ident, $what:literal, $range:literal) => {
         fn $name(s: &str) -> Result<f64, String> {
-            with_units(s, $units, $what, $range)
+            with_units(s, None, $what, $range)
         }
     };
 }
 
-parser!(exit_speed, SPEEDS, "a speed", "launch.exit_speed");
-parser!(wind, SPEEDS, "a speed", "flight.wind_speed");
-parser!(launch_angle, ANGLES, "an angle", "launch.launch_angle");
-parser!(spray_angle, ANGLES, "an angle", "launch.spray_angle");
-parser!(spin, SPINS, "a spin", "launch.spin");
-parser!(height, LENGTHS, "a length", "launch.height");
-parser!(elevation, LENGTHS, "a length", "flight.elevation");
+parser!(exit_speed, "a speed", "launch.exit_speed");
+parser!(wind, "a speed", "flight.wind_speed");
+parser!(launch_angle, "an angle", "launch.launch_angle");
+parser!(spray_angle, "an angle", "launch.spray_angle");
+parser!(spin, "a spin", "launch.spin");
+parser!(height, "a length", "launch.height");
+parser!(elevation, "a length", "flight.elevation");
+parser!(temperature, "a temperature", "flight.temperature");
+parser!(pressure, "a pressure", "flight.pressure");
 
 fn humidity(s: &str) -> Result<f64, String> {
-    with_units(
-        s,
-        &[("", 1.0, 0.0), ("%", 0.01, 0.0)],
-        "a fraction",
-        "flight.humidity",
-    )
-}
-
-fn temperature(s: &str) -> Result<f64, String> {
-    let f = flight::fahrenheit_to_kelvin(0.0);
-    let c = flight::celsius_to_kelvin(0.0);
-    let units = [("K", 1.0, 0.0), ("F", 5.0 / 9.0, f), ("C", 1.0, c)];
-    with_units(s, &units, "a temperature", "flight.temperature")
-}
-
-fn pressure(s: &str) -> Result<f64, String> {
-    // 1 inHg = 3386.389 Pa (NIST SP 811, at 0 °C)
-    let units = [("Pa", 1.0, 0.0), ("inHg", 3386.389, 0.0)];
-    with_units(s, &units, "a pressure", "flight.pressure")
+    const FRACTION: &[Unit] = &[
+        Unit {
+            suffix: "",
+            factor: 1.0,
+            offset: 0.0,
+        },
+        Unit {
+            suffix: "%",
+            factor: 0.01,
+            offset: 0.0,
+        },
+    ];
+    with_units(s, Some(FRACTION), "a fraction", "flight.humidity")
 }
 
 /// The launch and the air the arguments describe.

@@ -23,6 +23,17 @@ pub fn bat_length(bat: &BatSpec) -> f64 {
     BatGeometry::resolve(bat).map_or(f64::NAN, |g| g.length)
 }
 
+/// For a bare number outside its plausible range that a trade's unit puts inside it (34 as
+/// a bat's length): the suffix that says so (`; if 34 in is meant, write `34in``).
+fn meant_in_trade_units(path: &str, value: &str) -> String {
+    let (Some(r), Ok(x)) = (crate::model::plausible::range_of(path), value.parse::<f64>()) else {
+        return String::new();
+    };
+    crate::model::units::meant_unit(x, r.unit, r.min, r.max)
+        .map(|u| format!("; if {x} {} is meant, write `{x}{}`", u.suffix, u.suffix))
+        .unwrap_or_default()
+}
+
 /// Check one resolved collision: the first violation, if any. The plausible ranges are
 /// checked too unless the study allows implausible values.
 pub fn check_spec(spec: &CollisionSpec, allow_implausible: bool) -> Vec<Violation> {
@@ -50,7 +61,10 @@ pub fn check_spec(spec: &CollisionSpec, allow_implausible: bool) -> Vec<Violatio
     if !allow_implausible {
         if let Err(e) = check_plausible(spec) {
             let (path, value, _) = e.field_value_allowed();
-            let message = format!("`{path}` = {value} is outside its plausible range");
+            let message = format!(
+                "`{path}` = {value} is outside its plausible range{}",
+                meant_in_trade_units(&path, &value)
+            );
             return violation(e, Some(message));
         }
     }

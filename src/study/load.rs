@@ -63,7 +63,7 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         err.column = Some(at.column);
         return Err(err);
     }
-    let root: Value = yaml_serde::from_str(text).map_err(|e| {
+    let mut root: Value = yaml_serde::from_str(text).map_err(|e| {
         let mut err = StudyError::new(path, format!("malformed YAML: {e}"));
         // yaml_serde gives no location for some errors (a second document): the
         // document's start then.
@@ -72,6 +72,8 @@ pub fn load_str(text: &str, path: &Path, opts: &LoadOptions) -> Result<Study, St
         err.column = Some(column);
         err
     })?;
+    // Quantities written with a unit (`34in`, `90mph`) in SI, before anything reads them.
+    super::quantities::convert(&cx, &mut root)?;
     let Value::Mapping(top) = &root else {
         return Err(cx
             .err(

@@ -19,6 +19,7 @@ pub mod output;
 pub mod paths;
 pub mod plan;
 pub mod profile;
+mod quantities;
 pub mod sample;
 mod sample_dim;
 pub mod source;

@@ -479,7 +479,52 @@ pub fn schema_json() -> String {
             }),
         );
     }
+    allow_quantities(&mut root);
     serde_json::to_string_pretty(&root).expect("schema serializes") + "\n"
+}
+
+/// Every number of the schema may also be written with a unit (`34in`, `90mph`): the study
+/// loader turns it into SI and refuses a unit its field does not take (`study::quantities`);
+/// the schema accepts the form, so that an editor does not flag it.
+fn allow_quantities(v: &mut serde_json::Value) {
+    use serde_json::Value as J;
+    match v {
+        J::Object(obj) => {
+            let numeric = match obj.get("type") {
+                Some(J::String(t)) => t == "number",
+                Some(J::Array(ts)) => ts.iter().any(|t| t == "number"),
+                _ => false,
+            };
+            if numeric {
+                let original = J::Object(std::mem::take(obj));
+                obj.insert(
+                    "anyOf".into(),
+                    serde_json::json!([original, {"type": "string", "pattern": quantity_pattern()}]),
+                );
+                return;
+            }
+            for child in obj.values_mut() {
+                allow_quantities(child);
+            }
+        }
+        J::Array(items) => items.iter_mut().for_each(allow_quantities),
+        _ => {}
+    }
+}
+
+/// A number with one of the units of `model::units`, as a JSON-schema pattern.
+fn quantity_pattern() -> String {
+    let mut suffixes: Vec<String> = crate::model::units::SI_UNITS
+        .iter()
+        .flat_map(|si| crate::model::units::units_of(si))
+        .map(|u| u.suffix.replace('^', "\\^").replace('/', "/"))
+        .collect();
+    suffixes.sort();
+    suffixes.dedup();
+    format!(
+        "^\\s*[-+]?([0-9]+\\.?[0-9]*|\\.[0-9]+)([eE][-+]?[0-9]+)?\\s*({})\\s*$",
+        suffixes.join("|")
+    )
 }
 
 #[cfg(test)]

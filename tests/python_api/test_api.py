@@ -40,6 +40,18 @@ def test_simulate_takes_numpy_numbers_as_the_numbers_they_are():
         batstudy.simulate({"impact": {"z": object()}})
 
 
+def test_simulate_takes_the_trades_units():
+    # 28 in = 0.7112 m and 90 mph = 40.2336 m/s by definition (NIST SP 811); a bare number in
+    # the trade's unit where SI is implausible is refused, naming the suffix meant
+    si = batstudy.simulate({"ball": {"speed": 90 * 0.44704}, "impact": {"z": 28 * 0.0254}})
+    trade = batstudy.simulate({"ball": {"speed": "90mph"}, "impact": {"z": "28in"}})
+    assert trade["exit_speed"] == si["exit_speed"]
+    with pytest.raises(batstudy.StudyError, match="is not a unit of `impact.z`"):
+        batstudy.simulate({"impact": {"z": "28oz"}})
+    with pytest.raises(batstudy.StudyError, match="write `34in`"):
+        batstudy.simulate({"bat": {"length": 34}, "impact": {"z": 0.7}})
+
+
 def test_simulate_conserves_energy():
     # Energy balance of the paper's base case: what the ball and bat hold after the
     # collision plus what the ball's hysteresis dissipated is the initial kinetic energy.

@@ -15,9 +15,9 @@ use super::error::{check_range, FlightError};
 /// 1 mph in m/s (exact: 1609.344 m / 3600 s).
 pub const MPH: f64 = crate::units::MPH;
 /// 1 ft in m (exact).
-pub const FOOT: f64 = 0.3048;
+pub const FOOT: f64 = crate::units::FOOT;
 /// 1 rpm in rad/s.
-pub const RPM: f64 = std::f64::consts::PI / 30.0;
+pub const RPM: f64 = crate::units::RPM;
 /// Standard gravity, m/s² (the calculator's 32.174 ft/s²).
 pub const GRAVITY: f64 = 9.806_65;
 
