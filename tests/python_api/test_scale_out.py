@@ -143,25 +143,26 @@ def test_mutated_spec_texts_raise_study_errors_and_never_crash():
     assert outcomes["ok"] >= 5 and outcomes["refused"] >= 100, outcomes
 
 
-# A wave-model study whose shards take some seconds on one thread, longer than the time-out
-# below leaves them.
+# A wave-model study whose shards take some seconds on one thread (about 5 s on an idle 2-core
+# machine with the release wheel), several times what the time-out below leaves each start:
+# a shard that finished before its signal would test no requeue.
 LONG_STUDY = {
     "name": "long",
     "model": "wave",
     "base": {"ball": {"speed": 40}},
-    "grid": {"swing.omega": {"range": [-50, 0, 1]}, "impact.z": {"range": [0.40, 0.84, 0.0008]}},
+    "grid": {"swing.omega": {"range": [-50, 0, 1]}, "impact.z": {"range": [0.40, 0.84, 0.0004]}},
 }
 
 
 def test_submitit_requeues_a_timed_out_shard_which_resumes_to_the_whole(tmp_path):
     """The submitit recipe: a `ShardTask` job that times out (the local executor signals it
-    3 s after each start, as Slurm signals a job before its time limit) is checkpointed and
+    1.2 s after each start, as Slurm signals a job before its time limit) is checkpointed and
     requeued, and each requeued job resumes the shard: the merged shards equal one run, bit
     for bit."""
     submitit = pytest.importorskip("submitit")
 
     ex = submitit.LocalExecutor(folder=tmp_path / "logs", max_num_timeout=20)
-    ex.update_parameters(timeout_min=0.2, signal_delay_s=9)
+    ex.update_parameters(timeout_min=0.2, signal_delay_s=10.8)
     job = ex.submit(batstudy.ShardTask(LONG_STUDY, (1, 2), tmp_path / "s1.h5", jobs=1))
     parts = [job.result(), batstudy.ShardTask(LONG_STUDY, (2, 2), tmp_path / "s2.h5", jobs=1)()]
     log = job.stdout() or ""
