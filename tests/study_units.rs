@@ -28,7 +28,8 @@ fn specs(s: &study::Study) -> Vec<String> {
 
 #[test]
 fn a_study_with_units_is_the_same_study_in_si() {
-    let with_units = "name: u\nbase:\n  bat: {preset: r161, length: 34in}\n  ball: {speed: 90mph}\n  \
+    let with_units =
+        "name: u\nbase:\n  bat: {preset: r161, length: 34in}\n  ball: {speed: 90mph}\n  \
                       swing: {omega: -1500rpm}\ngrid:\n  impact.z: {range: [24in, 30in, 2in]}\n\
                       points:\n  name: case\n  sets:\n    - {bat.length: 35in}\n    - {}\n";
     let si = format!(
@@ -58,10 +59,14 @@ fn an_optimize_variable_takes_units_too() {
         )
     };
     let a = load(&text("34in", "36in"));
-    let b = load(&text(&(34.0 * INCH).to_string(), &(36.0 * INCH).to_string()));
+    let b = load(&text(
+        &(34.0 * INCH).to_string(),
+        &(36.0 * INCH).to_string(),
+    ));
     match (a, b) {
         (Ok(a), Ok(b)) => {
-            let bounds = |s: &study::Study| s.file.optimize.as_ref().unwrap().variables["bat.length"];
+            let bounds =
+                |s: &study::Study| s.file.optimize.as_ref().unwrap().variables["bat.length"];
             assert_eq!(bounds(&a), bounds(&b));
             assert_eq!(bounds(&a).min, 34.0 * INCH);
         }
@@ -82,7 +87,8 @@ fn a_unit_the_field_does_not_take_is_refused_where_it_is_written() {
 #[test]
 fn text_that_is_not_a_quantity_is_left_alone() {
     // a name with a unit's look, and words after a number, are text
-    let s = load("name: 34in\ndescription: a 2mm wall\nbase: {}\ngrid:\n  impact.z: [0.7]\n").unwrap();
+    let s =
+        load("name: 34in\ndescription: a 2mm wall\nbase: {}\ngrid:\n  impact.z: [0.7]\n").unwrap();
     assert_eq!(s.file.name, "34in");
 }
 

@@ -70,19 +70,20 @@ def collect(tree: xr.DataTree) -> dict:
     summary = tree["summary"].to_dataset()
     exit_speed = summary["exit_speed"]
     dims = [str(d) for d in exit_speed.dims]
-    if IMPACT not in dims:
-        raise ValueError(f"the summary has no {IMPACT} dimension; nothing to plot against")
+    # a file without an impact axis (a design search's run at its best impact point) has no
+    # curve to draw; the rest of the page still shows its answers
+    along = IMPACT in dims
     controls = [{"name": d, "labels": dim_labels(summary, d)} for d in dims if d != IMPACT]
     data = {
         "study": text_of(tree.attrs.get("study_name", "study")),
         "dims": dims,
         "shape": list(exit_speed.shape),
         "controls": controls,
-        "impact_z": _numbers(summary[IMPACT].values),
+        "impact_z": _numbers(summary[IMPACT].values) if along else None,
         "exit_speed": _numbers(exit_speed.values),
         "units": text_of(exit_speed.attrs.get("units", "m/s")),
     }
-    if "sweet_spot" in tree.children:
+    if along and "sweet_spot" in tree.children:
         sweet = tree["sweet_spot"].to_dataset()
         order = [d for d in dims if d != IMPACT]
         data["sweet"] = {k: _numbers(sweet[k].transpose(*order).values)
@@ -90,7 +91,59 @@ def collect(tree: xr.DataTree) -> dict:
     data["histories"] = histories(tree, dims, controls)
     data["time_ms"] = history_time(tree)
     data["cards"] = card_rows(tree)
+    data["search"] = search_panel(tree)
+    data["uncertainty"] = uncertainty_rows(tree)
     return data
+
+
+def search_panel(tree: xr.DataTree) -> dict | None:
+    """A design search's record (`/optimize`): each candidate's objective in the order
+    evaluated and its status, and the best feasible design; None for a file without one."""
+    if "optimize" not in tree.children:
+        return None
+    o = tree["optimize"].to_dataset()
+    panel = {
+        "objective": text_of(o.attrs.get("objective", "objective")),
+        "units": text_of(o.attrs.get("objective_units", "")),
+        "values": _numbers(o["objective"].values),
+        "feasible": [bool(x == 0) for x in o["status"].values],
+        "best": [],
+    }
+    if "best" in tree["optimize"].children:
+        best = tree["optimize/best"].to_dataset()
+        panel["best"].append([f"{panel['objective']} ({panel['units']})", f"{float(best['objective']):.6g}"])
+        for name in best["design"]["variable"].values:
+            value = float(best["design"].sel(variable=name))
+            panel["best"].append([text_of(name), f"{value:.6g}"])
+    return panel
+
+
+# The answers of a `sample` study the explorer shows (`/uncertainty`), with their units.
+UNCERTAIN = (("bbcor_max", "1"), ("sweet_spot_position", "m"), ("sweet_spot_exit_speed", "m/s"))
+
+
+def uncertainty_rows(tree: xr.DataTree) -> list[list[str]] | None:
+    """A `sample` study's answers over its sample (`/uncertainty`): each answer's mean, SD and
+    its 2.5 / 50 / 97.5 % quantiles, and the probability that BBCOR exceeds 0.50; the first
+    value of any dimension beside the quantile. None for a file without one."""
+    if "uncertainty" not in tree.children:
+        return None
+    u = tree["uncertainty"].to_dataset()
+
+    def first(a):
+        return a.isel({d: 0 for d in a.dims if d != "quantile"})
+
+    rows = []
+    for name, units in UNCERTAIN:
+        if name not in u:
+            continue
+        q = first(u[name])
+        quantiles = [f"{float(q.sel(quantile=p, method='nearest')):.4g}" for p in (0.025, 0.5, 0.975)]
+        mean, sd = (float(first(u[f"{name}_{k}"])) for k in ("mean", "std"))
+        rows.append([name, units, f"{mean:.4g} ± {sd:.2g}", *quantiles])
+    if "bbcor_max_above_limit" in u:
+        rows.append(["P(BBCOR > 0.50)", "1", f"{float(first(u['bbcor_max_above_limit'])):.3f}", "", "", ""])
+    return rows
 
 
 def card_rows(tree: xr.DataTree) -> list[dict]:
@@ -123,10 +176,13 @@ def card_rows(tree: xr.DataTree) -> list[dict]:
             ["bending mode 1", f"{num(v['bending_frequency'], 0)} Hz"],
             ["hoop mode", f"{num(v['hoop_mode_frequency'], 0)} Hz" if np.isfinite(v["hoop_mode_frequency"]) else "none (solid)"],
         ]  # fmt: skip
+        applies = [bool(c["rule_applies"].isel(rule_check=j)) for j in range(card.sizes["rule_check"])]
         rules = [[text_of(r), num(float(c["rule_value"].isel(rule_check=j)), 6), text_of(c["rule_units"].values[j]),
                   num(float(c["rule_margin"].isel(rule_check=j)), 6),
                   "passes" if bool(c["rule_passes"].isel(rule_check=j)) else "FAILS"]
-                 for j, r in enumerate(card["rule_check"].values)]  # fmt: skip
+                 for j, r in enumerate(card["rule_check"].values) if applies[j]]  # fmt: skip
+        not_for = dict.fromkeys(str(r).split(":")[0] for j, r in enumerate(card["rule_check"].values) if not applies[j])
+        rules += [[text_of(f"{rule_set}:"), "", "", "", "not for this bat (a rule set for wood bats)"] for rule_set in not_for]
         out.append({"label": text_of(label), "rows": rows, "rules": rules})
     return out
 
@@ -195,6 +251,15 @@ PAGE = """<!DOCTYPE html>
 <div id="exit" class="plot"></div>
 <h2>The bats</h2>
 <div id="cards"></div>
+<div id="search-section" hidden>
+<h2>The design search</h2>
+<div id="search" class="plot"></div>
+<div id="search-best"></div>
+</div>
+<div id="uncertainty-section" hidden>
+<h2>The answers over the sample</h2>
+<div id="uncertainty"></div>
+</div>
 <h2>Force histories (points that recorded one)</h2>
 <div class="controls"><label>history <select id="history"></select></label></div>
 <div id="force" class="plot"></div>
@@ -239,6 +304,7 @@ function sweetIndex() {  // the sweet-spot arrays lack impact_z
 }
 function fmt(x, d) { return x === null || x === undefined ? "–" : x.toFixed(d); }
 function drawExit() {
+  if (!DATA.impact_z) { document.getElementById("exit").textContent = "This file's points have no impact_z axis: no curve along the barrel."; return; }
   const y = curve();
   const traces = [{ x: DATA.impact_z, y: y, mode: "lines+markers", name: "exit speed" }];
   if (DATA.sweet) {
@@ -288,11 +354,41 @@ function drawCards() {  // every string as text, never as markup
     box.appendChild(t);
   });
 }
+function table(box, head, rows) {  // every string as text, never as markup
+  const t = document.createElement("table"); t.className = "card";
+  const row = (cells, tag) => { const tr = document.createElement("tr");
+    cells.forEach(x => { const td = document.createElement(tag); td.textContent = x; tr.appendChild(td); }); t.appendChild(tr); };
+  row(head, "th");
+  rows.forEach(r => row(r, "td"));
+  box.appendChild(t);
+}
+function drawSearch() {
+  const s = DATA.search;
+  if (!s) return;
+  document.getElementById("search-section").hidden = false;
+  const k = s.values.map((_, i) => i);
+  let best = null;
+  const bestSoFar = s.values.map((v, i) => { if (s.feasible[i] && v !== null && (best === null || v > best)) best = v; return best; });
+  const pick = ok => k.filter(i => s.feasible[i] === ok);
+  Plotly.react("search", [
+    { x: pick(true), y: pick(true).map(i => s.values[i]), mode: "markers", name: "feasible" },
+    { x: pick(false), y: pick(false).map(i => s.values[i]), mode: "markers", marker: { symbol: "circle-open" }, name: "outside a limit" },
+    { x: k, y: bestSoFar, mode: "lines", name: "best feasible so far" }],
+    { xaxis: { title: { text: "candidate" } }, yaxis: { title: { text: plotlyText(s.objective + " (" + s.units + ")") } }, margin: { t: 20 } });
+  if (s.best.length) table(document.getElementById("search-best"), ["best feasible design", "value"], s.best);
+}
+function drawUncertainty() {
+  if (!DATA.uncertainty) return;
+  document.getElementById("uncertainty-section").hidden = false;
+  table(document.getElementById("uncertainty"), ["answer", "units", "mean ± SD", "2.5 %", "50 %", "97.5 %"], DATA.uncertainty);
+}
 hsel.addEventListener("change", drawHistory);
 document.getElementById("frame").addEventListener("input", drawBending);
 drawExit();
 drawHistory();
 drawCards();
+drawSearch();
+drawUncertainty();
 </script>
 </body></html>
 """

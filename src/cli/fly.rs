@@ -7,8 +7,8 @@
 
 use super::{EXIT_BAD_INPUT, EXIT_OK};
 use crate::model::flight::{self, Atmosphere, FlightError, FlightOptions, Launch};
-use crate::model::units::{meant_of, split_quantity, suffixes, units_of, Unit, FOOT};
 use crate::model::plausible;
+use crate::model::units::{meant_of, split_quantity, suffixes, units_of, Unit, FOOT};
 use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]

@@ -26,7 +26,10 @@ pub fn bat_length(bat: &BatSpec) -> f64 {
 /// For a bare number outside its plausible range that a trade's unit puts inside it (34 as
 /// a bat's length): the suffix that says so (`; if 34 in is meant, write `34in``).
 fn meant_in_trade_units(path: &str, value: &str) -> String {
-    let (Some(r), Ok(x)) = (crate::model::plausible::range_of(path), value.parse::<f64>()) else {
+    let (Some(r), Ok(x)) = (
+        crate::model::plausible::range_of(path),
+        value.parse::<f64>(),
+    ) else {
         return String::new();
     };
     crate::model::units::meant_unit(x, r.unit, r.min, r.max)

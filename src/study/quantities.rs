@@ -91,7 +91,10 @@ fn quantity(
         let units = units_of(si);
         let allowed = match units.is_empty() {
             true => format!("a number in {si} (this field takes no unit suffix)"),
-            false => format!("a number in {si}, or with one of the units {}", suffixes(units)),
+            false => format!(
+                "a number in {si}, or with one of the units {}",
+                suffixes(units)
+            ),
         };
         cx.err(
             at,
@@ -143,7 +146,10 @@ mod tests {
         assert_eq!(find(&["base", "bat", "length"]), m("bat.length"));
         assert_eq!(find(&["grid", "impact.z", "range"]), m("impact.z"));
         assert_eq!(find(&["points", "sets", "bat.length"]), m("bat.length"));
-        assert_eq!(find(&["base", "bat", "profile", "knots"]), m("bat.profile.knots"));
+        assert_eq!(
+            find(&["base", "bat", "profile", "knots"]),
+            m("bat.profile.knots")
+        );
         assert_eq!(
             find(&["base", "ball", "speed"]),
             Some(("ball.speed".into(), "m/s".into()))

@@ -111,6 +111,8 @@ def test_missing_data_is_skipped(tmp_path, capsys):
     assert (out / "fig06_exit_speed_vs_omega.png").exists()
     assert (out / "fig08_optimal_position_vs_omega.png").exists()
     assert "skip  fig13b_aluminum" in text and "skip  fig14_displacement_along_bat" in text
+    # a file without a design search or a sample: those figures say what makes them
+    assert "skip  search: no /optimize group" in text and "skip  uncertainty: no /uncertainty group" in text
     with plot.Results(path) as res:
         labels = [res.label(c) for c in res.curves]
     assert labels == ["base case", "ω = -20 rad/s", "ω = -40 rad/s"]

@@ -196,3 +196,63 @@ def test_the_page_is_proportionate_to_the_file(tmp_path):
         step = 10.0 ** (np.floor(np.log10(np.abs(f).max())) - 3)
         np.testing.assert_allclose(np.array(h["force"], dtype=float), f, rtol=0, atol=step / 2)
     np.testing.assert_allclose(shown["time_ms"], stored["time"].values * 1e3)
+
+
+BIN = os.environ.get("BATSTUDY_BIN")
+SEARCH = """name: best_point
+model: rigid
+base: {impact: {z: 0.6}}
+grid:
+  swing.cm_speed: [0]
+optimize:
+  max_evaluations: 60
+  tolerance: 1.0e-10
+  variables: {impact.z: {min: 0.40, max: 0.83}}
+  objective: {maximize: exit_speed}
+"""
+SAMPLE = """name: small_sample
+model: rigid
+base: {bat: {preset: r161}, ball: {preset: mlb, speed: 60.8}}
+grid:
+  swing.omega: [0]
+  impact.z: {range: [0.62, 0.78, 0.02]}
+sample:
+  n: 16
+  seed: 3
+  params:
+    bat.material.density: {normal: {mean: 649, sd: 40}}
+"""
+
+
+@pytest.mark.skipif(not BIN, reason="BATSTUDY_BIN not set (scripts/test.sh sets it)")
+def test_a_search_and_a_sample_show_their_own_answers(tmp_path):
+    """The explorer of a design search shows every candidate and the best feasible design
+    (`/optimize`), and of a `sample` study its answers over the sample (`/uncertainty`), each
+    the file's own numbers."""
+    files = {}
+    for name, text, cmd in (("search", SEARCH, "optimize"), ("sample", SAMPLE, "run")):
+        study = tmp_path / f"{name}.yaml"
+        study.write_text(text)
+        files[name] = tmp_path / f"{name}.h5"
+        r = subprocess.run([BIN, cmd, str(study), "-o", str(files[name]), "-q"], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+    with h5py.File(files["search"], "r") as f:
+        objective = f["optimize/objective"][()]
+        best = float(np.ravel(f["optimize"].attrs["best_objective"])[0])
+    with h5py.File(files["sample"], "r") as f:
+        p_above = float(np.ravel(f["uncertainty/bbcor_max_above_limit"][()])[0])
+    errors, requests = [], []
+    with browser_page(errors, requests) as page:
+        page.goto(batstudy.report(files["search"], tmp_path / "search.html").as_uri())
+        page.wait_for_function("document.getElementById('search').data !== undefined")
+        shown = page.evaluate("document.getElementById('search').data.slice(0, 2).map(t => t.y.length)")
+        assert sum(shown) == len(objective)
+        assert page.is_visible("#search-section") and not page.is_visible("#uncertainty-section")
+        assert f"{best:.6g}" in page.text_content("#search-best")
+        page.goto(batstudy.report(files["sample"], tmp_path / "sample.html").as_uri())
+        page.wait_for_function("document.getElementById('uncertainty').textContent.length > 0")
+        text = page.text_content("#uncertainty")
+        assert "bbcor_max" in text and "sweet_spot_position" in text and f"{p_above:.3f}" in text
+        assert not page.is_visible("#search-section")
+    assert not errors, errors
+    assert not requests, f"the page reached the network: {requests}"

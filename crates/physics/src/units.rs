@@ -120,7 +120,10 @@ pub fn split_quantity(text: &str) -> Option<(f64, &str)> {
 /// Whether an `e` at byte `i` of `t` is a number's exponent (`1e-3`): a digit before it and
 /// a digit or sign after it.
 fn exponent_at(t: &str, i: usize) -> bool {
-    let before = t[..i].chars().last().is_some_and(|c| c.is_ascii_digit() || c == '.');
+    let before = t[..i]
+        .chars()
+        .last()
+        .is_some_and(|c| c.is_ascii_digit() || c == '.');
     let after = t[i + 1..].chars().next();
     before && after.is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '+')
 }
@@ -128,7 +131,8 @@ fn exponent_at(t: &str, i: usize) -> bool {
 /// `text` (a number with a suffix) in SI, for a quantity of SI unit `si`; or why not: the
 /// suffixes that quantity takes.
 pub fn to_si(text: &str, si: &str) -> Result<f64, String> {
-    let (x, suffix) = split_quantity(text).ok_or_else(|| format!("`{text}` is not a number with a unit"))?;
+    let (x, suffix) =
+        split_quantity(text).ok_or_else(|| format!("`{text}` is not a number with a unit"))?;
     let units = units_of(si);
     units
         .iter()
@@ -145,7 +149,11 @@ pub fn to_si(text: &str, si: &str) -> Result<f64, String> {
 
 /// The suffixes of `units`, for a message: `m, in, ft, mm, cm`.
 pub fn suffixes(units: &[Unit]) -> String {
-    units.iter().map(|u| u.suffix).collect::<Vec<_>>().join(", ")
+    units
+        .iter()
+        .map(|u| u.suffix)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// For a bare number `x` outside [min, max] in SI unit `si`: the trade's unit that puts it
@@ -188,11 +196,21 @@ mod tests {
         assert_eq!(to_si("100mph", "m/s").unwrap(), 44.704);
         assert!((to_si("212F", "K").unwrap() - 373.15).abs() < 1e-12);
         assert!((to_si("180deg", "rad").unwrap() - std::f64::consts::PI).abs() < 1e-15);
-        assert!(to_si("34oz", "m").unwrap_err().contains("allowed: m, ft, in, mm, cm"));
-        assert!(to_si("3in", "Hz").unwrap_err().contains("takes no unit suffix"));
-        assert_eq!(meant_unit(34.0, "m", 0.4, 1.5).map(|u| u.suffix), Some("in"));
+        assert!(to_si("34oz", "m")
+            .unwrap_err()
+            .contains("allowed: m, ft, in, mm, cm"));
+        assert!(to_si("3in", "Hz")
+            .unwrap_err()
+            .contains("takes no unit suffix"));
+        assert_eq!(
+            meant_unit(34.0, "m", 0.4, 1.5).map(|u| u.suffix),
+            Some("in")
+        );
         assert!(meant_unit(1e6, "m", 0.4, 1.5).is_none());
-        assert_eq!(meant_unit(5280.0, "m", -100.0, 4000.0).map(|u| u.suffix), Some("ft"));
+        assert_eq!(
+            meant_unit(5280.0, "m", -100.0, 4000.0).map(|u| u.suffix),
+            Some("ft")
+        );
         assert_eq!(meant_unit(3.0, "m", 0.0, 2.5).map(|u| u.suffix), Some("ft"));
     }
 }

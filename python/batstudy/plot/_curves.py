@@ -180,6 +180,8 @@ class Results:
 
     def __init__(self, source: Union[str, os.PathLike, xr.DataTree]):
         self.tree = source if isinstance(source, xr.DataTree) else open_results(source)
+        # the file itself, for the figures that read a group of their own (None for a tree)
+        self.path = None if isinstance(source, xr.DataTree) else os.fspath(source)
         self.attrs = dict(self.tree.attrs)
         self.summary = _node(self.tree, "summary")
         self.sweet_spot = _node(self.tree, "sweet_spot")

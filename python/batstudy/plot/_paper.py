@@ -35,6 +35,7 @@ from ._curves import IMPACT, MODEL, Skip, excess_speed, one_factor, select
 from ._draw import (COLORS, STYLES, Z_LABEL, draw_profiles, loaded_bats, new_axes, new_figure, require, save,
                     short_bat_label)  # fmt: skip
 from ._batter import BATTER_FIGURES
+from ._uncertainty import UNCERTAINTY_FIGURES
 from ._sweet_defs import sweet_spot_definitions
 
 EXIT = "exit speed (m/s, bat-CM frame)"
@@ -479,4 +480,5 @@ FIGURES = {
 OTHER_FIGURES = {
     "ball_tests": ball_tests,
     **BATTER_FIGURES,
+    **UNCERTAINTY_FIGURES,
 }

@@ -58,3 +58,37 @@ def search(path, ax=None):
     ax.legend(fontsize=8)
     return ax
 
+
+
+def _file_with(res, group: str, what: str):
+    """The results file of `res` if it holds `group`, else Skip naming what makes one."""
+    from ._curves import Skip
+
+    if res.path is None or group not in res.tree.children:
+        raise Skip(f"no /{group} group in this file ({what})")
+    return res.path
+
+
+def uncertainty_figure(res, path):
+    """`batstudy figures`' `uncertainty`: :func:`uncertainty` of a `sample` study's file."""
+    from ._draw import new_figure, save
+
+    source = _file_with(res, "uncertainty", "a `sample` study writes one: studies/uncertainty.yaml")
+    fig = new_figure(figsize=(10, 4), layout="constrained")
+    fig.suptitle(f"The answers over the sample (study: {res.name})", fontsize=10)
+    uncertainty(source, ax=fig.subplots(1, 2))
+    save(fig, path)
+
+
+def search_figure(res, path):
+    """`batstudy figures`' `search`: :func:`search` of a design search's file."""
+    from ._draw import new_figure, save
+
+    source = _file_with(res, "optimize", "`batstudy optimize` writes one: studies/design_bbcor.yaml")
+    fig = new_figure(figsize=(6, 4), layout="constrained")
+    fig.suptitle(f"The design search (study: {res.name})", fontsize=10)
+    search(source, ax=fig.subplots())
+    save(fig, path)
+
+
+UNCERTAINTY_FIGURES = {"uncertainty": uncertainty_figure, "search": search_figure}
