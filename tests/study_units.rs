@@ -6,6 +6,8 @@
 //! units it does; a bare number in the trade's unit where SI is implausible is refused with
 //! the suffix that says what was meant.
 
+#![allow(clippy::result_large_err)] // StudyError: see study/mod.rs
+
 mod common;
 
 use batstudy::study::{self, LoadOptions};

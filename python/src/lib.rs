@@ -80,14 +80,7 @@ fn simulate<'py>(
     let (outcome, request, id, bat) = computed.map_err(PyValueError::new_err)?;
     let summary = summary_dict(py, &outcome)?;
     summary.set_item("point_id", id)?;
-    let props = PyDict::new(py);
-    props.set_item("label", &bat.label)?;
-    props.set_item("mass", bat.properties.mass)?;
-    props.set_item("z_cm", bat.properties.z_cm)?;
-    props.set_item("moment_of_inertia", bat.properties.moment_of_inertia)?;
-    props.set_item("length", bat.properties.length)?;
-    props.set_item("mode_frequency", bat.properties.mode_frequency.clone())?;
-    summary.set_item("bat", props)?;
+    summary.set_item("bat", bat_dict(py, &bat)?)?;
     let hist = match (&outcome.history, &request) {
         (Some(h), Some(req)) => {
             let d = PyDict::new(py);
@@ -120,6 +113,42 @@ fn simulate<'py>(
         _ => None,
     };
     PyTuple::new(py, [summary.into_any(), hist.into_pyobject(py)?.into_any()])
+}
+
+/// The bat's card, SI, as `/bat` stores it: its build, the protocol's BBCOR and sweet zone,
+/// its frequencies, the field's best q, and each rule's value and margin.
+fn bat_dict<'py>(
+    py: Python<'py>,
+    bat: &batstudy::results::BatVariant,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (p, m) = (&bat.properties, &bat.properties.metrics);
+    let d = PyDict::new(py);
+    d.set_item("label", &bat.label)?;
+    for (name, value) in [
+        ("mass", p.mass),
+        ("z_cm", p.z_cm),
+        ("moment_of_inertia", p.moment_of_inertia),
+        ("moment_of_inertia_knob6", p.moment_of_inertia_knob6),
+        ("length", p.length),
+        ("drop", p.drop()),
+        ("barrel_diameter", p.barrel_diameter()),
+        ("bbcor_max", m.bbcor_max),
+        ("bbcor_max_position", m.bbcor_max_position),
+        ("sweet_zone_start", m.sweet_zone_start),
+        ("sweet_zone_end", m.sweet_zone_end),
+        ("hoop_mode_frequency", m.hoop_mode_frequency),
+        ("best_q", m.best_q),
+        ("best_q_position", m.best_q_position),
+    ] {
+        d.set_item(name, value)?;
+    }
+    d.set_item("mode_frequency", p.mode_frequency.clone())?;
+    let rules = PyDict::new(py);
+    for r in &p.rule_checks {
+        rules.set_item(&r.label, (r.value, &r.units, r.margin))?;
+    }
+    d.set_item("rules", rules)?;
+    Ok(d)
 }
 
 fn f64_bytes<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyBytes> {

@@ -6,6 +6,7 @@
 use super::adapters::ModelSimulator;
 use super::driver::{build_pool, check_finite_for, prepare_bats, PreparedBats};
 use super::traits::Simulator;
+use crate::model::field::squared_up;
 use crate::model::outcome::{HistoryRequest, Outcome};
 use crate::model::Target;
 use crate::results::{BatVariant, PointId};
@@ -63,9 +64,12 @@ pub fn simulate_first_point(study: &Study) -> Result<Single, String> {
     let bat = bats.handles[point.bat as usize]
         .as_ref()
         .map_err(|e| e.clone())?;
-    let outcome = ModelSimulator
+    let mut outcome = ModelSimulator
         .simulate(bat, &point.spec, request.as_ref())
         .and_then(|o| check_finite_for(&o, point.spec.model).map(|_| o))?;
+    // squared up against the bat's own best q, as a study's point is (`driver`)
+    let best_q = bats.variants[point.bat as usize].properties.metrics.best_q;
+    outcome.batted.squared_up = squared_up(&outcome.batted, outcome.exit_speed_lab, best_q);
     Ok(Single {
         outcome,
         request,

@@ -296,15 +296,17 @@ impl Plan {
             message: e.to_string(),
             value: None,
         })?;
-        let spec: CollisionSpec = serde_path_to_error::deserialize(json).map_err(|e| {
-            let path = path_string(e.path());
-            let value = super::paths::get_path(v, &path).map(value_text);
-            ResolveError::Shape {
-                path,
-                message: e.into_inner().to_string(),
-                value,
-            }
-        })?;
+        let spec = serde_path_to_error::deserialize::<_, CollisionSpec>(json)
+            .map_err(|e| {
+                let path = path_string(e.path());
+                let value = super::paths::get_path(v, &path).map(value_text);
+                ResolveError::Shape {
+                    path,
+                    message: e.into_inner().to_string(),
+                    value,
+                }
+            })?
+            .with_preset_hoop();
         if let Some(first) = check_spec(&spec, self.allow_implausible).into_iter().next() {
             return Err(ResolveError::Check(first));
         }

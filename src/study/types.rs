@@ -517,7 +517,7 @@ fn quantity_pattern() -> String {
     let mut suffixes: Vec<String> = crate::model::units::SI_UNITS
         .iter()
         .flat_map(|si| crate::model::units::units_of(si))
-        .map(|u| u.suffix.replace('^', "\\^").replace('/', "/"))
+        .map(|u| u.suffix.replace('^', "\\^"))
         .collect();
     suffixes.sort();
     suffixes.dedup();

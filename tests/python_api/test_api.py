@@ -40,6 +40,19 @@ def test_simulate_takes_numpy_numbers_as_the_numbers_they_are():
         batstudy.simulate({"impact": {"z": object()}})
 
 
+def test_simulate_gives_the_bats_card_and_the_fields_verdict():
+    # squared up as a study's point is: exit >= 80 % of best_q pitch + (1 + best_q) bat speed
+    # (Baseball Savant's definition), with the bat's own best q from its card
+    r = batstudy.simulate({"swing": {"omega": -45}, "ball": {"speed": 38}, "impact": {"z": 0.70}})
+    bat = r["bat"]
+    most = bat["best_q"] * r["pitch_speed_plate"] + (1 + bat["best_q"]) * r["bat_speed_6in"]
+    assert r["squared_up"] == float(r["exit_speed_lab"] >= 0.8 * most)
+    assert 0.4 < bat["bbcor_max"] < 0.6 and bat["sweet_zone_start"] < bat["bbcor_max_position"] < bat["sweet_zone_end"]
+    value, units, margin = bat["rules"]["ncaa_bbcor: bat.bbcor <= 0.5"]
+    assert units == "1" and value == bat["bbcor_max"] and abs(margin - (0.5 - value)) < 1e-12
+    assert np.isnan(batstudy.simulate({"impact": {"z": 0.7}})["squared_up"])  # no swing
+
+
 def test_simulate_takes_the_trades_units():
     # 28 in = 0.7112 m and 90 mph = 40.2336 m/s by definition (NIST SP 811); a bare number in
     # the trade's unit where SI is implausible is refused, naming the suffix meant

@@ -43,6 +43,9 @@ pub struct CollisionSpec {
     #[serde(default)]
     pub swing: SwingSpec,
     /// Optional hoop mode (a mass on a spring between ball and impact point); `null` for none.
+    /// A study gives a hollow preset (`alloy_bbcor`, `composite_bbcor`) its wall's own
+    /// breathing when `hoop` is unset ([`CollisionSpec::with_preset_hoop`]); `{from_geometry:
+    /// false}` alone turns it off.
     #[serde(default)]
     pub hoop: Option<HoopSpec>,
     /// Where the ball hits.
@@ -84,6 +87,21 @@ impl CollisionSpec {
             flight: None,
             pitch: None,
         }
+    }
+
+    /// The hoop a study means: a hollow preset's wall breathes as a shell unless `hoop` says
+    /// otherwise (unset: `{from_geometry: true}`), and `{from_geometry: false}` with nothing
+    /// else set means no hoop at all, for any bat.
+    pub fn with_preset_hoop(mut self) -> Self {
+        self.hoop = match self.hoop.take() {
+            None if self.bat.preset.is_hollow_preset() => Some(HoopSpec {
+                from_geometry: true,
+                ..HoopSpec::default()
+            }),
+            Some(h) if h == HoopSpec::default() => None,
+            other => other,
+        };
+        self
     }
 
     /// The ball's radius, m (`ball.radius`, else the rule book's middle).
@@ -133,6 +151,11 @@ pub enum BatPreset {
 }
 
 impl BatPreset {
+    /// A hollow BBCOR bat built in, whose wall breathes as a shell by default.
+    pub fn is_hollow_preset(self) -> bool {
+        matches!(self, BatPreset::AlloyBbcor | BatPreset::CompositeBbcor)
+    }
+
     /// A rigid, immovable target (the wall or the cylinder), not a bat.
     pub fn is_rigid_target(self) -> bool {
         matches!(self, BatPreset::Wall | BatPreset::Cylinder)
