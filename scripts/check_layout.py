@@ -88,7 +88,7 @@ ERRORS = {"flat_index": ("uint64", "1"), "point_id": ("uint64", "1"), "message":
 
 SWEET = {"position": "m", "exit_speed": "m/s", "width": "m", "min_vibration_position": "m",
          "min_vibration_amplitude": "m", "min_vibration_energy_position": "m",
-         "carry_position": "m", "carry": "m"}
+         "carry_position": "m", "carry": "m", "exit_speed_lab": "m/s"}
 
 # name: (units, dims after the study's)
 HISTORY = {"force": ("N", ("time",)), "compression": ("m", ("time",)),

@@ -281,3 +281,50 @@ fn the_cards_numbers_follow_their_definitions(out: &std::path::Path) {
     assert!(hoop[0].is_nan() && used[0].is_nan(), "{hoop:?} {used:?}");
     assert_eq!(hoop[1], used[1]);
 }
+
+/// The best lab-frame exit speed of each curve is stored beside the bat-frame sweet spot
+/// (`/sweet_spot/exit_speed_lab`) and shown: it is what a batted ball leaves at, and a design
+/// search's objective; the bat-frame exit speed of a bat met at rest by a fast ball is a
+/// different number. The refined maximum lies between the best sample and the most a
+/// parabola through it and its neighbours can add (a quarter of the larger step to them).
+#[test]
+fn the_best_lab_exit_speed_is_stored_and_shown() {
+    let (_dir, out) = results_of(
+        "name: lab\nmodel: wave\nbase: {bat: {preset: r161}, ball: {preset: mlb, speed: 38}}\n\
+         grid:\n  swing.omega: [-40, -50]\n  impact.z: {range: [0.60, 0.80, 0.025]}\n",
+    );
+    let (lab, best) = {
+        let _g = no_spawns();
+        let f = hdf5::File::open(&out).unwrap();
+        let s: Vec<f64> = f
+            .dataset("summary/exit_speed_lab")
+            .unwrap()
+            .read_raw()
+            .unwrap();
+        let lab: Vec<f64> = f
+            .dataset("sweet_spot/exit_speed_lab")
+            .unwrap()
+            .read_raw()
+            .unwrap();
+        // (model?, swing_omega, impact_z): each curve's samples are contiguous, 9 of them
+        let best: Vec<Vec<f64>> = s.chunks(9).map(<[f64]>::to_vec).collect();
+        (lab, best)
+    };
+    assert_eq!(lab.len(), best.len());
+    for (refined, curve) in lab.iter().zip(&best) {
+        let k = (0..curve.len())
+            .max_by(|&a, &b| curve[a].total_cmp(&curve[b]))
+            .unwrap();
+        let steps = [k.checked_sub(1), Some(k + 1).filter(|&j| j < curve.len())]
+            .iter()
+            .flatten()
+            .map(|&j| (curve[k] - curve[j]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            *refined >= curve[k] - 1e-12 && *refined <= curve[k] + 0.25 * steps + 1e-9,
+            "{refined} against {curve:?}"
+        );
+    }
+    let text = inspect(&out);
+    assert!(text.contains("lab frame: best"), "{text}");
+}

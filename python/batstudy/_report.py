@@ -87,7 +87,7 @@ def collect(tree: xr.DataTree) -> dict:
         sweet = tree["sweet_spot"].to_dataset()
         order = [d for d in dims if d != IMPACT]
         data["sweet"] = {k: _numbers(sweet[k].transpose(*order).values)
-                         for k in ("position", "exit_speed", "width") if k in sweet}  # fmt: skip
+                         for k in ("position", "exit_speed", "width", "exit_speed_lab") if k in sweet}  # fmt: skip
     data["histories"] = histories(tree, dims, controls)
     data["time_ms"] = history_time(tree)
     data["cards"] = card_rows(tree)
@@ -247,7 +247,8 @@ PAGE = """<!DOCTYPE html>
 <p>Exit speed against impact position for the chosen values of every other dimension of the study.</p>
 <div class="controls" id="controls"></div>
 <div class="numbers">sweet spot: <span id="sweet-position">–</span> m,
- exit speed <span id="sweet-exit">–</span> m/s, width <span id="sweet-width">–</span> m</div>
+ exit speed <span id="sweet-exit">–</span> m/s, width <span id="sweet-width">–</span> m;
+ best lab-frame exit speed <span id="sweet-lab">–</span> m/s</div>
 <div id="exit" class="plot"></div>
 <h2>The bats</h2>
 <div id="cards"></div>
@@ -313,6 +314,7 @@ function drawExit() {
     document.getElementById("sweet-position").textContent = fmt(p, 4);
     document.getElementById("sweet-exit").textContent = fmt(v, 3);
     document.getElementById("sweet-width").textContent = fmt(w, 4);
+    document.getElementById("sweet-lab").textContent = DATA.sweet.exit_speed_lab ? fmt(DATA.sweet.exit_speed_lab[i], 3) : "–";
     if (p !== null) traces.push({ x: [p], y: [v], mode: "markers", marker: { size: 12, symbol: "star" }, name: "sweet spot" });
   }
   Plotly.react("exit", traces, { xaxis: { title: { text: "impact position z (m from the knob)" } },

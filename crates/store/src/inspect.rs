@@ -101,6 +101,14 @@ fn inspect_sweet_spots(
             .ctx(path, "read sweet_spot")
     };
     let (p, e, w) = (rd("position")?, rd("exit_speed")?, rd("width")?);
+    // the lab frame's best exit speed (files before it was stored have none)
+    let lab = rd(l::SWEET_EXIT_SPEED_LAB.name).ok();
+    let lab_at = |i: usize| {
+        lab.as_ref()
+            .and_then(|v| v.get(i))
+            .filter(|x| x.is_finite())
+            .map_or_else(String::new, |x| format!(" (lab frame: best {x:.3} m/s)"))
+    };
     let fin: Vec<usize> = (0..p.len()).filter(|&i| p[i].is_finite()).collect();
     let edge = sg
         .dataset(l::SWEET_AT_EDGE.name)
@@ -125,11 +133,12 @@ fn inspect_sweet_spots(
             }
             let _ = writeln!(
                 s,
-                "sweet spot{}{}: z = {:.4} m, exit speed {:.3} m/s, width {:.4} m{}",
+                "sweet spot{}{}: z = {:.4} m, exit speed {:.3} m/s{}, width {:.4} m{}",
                 if at.is_empty() { "" } else { " at " },
                 at.join(", "),
                 p[i],
                 e[i],
+                lab_at(i),
                 w[i],
                 if edge.get(i) == Some(&1) {
                     " (at the edge of the sampled impact_z)"
@@ -147,9 +156,16 @@ fn inspect_sweet_spots(
             )
         };
         let ((p0, p1), (e0, e1), (w0, w1)) = (mm(&p), mm(&e), mm(&w));
+        let lab_range = lab
+            .as_ref()
+            .map(|v| mm(v))
+            .filter(|(a, b)| a.is_finite() && b.is_finite())
+            .map_or_else(String::new, |(a, b)| {
+                format!(" (lab frame: best {a:.3}..{b:.3} m/s)")
+            });
         let _ = writeln!(
             s,
-            "sweet spots ({} curves): z {p0:.4}..{p1:.4} m, exit speed {e0:.3}..{e1:.3} m/s, width {w0:.4}..{w1:.4} m",
+            "sweet spots ({} curves): z {p0:.4}..{p1:.4} m, exit speed {e0:.3}..{e1:.3} m/s{lab_range}, width {w0:.4}..{w1:.4} m",
             fin.len()
         );
     }

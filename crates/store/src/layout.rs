@@ -323,6 +323,8 @@ pub const SUMMARY_FLOATS: [VarDef; N_SUMMARY_FLOATS] = [
     ),
 ];
 
+/// Index of `exit_speed_lab` in [`SUMMARY_FLOATS`].
+pub const EXIT_SPEED_LAB_INDEX: usize = 1;
 /// Index of `grip_vibration_amplitude` in [`SUMMARY_FLOATS`].
 pub const GRIP_VIBRATION_INDEX: usize = 14;
 /// Index of `energy_bat_vibration` in [`SUMMARY_FLOATS`].
@@ -513,8 +515,14 @@ pub const SWEET_CARRY: VarDef = v(
     "longest carry",
     "longest carry over impact_z (parabola-refined; NaN without a flight)",
 );
+pub const SWEET_EXIT_SPEED_LAB: VarDef = v(
+    "exit_speed_lab",
+    "m/s",
+    "best lab exit speed",
+    "maximum lab-frame exit speed over impact_z (parabola-refined): the batted ball's speed off the bat's best point for the swing and pitch",
+);
 /// Number of f64 `/sweet_spot` variables (before [`SWEET_AT_EDGE`]).
-pub const N_SWEET_FLOATS: usize = 8;
+pub const N_SWEET_FLOATS: usize = 9;
 /// The f64 `/sweet_spot` variables, in the order the build computes them.
 pub const SWEET_FLOATS: [&VarDef; N_SWEET_FLOATS] = [
     &SWEET_POSITION,
@@ -525,6 +533,7 @@ pub const SWEET_FLOATS: [&VarDef; N_SWEET_FLOATS] = [
     &SWEET_MIN_VIBRATION_ENERGY_POSITION,
     &SWEET_CARRY_POSITION,
     &SWEET_CARRY,
+    &SWEET_EXIT_SPEED_LAB,
 ];
 /// Index of `carry` in [`SUMMARY_FLOATS`].
 pub const CARRY_INDEX: usize = 30;

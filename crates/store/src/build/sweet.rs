@@ -30,6 +30,7 @@ pub(super) fn block_sweet_spots(
             |k: usize| -> Vec<f64> { order.iter().map(|&q| fv[k][base + q * stride]).collect() };
         let s = maximum_along(&z, &along(0));
         let carry = maximum_along(&z, &along(l::CARRY_INDEX));
+        let lab = maximum_along(&z, &along(l::EXIT_SPEED_LAB_INDEX));
         let v = vibration_sweet_spot(
             &z,
             &along(l::GRIP_VIBRATION_INDEX),
@@ -46,6 +47,7 @@ pub(super) fn block_sweet_spots(
                 v.min_vibration_energy_position,
                 carry.map_or(f64::NAN, |s| s.position),
                 carry.map_or(f64::NAN, |s| s.exit_speed),
+                lab.map_or(f64::NAN, |s| s.exit_speed),
             ],
             at_edge,
         )
