@@ -5,6 +5,8 @@
 //! lacked the trampoline that makes a hollow bat's (Nathan, Crisco, Greenwald, Russell &
 //! Smith 2011: BBCOR rises as the lowest hoop frequency falls).
 
+mod common;
+
 use batstudy::model::spec::HoopSpec;
 use batstudy::study::{self, LoadOptions};
 use std::path::Path;
@@ -51,18 +53,14 @@ fn the_breathing_wall_is_the_trampoline() {
             ),
         )
         .unwrap();
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_batstudy"))
-            .args([
-                "run",
-                study.to_str().unwrap(),
-                "-o",
-                out.to_str().unwrap(),
-                "-q",
-                "--force",
-            ])
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        common::batstudy_ok(&[
+            "run",
+            study.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "-q",
+            "--force",
+        ]);
         let f = hdf5::File::open(&out).unwrap();
         f.dataset("bat/bbcor_max")
             .unwrap()

@@ -192,13 +192,18 @@ type Ended = (
 );
 
 fn refused(e: OpError) -> Ended {
+    ended_by(e, Vec::new())
+}
+
+/// A command that did not go through: its ending, its message, and the notes it made.
+fn ended_by(e: OpError, notes: Vec<String>) -> Ended {
     (
         Some(e.kind().info().name),
         e.to_string(),
         None,
         String::new(),
         false,
-        Vec::new(),
+        notes,
     )
 }
 
@@ -244,14 +249,7 @@ fn run_study(
         ops::run_study(settings, &stop, seen)
     })?;
     Ok(match result {
-        Err(e) => (
-            Some(e.kind().info().name),
-            e.to_string(),
-            None,
-            String::new(),
-            false,
-            notes,
-        ),
+        Err(e) => ended_by(e, notes),
         Ok(done) => (
             done.outcome().map(|k| k.info().name),
             String::new(),
@@ -401,14 +399,7 @@ fn optimize_study(
             done.map(|d| (ops::optimize::report_text(&d, &request), d))
         })?;
     Ok(match result {
-        Err(e) => (
-            Some(e.kind().info().name),
-            e.to_string(),
-            None,
-            String::new(),
-            false,
-            notes,
-        ),
+        Err(e) => ended_by(e, notes),
         Ok((report, done)) => (
             done.outcome().map(|k| k.info().name),
             done.no_answer().unwrap_or_default(),
