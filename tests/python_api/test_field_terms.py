@@ -32,7 +32,10 @@ def test_q_is_the_field_formula_of_the_returned_speeds():
     q, v, p, b = r["collision_efficiency_q"], r["exit_speed_lab"], r["pitch_speed_plate"], r["bat_speed_6in"]
     assert p == 37.0 and b > 0
     assert math.isclose(v, q * p + (1 + q) * b, rel_tol=1e-12)
-    assert math.isnan(r["squared_up"])  # one collision has no bat card, so no best q
+    # squared up against the bat's own best q (its card, which simulate returns), as a
+    # study's point is: exit >= 80 % of best_q pitch + (1 + best_q) bat speed
+    best_q = r["bat"]["best_q"]
+    assert r["squared_up"] == float(v >= 0.8 * (best_q * p + (1 + best_q) * b))
 
 
 def test_an_on_plane_pitch_block_is_the_batters_on_plane_pitch():
