@@ -328,3 +328,62 @@ fn the_best_lab_exit_speed_is_stored_and_shown() {
     let text = inspect(&out);
     assert!(text.contains("lab frame: best"), "{text}");
 }
+
+/// A design search's file says its best feasible design and a `sample` study's its answers
+/// over the sample, each the number the file stores (`/optimize`'s `best_objective`,
+/// `/uncertainty`'s quantiles and probability).
+#[test]
+fn inspect_shows_a_searchs_best_and_a_samples_answers() {
+    let dir = tempfile::tempdir().unwrap();
+    let search = dir.path().join("search.yaml");
+    std::fs::write(
+        &search,
+        "name: best_point\nmodel: rigid\nbase: {impact: {z: 0.6}}\ngrid:\n  swing.cm_speed: [0]\n\
+         optimize:\n  max_evaluations: 40\n  tolerance: 1.0e-10\n  \
+         variables: {impact.z: {min: 0.40, max: 0.83}}\n  objective: {maximize: exit_speed}\n",
+    )
+    .unwrap();
+    let found = dir.path().join("search.h5");
+    {
+        let _g = spawn_guard();
+        batstudy_ok(&[
+            "optimize",
+            search.to_str().unwrap(),
+            "-o",
+            found.to_str().unwrap(),
+            "-q",
+        ]);
+    }
+    let best = {
+        let _g = no_spawns();
+        let f = hdf5::File::open(&found).unwrap();
+        f.group("optimize")
+            .unwrap()
+            .attr("best_objective")
+            .unwrap()
+            .read_raw::<f64>()
+            .unwrap()[0]
+    };
+    let text = inspect(&found);
+    assert!(
+        text.contains(&format!("best feasible: exit_speed = {best:.6} m/s")),
+        "{text}"
+    );
+    assert!(text.contains("impact.z = 0.56"), "{text}");
+    let (_dir, sampled) = results_of(
+        "name: s\nmodel: rigid\nbase: {bat: {preset: r161}, ball: {preset: mlb, speed: 60.8}}\n\
+         grid:\n  swing.omega: [0]\n  impact.z: {range: [0.62, 0.78, 0.02]}\n\
+         sample:\n  n: 16\n  seed: 3\n  params:\n    bat.material.density: {normal: {mean: 649, sd: 40}}\n",
+    );
+    let p = {
+        let _g = no_spawns();
+        let f = hdf5::File::open(&sampled).unwrap();
+        f.dataset("uncertainty/bbcor_max_above_limit")
+            .unwrap()
+            .read_raw::<f64>()
+            .unwrap()[0]
+    };
+    let text = inspect(&sampled);
+    assert!(text.contains("over the sample"), "{text}");
+    assert!(text.contains(&format!("P(best BBCOR > 0.50) = {p:.3}")), "{text}");
+}

@@ -46,6 +46,8 @@ fn describe(path: &Path) -> Result<String, StoreError> {
     if let Ok(bg) = f.group(l::GROUP_BAT) {
         inspect_bats(&bg, &mut s);
     }
+    super::answers::search(&f, path, &mut s);
+    super::answers::sample(&f, &mut s);
     // a results file's strings (labels carry user-chosen profile paths; a file can be
     // edited) are data, never commands to the terminal
     Ok(crate::results::printable(&s, true).into_owned())

@@ -21,6 +21,7 @@
 //! written), [`merge`](mod@merge) (shards → one file), [`lock`] (one
 //! process per output).
 
+mod answers;
 pub mod build;
 pub mod by_reference;
 pub mod card;
