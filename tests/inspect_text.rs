@@ -385,5 +385,8 @@ fn inspect_shows_a_searchs_best_and_a_samples_answers() {
     };
     let text = inspect(&sampled);
     assert!(text.contains("over the sample"), "{text}");
-    assert!(text.contains(&format!("P(best BBCOR > 0.50) = {p:.3}")), "{text}");
+    assert!(
+        text.contains(&format!("P(best BBCOR > 0.50) = {p:.3}")),
+        "{text}"
+    );
 }

@@ -20,6 +20,13 @@ _COLUMNS = {
 }
 
 
+def _si(value, path: str) -> float:
+    """A number (SI) as it is, or text with a unit in SI (the units of `path`'s quantity)."""
+    if isinstance(value, str):
+        return _native.to_si(value, path)
+    return float(value)
+
+
 def fly(
     exit_speed: float,
     launch_angle: float,
@@ -36,7 +43,8 @@ def fly(
 ) -> xr.Dataset:
     """The flight of a ball leaving the bat, as Nathan's trajectory calculator flies it.
 
-    SI throughout (``batstudy.units`` converts: ``fly(units.mph(103), units.deg(27.5),
+    SI numbers, or text with a unit (``fly("103mph", "27.5deg", "2500rpm")``, as a study file
+    takes them; ``batstudy.units`` converts numbers: ``fly(units.mph(103), units.deg(27.5),
     units.rpm(2500))``): ``exit_speed`` m/s; ``launch_angle`` rad above the horizontal;
     ``spin`` rad/s, the spin's magnitude, required (a ball without spin is a knuckleball
     that carries tens of feet less: give 0 for one; batted balls leave with about
@@ -57,6 +65,16 @@ def fly(
     ``landing_y`` (m). Raises ValueError naming an input outside its range.
     """
     standard_temperature, standard_pressure = _native.standard_air()
+    # a value with a unit ("100mph", "28deg", "2500rpm", "70F") is converted by definition
+    exit_speed, launch_angle, spin, spin_axis, spray_angle, height, elevation = (
+        _si(x, path) for x, path in (
+            (exit_speed, "launch.exit_speed"), (launch_angle, "launch.launch_angle"), (spin, "launch.spin"),
+            (spin_axis, "launch.spray_angle"), (spray_angle, "launch.spray_angle"), (height, "launch.height"),
+            (elevation, "flight.elevation"),
+        )
+    )
+    temperature, pressure = (None if x is None else _si(x, path)
+                             for x, path in ((temperature, "flight.temperature"), (pressure, "flight.pressure")))
     backspin = spin * math.cos(spin_axis)
     sidespin = spin * math.sin(spin_axis)
     wind = tuple(float(w) for w in wind)

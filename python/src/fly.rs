@@ -104,3 +104,14 @@ pub fn standard_air() -> (f64, f64) {
     let a = Atmosphere::default();
     (a.temperature_k, a.sea_level_pressure_pa)
 }
+
+/// A value written with a unit (`"100mph"`, `"28deg"`, `"2500rpm"`, `"70F"`) in SI, for the
+/// plausible range `path` (`launch.exit_speed`, `flight.temperature`, …), whose unit says
+/// which units it takes. Raises ValueError naming the input and the units allowed.
+#[pyfunction]
+pub fn to_si(text: &str, path: &str) -> PyResult<f64> {
+    let range = plausible::range_of(path)
+        .ok_or_else(|| PyValueError::new_err(format!("{path}: no such quantity")))?;
+    batstudy::model::units::to_si(text, range.unit)
+        .map_err(|why| PyValueError::new_err(format!("{path}: {why}")))
+}

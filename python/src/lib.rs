@@ -512,6 +512,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(export_profile, m)?)?;
     m.add_function(wrap_pyfunction!(fly::fly, m)?)?;
     m.add_function(wrap_pyfunction!(fly::standard_air, m)?)?;
+    m.add_function(wrap_pyfunction!(fly::to_si, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -81,3 +81,12 @@ def test_a_flight_without_spin_is_asked_for_not_flown_as_a_knuckleball():
     knuckle = float(batstudy.fly(units.mph(100), units.deg(28), 0.0).carry)
     spun = float(batstudy.fly(units.mph(100), units.deg(28), units.rpm(2000)).carry)
     assert spun - knuckle > 10 * 0.3048, (knuckle, spun)
+
+
+def test_values_with_units_are_the_same_flight():
+    # "103mph" is 103 x 0.44704 m/s by definition (NIST SP 811), as units.mph(103) is
+    a = batstudy.fly("103mph", "27.5deg", "2500rpm", elevation="15ft")
+    b = batstudy.fly(units.mph(103), units.deg(27.5), units.rpm(2500), elevation=units.ft(15))
+    assert float(a.carry) == float(b.carry)
+    with pytest.raises(ValueError, match="launch.exit_speed.*allowed: m/s, mph"):
+        batstudy.fly("103oz", 0.45, 200.0)

@@ -57,7 +57,9 @@ pub(super) fn search(f: &hdf5::File, path: &Path, s: &mut String) {
 /// `/uncertainty`. Where the answers have more dimensions than the quantile, the first
 /// curve's.
 pub(super) fn sample(f: &hdf5::File, s: &mut String) {
-    let Ok(u) = f.group("uncertainty") else { return };
+    let Ok(u) = f.group("uncertainty") else {
+        return;
+    };
     let read = |name: &str| {
         u.dataset(name)
             .and_then(|d| d.read_raw::<f64>())
