@@ -90,6 +90,12 @@ def test_sweet_spot_and_history(files):
     assert h.time.size == 20 and h.z.size == 5
     one = h.force.isel(swing_omega=0, impact_z=0)
     assert one.dims == ("time",) and np.isfinite(one).all()
+    # CF's time axis, as CF names it (axis T, standard_name time), for tools that look for it
+    import h5py
+
+    with h5py.File(files / "synth.h5", "r") as f:
+        t = f["history/time"].attrs
+        assert (t["axis"], t["standard_name"], t["units"]) == ("T", "time", "s")
 
 
 def test_bat_group(files):

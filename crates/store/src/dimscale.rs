@@ -309,6 +309,14 @@ pub fn describe_parts(
     if !description.is_empty() && description != long_name {
         attr_str(ds, "description", description)?;
     }
+    let name = ds.name();
+    let short = name.rsplit('/').next().unwrap_or(&name);
+    if let Some((_, axis, standard)) = crate::layout::CF_NAMES.iter().find(|c| c.0 == short) {
+        if !axis.is_empty() {
+            attr_str(ds, "axis", axis)?;
+        }
+        attr_str(ds, "standard_name", standard)?;
+    }
     Ok(())
 }
 

@@ -545,6 +545,18 @@ pub const SWEET_AT_EDGE: VarDef = v(
 );
 
 pub const TIME: VarDef = v("time", "s", "time", "time since first contact");
+
+/// CF's attributes where CF has them, by a variable's or coordinate's name: its `axis` (empty:
+/// none) and `standard_name` (CF standard name table, v84): the two time axes, and the air
+/// of a swept `flight` block (`flight.temperature` is the coordinate `flight_temperature`).
+pub const CF_NAMES: &[(&str, &str, &str)] = &[
+    ("time", "T", "time"),
+    ("flight_time", "T", "time"),
+    ("flight_temperature", "", "air_temperature"),
+    ("flight_pressure", "", "air_pressure_at_mean_sea_level"),
+    ("flight_humidity", "", "relative_humidity"),
+    ("flight_wind_speed", "", "wind_speed"),
+];
 pub const HIST_Z: VarDef = v("z", "m", "z", "position along the bat from the knob");
 pub const FLIGHT_TIME: VarDef = v(
     "flight_time",
