@@ -69,7 +69,7 @@ def fly(
     exit_speed, launch_angle, spin, spin_axis, spray_angle, height, elevation = (
         _si(x, path) for x, path in (
             (exit_speed, "launch.exit_speed"), (launch_angle, "launch.launch_angle"), (spin, "launch.spin"),
-            (spin_axis, "launch.spray_angle"), (spray_angle, "launch.spray_angle"), (height, "launch.height"),
+            (spin_axis, "launch.spin_axis"), (spray_angle, "launch.spray_angle"), (height, "launch.height"),
             (elevation, "flight.elevation"),
         )
     )

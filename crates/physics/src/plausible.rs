@@ -506,6 +506,14 @@ pub const LAUNCH_RANGES: &[Range] = &[
         get: |_| None,
     },
     Range {
+        path: "launch.spin_axis",
+        min: -std::f64::consts::PI,
+        max: std::f64::consts::PI,
+        unit: "rad",
+        reason: "the spin axis's tilt from pure backspin: ±90 degrees is sidespin, ±180 topspin",
+        get: |_| None,
+    },
+    Range {
         path: "launch.spin",
         min: -1000.0,
         max: 1000.0,
