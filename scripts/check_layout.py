@@ -121,6 +121,7 @@ BAT = {
     "drop": (("bat",), "1"), "barrel_diameter": (("bat",), "m"),
     "sweet_zone_start": (("bat",), "m"), "sweet_zone_end": (("bat",), "m"),
     "sweet_zone_length": (("bat",), "m"), "hoop_mode_frequency": (("bat",), "Hz"),
+    "barrel_compression": (("bat",), "N"),
     "best_q": (("bat",), "1"), "best_q_position": (("bat",), "m"),
     "rule_units": (("rule_check",), ""),
     # each limit in its own units (attribute units_from: rule_units)

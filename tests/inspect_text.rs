@@ -165,6 +165,12 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
     );
     assert!(cards[0].contains("none (a solid bat)"));
     assert!(cards[1].contains("breathing mode"));
+    // the trade's barrel compression: the hollow bat's, in lbf beside N, and no line for wood
+    assert!(!cards[0].contains("barrel compression"), "{}", cards[0]);
+    let squeeze = bat_floats(&out, "barrel_compression");
+    assert!(squeeze[0].is_nan() && squeeze[1] > 0.0, "{squeeze:?}");
+    let line = format!("{:.0} lbf at 0.040 in", squeeze[1] / (0.45359237 * 9.80665));
+    assert!(cards[1].contains(&line), "{line} in\n{}", cards[1]);
     // the best q in the field's convention, where the bat's BBCOR scan is
     assert!(
         cards.iter().all(|c| c.contains("best q            0.")),

@@ -6,6 +6,8 @@ from __future__ import annotations
 INCH = 0.0254
 OUNCE = 0.028349523125
 OUNCE_SQUARE_INCH = OUNCE * INCH * INCH
+# the standard pound-force, N (0.45359237 kg × 9.80665 m/s²)
+POUND_FORCE = 0.45359237 * 9.80665
 
 # (card variable, /bat variable) in the order the card shows them
 _FROM_BAT = [
@@ -23,6 +25,7 @@ _FROM_BAT = [
     ("sweet_zone_end", "sweet_zone_end"),
     ("sweet_zone_length", "sweet_zone_length"),
     ("hoop_mode_frequency", "hoop_mode_frequency"),
+    ("barrel_compression", "barrel_compression"),
     ("best_q", "best_q"),
     ("best_q_position", "best_q_position"),
     ("rule_value", "rule_value"),
@@ -30,8 +33,9 @@ _FROM_BAT = [
     ("rule_units", "rule_units"),
 ]
 
-# the card's quantities that files before layout version 7 lack
-_SINCE_LAYOUT_7 = ("best_q", "best_q_position")
+# the card's quantities that older files lack (layout 7 added the best q; the barrel
+# compression came within layout 7)
+_OPTIONAL = {"best_q": "1", "best_q_position": "m", "barrel_compression": "N"}
 
 # the trade's units beside SI: (new variable, SI variable, scale, units)
 _TRADE = [
@@ -42,6 +46,7 @@ _TRADE = [
     ("moment_of_inertia_knob6_oz_in2", "moment_of_inertia_knob6", 1 / OUNCE_SQUARE_INCH, "oz in^2"),
     ("barrel_diameter_in", "barrel_diameter", 1 / INCH, "in"),
     ("sweet_zone_length_in", "sweet_zone_length", 1 / INCH, "in"),
+    ("barrel_compression_lbf", "barrel_compression", 1 / POUND_FORCE, "lbf"),
 ]
 
 
@@ -57,14 +62,16 @@ def bat_card(tree, bat=None):
     the sweet zone (``sweet_zone_start``, ``sweet_zone_end``, ``sweet_zone_length``: the
     barrel whose BBCOR is within 0.01 of its peak), ``bending_frequency`` (the lowest
     free-free bending mode) and ``hoop_mode_frequency`` (the wall's lowest breathing mode;
-    NaN for a solid bat), ``best_q`` and where (``best_q_position``: the best collision
+    NaN for a solid bat), ``barrel_compression`` (N: the static force that closes the
+    barrel's diameter by 0.040 in 6 in from its end, the trade's barrel compression; NaN
+    without a shell barrel), ``best_q`` and where (``best_q_position``: the best collision
     efficiency in the field's convention, exit = q pitch + (1 + q) bat speed 6 in from the
     end, at a 70-mph swing meeting an 82-mph pitch); along ``rule_check`` each rule's ``rule_value``, ``rule_margin``
     (negative: the bat breaks it), ``rule_units``, ``rule_passes`` and ``rule_applies``
     (False where the rule set is not for the bat: MLB's wood-bat rules on a hollow bat, as
     ``batstudy card`` shows them). The trade's units
     beside: ``length_in``, ``mass_oz``, ``balance_point_in``, the swing weights in
-    ``oz in^2``, ``barrel_diameter_in``, ``sweet_zone_length_in``.
+    ``oz in^2``, ``barrel_diameter_in``, ``sweet_zone_length_in``, ``barrel_compression_lbf``.
 
     One bat's card has no ``bat`` dimension (its label is a scalar coordinate).
     ``tree`` is what :func:`batstudy.open_results` returns. A file written before bats had
@@ -76,9 +83,10 @@ def bat_card(tree, bat=None):
     if "bat" not in tree.children:
         raise ValueError("the results file has no /bat group")
     stored = tree["bat"].to_dataset()
-    for name in _SINCE_LAYOUT_7:  # an older file's card shows them unknown
-        if name not in stored:
+    for name, units in _OPTIONAL.items():  # an older file's card shows them unknown
+        if name not in stored and "mass" in stored:
             stored[name] = xr.full_like(stored["mass"], np.nan)
+            stored[name].attrs = {"units": units}
     missing = [b for _, b in _FROM_BAT if b not in stored]
     if missing:
         raise ValueError(

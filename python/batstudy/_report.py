@@ -175,6 +175,8 @@ def card_rows(tree: xr.DataTree) -> list[dict]:
                            f"{num(v['sweet_zone_start'], 4)}–{num(v['sweet_zone_end'], 4)} m"],
             ["bending mode 1", f"{num(v['bending_frequency'], 0)} Hz"],
             ["hoop mode", f"{num(v['hoop_mode_frequency'], 0)} Hz" if np.isfinite(v["hoop_mode_frequency"]) else "none (solid)"],
+            ["barrel compression", f"{num(v['barrel_compression_lbf'], 0)} lbf at 0.040 in, 6 in from the end"
+                                   if np.isfinite(v.get("barrel_compression", np.nan)) else "none (no shell barrel)"],
         ]  # fmt: skip
         applies = [bool(c["rule_applies"].isel(rule_check=j)) for j in range(card.sizes["rule_check"])]
         rules = [[text_of(r), num(float(c["rule_value"].isel(rule_check=j)), 6), text_of(c["rule_units"].values[j]),

@@ -137,6 +137,7 @@ fn bat_dict<'py>(
         ("sweet_zone_start", m.sweet_zone_start),
         ("sweet_zone_end", m.sweet_zone_end),
         ("hoop_mode_frequency", m.hoop_mode_frequency),
+        ("barrel_compression", m.barrel_compression),
         ("best_q", m.best_q),
         ("best_q_position", m.best_q_position),
     ] {

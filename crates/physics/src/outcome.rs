@@ -405,6 +405,10 @@ pub struct BatMetrics {
     /// The barrel wall's lowest breathing (hoop) mode as a shell, Hz: a property of the
     /// hollow bat whatever hoop its collisions are given; NaN for a solid bat.
     pub hoop_mode_frequency: f64,
+    /// The force that closes the barrel's diameter by 0.040 in between a load head and an
+    /// anvil 6 in from its end (`bat::compression::BASEBALL`), N: the trade's barrel
+    /// compression, from the shell; NaN for a bat without a shell barrel.
+    pub barrel_compression: f64,
     /// The ball and hoop the scan fired and gave (`metrics::BbcorShot`), canonical JSON.
     pub bbcor_shot: String,
     /// The bat's best collision efficiency in the field's convention at the field's
@@ -428,6 +432,7 @@ impl Default for BatMetrics {
             sweet_zone_start: f64::NAN,
             sweet_zone_end: f64::NAN,
             hoop_mode_frequency: f64::NAN,
+            barrel_compression: f64::NAN,
             bbcor_shot: String::new(),
             best_q: f64::NAN,
             best_q_position: f64::NAN,

@@ -14,6 +14,8 @@ pub const OUNCE_SQUARE_INCH: f64 = OUNCE * INCH * INCH;
 pub const FOOT: f64 = 0.3048;
 /// One pound (avoirdupois), kg.
 pub const POUND: f64 = 0.453_592_37;
+/// One pound-force, N (the standard gravity's pound: 0.45359237 kg × 9.80665 m/s²).
+pub const POUND_FORCE: f64 = POUND * 9.806_65;
 /// One degree of angle, rad.
 pub const DEGREE: f64 = std::f64::consts::PI / 180.0;
 /// One revolution per minute, rad/s.

@@ -9,7 +9,7 @@ use super::layout as l;
 use super::read::{open_checked, shown};
 use crate::results::printable;
 use batstudy_physics::outcome::SOLID_WOOD_CHECK;
-use batstudy_physics::units::{INCH, OUNCE, OUNCE_SQUARE_INCH};
+use batstudy_physics::units::{INCH, OUNCE, OUNCE_SQUARE_INCH, POUND_FORCE};
 use hdf5::types::VarLenUnicode;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -90,6 +90,9 @@ pub struct BatCard {
     /// The lowest free–free bending mode, Hz.
     pub bending_frequency: f64,
     pub hoop_mode_frequency: f64,
+    /// The barrel compression (force at 0.040 in, 6 in from the end), N (NaN without a
+    /// shell barrel, or in a file written before it was stored).
+    pub barrel_compression: f64,
     /// The best collision efficiency in the field's convention at the field's reference
     /// swing, and where, m from the knob (NaN in files before layout 7).
     pub best_q: f64,
@@ -157,6 +160,7 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
         optional(l::BAT_BEST_Q.name),
         optional(l::BAT_BEST_Q_POS.name),
     );
+    let compression = optional(l::BAT_BARREL_COMPRESSION.name);
     let modes = floats(l::BAT_MODE_FREQ.name)?;
     let per = modes.len().checked_div(n).unwrap_or(0);
     let shots = texts(l::BAT_BBCOR_SHOT.name)?;
@@ -186,6 +190,7 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
             sweet_zone_end: end[i],
             bending_frequency: if per > 0 { modes[i * per] } else { f64::NAN },
             hoop_mode_frequency: hoop[i],
+            barrel_compression: compression[i],
             best_q: best_q[i],
             best_q_position: best_q_z[i],
             rules: (0..nr)
@@ -290,6 +295,17 @@ fn render_one(c: &BatCard, s: &mut String) {
         "none (a solid bat)".to_string()
     };
     row("hoop mode", hoop);
+    if c.barrel_compression.is_finite() {
+        row(
+            "barrel compression",
+            format!(
+                "{:.0} lbf at 0.040 in ({:.0} N; {:.0} lbf per 0.050 in), 6 in from the end: the static squeeze of the trade's testers",
+                c.barrel_compression / POUND_FORCE,
+                c.barrel_compression,
+                c.barrel_compression * 1.25 / POUND_FORCE
+            ),
+        );
+    }
     row(
         "best q",
         format!(

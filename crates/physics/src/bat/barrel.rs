@@ -60,19 +60,17 @@ impl WallAlong for BarrelWall<'_> {
     }
 }
 
-/// The breathing modes of the bat's hollow part (`None` for a solid bat). A hollow part that
-/// starts inside the bat (a bore, a shell from z > 0) is clamped to the solid section
-/// there; the knob end of a tube is free. At the barrel's end a hollow bat's end cap, or a
-/// bore's plug where the bore is filled, holds the wall round (w = v = 0, a supported end:
-/// the cap's own flexibility is left out); an empty bore's end is open and free.
-pub fn barrel_modes(
-    g: &BatGeometry,
-    resolution: &ShellResolution,
-) -> Result<Option<ShellModes>, ModelError> {
+/// The bat's hollow part as a shell: its first station, m from the knob, and how its two
+/// ends are held (`None` for a solid bat). A hollow part that starts inside the bat (a bore,
+/// a shell from z > 0) is clamped to the solid section there; the knob end of a tube is
+/// free. At the barrel's end a hollow bat's end cap, or a bore's plug where the bore is
+/// filled, holds the wall round (w = v = 0, a supported end: the cap's own flexibility is
+/// left out); an empty bore's end is open and free.
+pub fn hollow_part(g: &BatGeometry) -> Option<(f64, (ShellEnd, ShellEnd))> {
     let (start, capped) = match (g.shell, g.bore) {
         (Some((_, from)), _) => (from, true),
         (None, Some((_, from))) => (from, g.fill_density > 0.0),
-        (None, None) => return Ok(None),
+        (None, None) => return None,
     };
     let start_end = if start > 0.0 {
         ShellEnd::Clamped
@@ -84,11 +82,28 @@ pub fn barrel_modes(
     } else {
         ShellEnd::Free
     };
+    Some((start, (start_end, barrel_end)))
+}
+
+/// The wall of a bat's hollow part at each station, as the shell reads it.
+pub fn barrel_wall(g: &BatGeometry) -> impl WallAlong + '_ {
+    BarrelWall(g)
+}
+
+/// The breathing modes of the bat's hollow part (`None` for a solid bat), held as
+/// [`hollow_part`] says.
+pub fn barrel_modes(
+    g: &BatGeometry,
+    resolution: &ShellResolution,
+) -> Result<Option<ShellModes>, ModelError> {
+    let Some((start, ends)) = hollow_part(g) else {
+        return Ok(None);
+    };
     let nodes = mesh(start, g.length, &g.breakpoints(), resolution.elements);
     ShellModes::solve(
         nodes,
         &BarrelWall(g),
-        (start_end, barrel_end),
+        ends,
         &resolution.wave_numbers,
         resolution.per_wave,
     )

@@ -7,6 +7,7 @@
 
 pub mod band_eigen;
 pub mod barrel;
+pub mod compression;
 pub mod beam;
 pub mod export;
 pub mod hollow_presets;

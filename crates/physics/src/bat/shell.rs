@@ -77,7 +77,7 @@ pub struct ShellModes {
     pub modes: Vec<ShellMode>,
 }
 
-/// The axial mesh: the breakpoints inside [start, end] kept as nodes, each piece cut into
+/// The axial mesh: the breakpoints inside [start, end] (in any order) kept as nodes, each piece cut into
 /// equal elements no longer than (end − start)/`elements`.
 pub fn mesh(start: f64, end: f64, breakpoints: &[f64], elements: usize) -> Vec<f64> {
     let mut cuts = vec![start];
@@ -88,6 +88,8 @@ pub fn mesh(start: f64, end: f64, breakpoints: &[f64], elements: usize) -> Vec<f
             .filter(|&z| z > start + 1e-9 && z < end - 1e-9),
     );
     cuts.push(end);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
     let target = (end - start) / elements as f64;
     let mut nodes = vec![start];
     for w in cuts.windows(2) {
@@ -262,6 +264,56 @@ pub fn modes_of(
             }
         })
         .collect())
+}
+
+/// The static response of wave number n to a radial load spread evenly over
+/// [`centre` − `half_length`, `centre` + `half_length`] along the axis, of unit total
+/// amplitude (∫ q dx = 1 N for the cos nθ component): the mean radial displacement W over
+/// that length, m/N. n = 0 is the axisymmetric squeeze: its energies integrate over 2π
+/// (twice the n ≥ 1 matrices), its V (torsion, which no radial load drives) is held, and
+/// so is U at the first node when no end holds the tube along its axis. The load's edges
+/// should be nodes of `nodes` (then the element integrals are exact).
+pub fn static_radial(
+    n: u32,
+    nodes: &[f64],
+    walls: &dyn WallAlong,
+    ends: (ShellEnd, ShellEnd),
+    centre: f64,
+    half_length: f64,
+) -> Result<f64, ModelError> {
+    let (mut k, _) = held_matrices(n, nodes, walls, ends);
+    if n == 0 {
+        k.scale(2.0);
+        for p in 0..nodes.len() {
+            k.hold(p * NODE_DOF + 2, 1.0);
+            k.hold(p * NODE_DOF + 3, 1.0);
+        }
+        if ends.0 != ShellEnd::Clamped && ends.1 != ShellEnd::Clamped {
+            k.hold(0, 1.0);
+        }
+    }
+    let load = |x: f64| (x - centre).abs() <= half_length * (1.0 + 1e-12);
+    let mut f = vec![0.0; k.n];
+    let mut weights = vec![0.0; k.n];
+    for (e, x) in nodes.windows(2).enumerate() {
+        let (le, mid) = (x[1] - x[0], 0.5 * (x[0] + x[1]));
+        if !load(mid) {
+            continue;
+        }
+        for &(xi, weight) in &GAUSS {
+            let (val, _, _) = hermite(xi, le);
+            for (j, v) in val.iter().enumerate() {
+                let i = e * NODE_DOF + dof(2, j);
+                weights[i] += weight * le * v / (2.0 * half_length);
+            }
+        }
+    }
+    f.copy_from_slice(&weights);
+    let w = k.solve_positive(&f).ok_or(ModelError::Unsupported(
+        "the shell's stiffness is not positive definite (a wall of zero thickness?)",
+    ))?;
+    // the mean of W over the load = Σ wᵢ ∫ Nᵢ / (2 b): the same weights as the load's
+    Ok(weights.iter().zip(&w).map(|(a, b)| a * b).sum())
 }
 
 impl ShellModes {

@@ -73,6 +73,20 @@ impl Band {
         }
     }
 
+    /// Every entry times `factor`.
+    pub fn scale(&mut self, factor: f64) {
+        self.data.iter_mut().for_each(|v| *v *= factor);
+    }
+
+    /// Solve A x = f for a positive definite A (`None` if it is not): a band Cholesky and
+    /// two triangular sweeps.
+    pub fn solve_positive(&self, f: &[f64]) -> Option<Vec<f64>> {
+        let u = self.cholesky()?;
+        let mut x = f.to_vec();
+        u.solve(&mut x);
+        Some(x)
+    }
+
     /// The dense matrix (tests, small problems).
     pub fn to_dense(&self) -> DMatrix<f64> {
         DMatrix::from_fn(self.n, self.n, |i, j| self.get(i, j))

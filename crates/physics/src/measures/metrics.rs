@@ -32,6 +32,7 @@
 //! (l = z − z_cm); the two effective masses are equal exactly at the centre of percussion of
 //! the pivot (the conjugate point).
 
+use crate::bat::compression::{barrel_compression, BASEBALL, RESOLUTION};
 use crate::bat::PreparedBat;
 use crate::collision::simulate::simulate;
 use crate::error::ModelError;
@@ -187,6 +188,11 @@ pub fn bat_metrics_mapped(
         sweet_zone_start: zone.map_or(f64::NAN, |z| z.left),
         sweet_zone_end: zone.map_or(f64::NAN, |z| z.right),
         hoop_mode_frequency: lowest_breathing_frequency(bat)?,
+        barrel_compression: if bat_spec.has_wood_wall() {
+            f64::NAN
+        } else {
+            barrel_compression(bat.geometry(), &BASEBALL, RESOLUTION)?
+        },
         bbcor_shot: shot.json(),
         best_q,
         best_q_position,

@@ -217,6 +217,14 @@ impl BatSpec {
             && self.bore.is_none()
             && self.fill.is_none()
     }
+
+    /// Whether a hollow part's wall is wood: a wood preset's shell without layers of its
+    /// own (the shell model takes it isotropic, where wood across the grain is a tenth as
+    /// stiff, so its static squeeze is not reported).
+    pub fn has_wood_wall(&self) -> bool {
+        matches!(self.preset, BatPreset::R161 | BatPreset::Corked)
+            && self.shell.as_ref().is_none_or(|s| s.layers.is_none())
+    }
 }
 
 /// Beam theory of the wave model.

@@ -218,10 +218,11 @@ impl BatGroup<'_> {
 }
 
 impl BatGroup<'_> {
-    /// The bat card's derived quantities: drop, barrel diameter, sweet zone, hoop mode.
+    /// The bat card's derived quantities: drop, barrel diameter, sweet zone, hoop mode,
+    /// barrel compression.
     fn card(&self, p: &[&BatProperties]) -> Result<(), StoreError> {
         type Getter = fn(&BatProperties) -> f64;
-        let per_bat: [(&VarDef, Getter); 6] = [
+        let per_bat: [(&VarDef, Getter); 7] = [
             (&l::BAT_DROP, |p| p.drop()),
             (&l::BAT_BARREL_DIAMETER, |p| p.barrel_diameter()),
             (&l::BAT_SWEET_ZONE_START, |p| p.metrics.sweet_zone_start),
@@ -230,6 +231,7 @@ impl BatGroup<'_> {
                 p.metrics.sweet_zone_end - p.metrics.sweet_zone_start
             }),
             (&l::BAT_HOOP_MODE_FREQ, |p| p.metrics.hoop_mode_frequency),
+            (&l::BAT_BARREL_COMPRESSION, |p| p.metrics.barrel_compression),
         ];
         for (def, get) in per_bat {
             let values = p.iter().map(|p| get(p)).collect();

@@ -141,6 +141,12 @@ pub const BAT_HOOP_MODE_FREQ: VarDef = v(
     "hoop frequency",
     "lowest breathing mode of the barrel wall as a shell (NaN for a solid bat), whatever hoop the collisions use",
 );
+pub const BAT_BARREL_COMPRESSION: VarDef = v(
+    "barrel_compression",
+    "N",
+    "barrel compression",
+    "force that closes the barrel's diameter by 0.040 in between a load head and an anvil 6 in from its end, from the shell (NaN without a shell barrel)",
+);
 pub const RULE_CHECK_DIM: VarDef = v(
     "rule_check",
     "",
