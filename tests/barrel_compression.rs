@@ -13,10 +13,10 @@
 use batstudy::model::bat::compression::{
     barrel_compression, pinch_compliance, CompressionTest, PinchResolution, BASEBALL, RESOLUTION,
 };
-use batstudy::model::bat::section::BatGeometry;
-use batstudy::model::spec::BatSpec;
 use batstudy::model::bat::laminate::Wall;
+use batstudy::model::bat::section::BatGeometry;
 use batstudy::model::bat::shell::{ShellEnd, WallAlong};
+use batstudy::model::spec::BatSpec;
 
 const E: f64 = 71.7e9;
 const NU: f64 = 0.33;
@@ -58,7 +58,11 @@ fn ring_series(wall: &Wall, l: f64, strip_angle: f64, max_n: u32) -> f64 {
         } else {
             std::f64::consts::PI * a * p * q / (p + q) * (nf * nf - 1.0).powi(2)
         };
-        let strip = if n == 0 { 1.0 } else { (nf * strip_angle).sin() / (nf * strip_angle) };
+        let strip = if n == 0 {
+            1.0
+        } else {
+            (nf * strip_angle).sin() / (nf * strip_angle)
+        };
         sum += 4.0 * strip * strip / (l * per_length);
     }
     sum
@@ -72,18 +76,39 @@ fn a_tube_pinched_along_its_length_closes_as_a_ring() {
         let (l, strip) = (10.0, 1e-4);
         let wall = Uniform { e: E, h, a };
         let t = test(0.5 * l, l, strip);
-        let c = pinch_compliance(0.0, l, &[], &wall, (ShellEnd::Free, ShellEnd::Free), 0.5 * l, &t, RESOLUTION)
-            .unwrap();
-        let exact = ring_series(&wall.wall(0.0), l, 0.5 * strip / a, RESOLUTION.max_wave_number);
+        let c = pinch_compliance(
+            (0.0, l),
+            &[],
+            &wall,
+            (ShellEnd::Free, ShellEnd::Free),
+            0.5 * l,
+            &t,
+            RESOLUTION,
+        )
+        .unwrap();
+        let exact = ring_series(
+            &wall.wall(0.0),
+            l,
+            0.5 * strip / a,
+            RESOLUTION.max_wave_number,
+        );
         let rel = c / exact - 1.0;
-        assert!(rel.abs() < 2e-4, "h/a = {}: {c:e} against the series' {exact:e} ({rel:+.2e})", h / a);
+        assert!(
+            rel.abs() < 2e-4,
+            "h/a = {}: {c:e} against the series' {exact:e} ({rel:+.2e})",
+            h / a
+        );
         // Roark's thin, inextensible ring: the membrane and the axisymmetric squeeze add
         // about (h/a)²/3, the truncated series takes less than 1e-5
         let d = E * h.powi(3) / (12.0 * (1.0 - NU * NU));
         let ring = (std::f64::consts::FRAC_PI_4 - 2.0 / std::f64::consts::PI) * a.powi(3) / (d * l);
         let rel = c / ring - 1.0;
         let band = 0.5 * (h / a).powi(2) + 5e-4;
-        assert!(rel.abs() < band, "h/a = {}: {c:e} against Roark's {ring:e} ({rel:+.2e})", h / a);
+        assert!(
+            rel.abs() < band,
+            "h/a = {}: {c:e} against Roark's {ring:e} ({rel:+.2e})",
+            h / a
+        );
     }
 }
 
@@ -92,13 +117,16 @@ fn compliance_scales_as_one_over_the_modulus() {
     let t = test(0.15, 0.0254, 1e-3);
     let ends = (ShellEnd::Free, ShellEnd::Supported);
     let c = |e: f64| {
-        let wall = Uniform { e, h: 2.5e-3, a: 0.0318 };
-        pinch_compliance(0.0, 0.6, &[], &wall, ends, 0.45, &t, RESOLUTION).unwrap()
+        let wall = Uniform {
+            e,
+            h: 2.5e-3,
+            a: 0.0318,
+        };
+        pinch_compliance((0.0, 0.6), &[], &wall, ends, 0.45, &t, RESOLUTION).unwrap()
     };
     let ratio = c(E) / c(2.0 * E);
     assert!((ratio - 2.0).abs() < 1e-9, "ratio {ratio}");
 }
-
 
 /// The presets' barrels: the hollow presets and a uniform 7050 wall on their geometry.
 fn geometry(bat: &str) -> BatGeometry {
@@ -111,13 +139,19 @@ fn the_default_resolution_is_converged_to_a_thousandth() {
         elements: 2 * RESOLUTION.elements,
         max_wave_number: 2 * RESOLUTION.max_wave_number,
     };
-    for bat in [r#"{"preset": "alloy_bbcor"}"#, r#"{"preset": "composite_bbcor"}"#] {
+    for bat in [
+        r#"{"preset": "alloy_bbcor"}"#,
+        r#"{"preset": "composite_bbcor"}"#,
+    ] {
         let g = geometry(bat);
         let (at, fine) = (
             barrel_compression(&g, &BASEBALL, RESOLUTION).unwrap(),
             barrel_compression(&g, &BASEBALL, finer).unwrap(),
         );
-        assert!((at / fine - 1.0).abs() < 1e-3, "{bat}: {at} N against {fine} N");
+        assert!(
+            (at / fine - 1.0).abs() < 1e-3,
+            "{bat}: {at} N against {fine} N"
+        );
     }
 }
 
@@ -147,7 +181,10 @@ fn the_modes_flexibility_approaches_the_static_one_from_below() {
             .sum()
     };
     let (few, many) = (modal(4), modal(24));
-    assert!(few < many && many < exact * (1.0 + 1e-9), "{few:e} < {many:e} < {exact:e}");
+    assert!(
+        few < many && many < exact * (1.0 + 1e-9),
+        "{few:e} < {many:e} < {exact:e}"
+    );
     assert!(many > 0.9 * exact, "24 modes give {many:e} of {exact:e}");
 }
 
@@ -157,7 +194,13 @@ fn mean_over(s: &batstudy::model::bat::shell::ShellModes, j: usize, centre: f64,
     let h = 2.0 * half / k as f64;
     let mut sum = 0.0;
     for i in 0..=k {
-        let w = if i == 0 || i == k { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+        let w = if i == 0 || i == k {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
         sum += w * s.radial(j, centre - half + i as f64 * h);
     }
     sum * h / 3.0 / (2.0 * half)

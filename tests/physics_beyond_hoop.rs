@@ -9,8 +9,8 @@
 //!   Plates", ring bending modes): a steel ring Y = 2e11 Pa, ρ = 7850 kg/m³, ν = 0.3, mid
 //!   radius 0.1 m, wall 2 mm has f₂ = 130.46 Hz (evaluated by hand below); a long free tube's
 //!   lowest n = 2 mode lies just below it (tests/physics_shell.rs).
-//! - Energy: without damping, the ball's kinetic energy before equals the ball's after, its
-//!   hysteresis, the beam's energy and the shell's (a conservation law).
+//! - Energy: with an elastic ball, the ball's kinetic energy before equals the ball's after,
+//!   the beam's energy, the shell's and what the wall's loss took (a conservation law).
 
 mod common;
 
@@ -83,7 +83,7 @@ fn long_steel_tube_rings_just_below_the_free_ring() {
 }
 
 #[test]
-fn undamped_shell_conserves_energy() {
+fn a_breathing_shell_conserves_energy_with_its_walls_loss_counted() {
     let mut spec = common::base_spec(0.72);
     spec.bat.preset = BatPreset::Aluminum;
     spec.ball.law = common::elastic();

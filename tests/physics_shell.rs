@@ -143,6 +143,7 @@ fn lamination_limits() {
         nu12: 0.28,
         density: 1600.0,
         matrix: true,
+        loss: [0.0; 3],
     };
     let at = |angle: f64| {
         Laminate {

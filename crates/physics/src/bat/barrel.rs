@@ -58,6 +58,20 @@ impl WallAlong for BarrelWall<'_> {
             None => Wall::isotropic(g.youngs_modulus, g.poisson_ratio, g.density, h, radius),
         }
     }
+
+    fn loss(&self, x: f64) -> Option<Wall> {
+        let g = self.0;
+        let (outer, inner) = (g.outer_radius(x), g.inner_radius(x));
+        let h = outer - inner;
+        let radius = outer - 0.5 * h;
+        match &g.laminate {
+            Some(l) => Some(l.loss_wall(h / l.thickness(), radius)),
+            None if g.wall_loss_factor > 0.0 => {
+                Some(self.wall(x).stiffness_times(g.wall_loss_factor))
+            }
+            None => None,
+        }
+    }
 }
 
 /// The bat's hollow part as a shell: its first station, m from the knob, and how its two

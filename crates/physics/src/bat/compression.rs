@@ -64,8 +64,7 @@ pub const RESOLUTION: PinchResolution = PinchResolution {
 /// The diametral compliance of a shell under the head and anvil of `test` centred at
 /// axial position `centre`: the diameter's closing per newton of head force, m/N.
 pub fn pinch_compliance(
-    start: f64,
-    end: f64,
+    (start, end): (f64, f64),
     breakpoints: &[f64],
     walls: &dyn WallAlong,
     ends: (ShellEnd, ShellEnd),
@@ -109,8 +108,7 @@ pub fn barrel_compression(
         return Ok(f64::NAN);
     }
     let compliance = pinch_compliance(
-        start,
-        g.length,
+        (start, g.length),
         &g.breakpoints(),
         &barrel_wall(g),
         ends,

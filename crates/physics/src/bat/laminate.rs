@@ -27,10 +27,14 @@ pub struct Ply {
     pub density: f64,
     /// Whether a break-in (matrix cracking) softens it: a polymer-matrix ply.
     pub matrix: bool,
+    /// Loss factors η (the loss modulus over the storage modulus) along the fibres, across
+    /// them and in in-plane shear: the share of each strain energy a cycle dissipates,
+    /// over 2π (Adams & Bacon's decomposition, J. Compos. Mater. 7, 402 (1973)).
+    pub loss: [f64; 3],
 }
 
 impl Ply {
-    /// An isotropic material.
+    /// An isotropic material without loss.
     pub const fn isotropic(e: f64, nu: f64, density: f64) -> Self {
         Ply {
             e1: e,
@@ -39,6 +43,15 @@ impl Ply {
             nu12: nu,
             density,
             matrix: false,
+            loss: [0.0; 3],
+        }
+    }
+
+    /// An isotropic material with loss factor η in every direction.
+    pub const fn isotropic_lossy(e: f64, nu: f64, density: f64, eta: f64) -> Self {
+        Ply {
+            loss: [eta; 3],
+            ..Ply::isotropic(e, nu, density)
         }
     }
 
@@ -55,36 +68,79 @@ impl Ply {
         }
     }
 
-    /// The reduced stiffnesses Q̄₁₁, Q̄₁₂, Q̄₂₂, Q̄₆₆ of the ply turned by `angle` (rad).
-    fn turned(&self, angle: f64) -> [f64; 4] {
+    /// The reduced stiffnesses Q₁₁, Q₁₂, Q₂₂, Q₆₆ in the ply's own axes.
+    fn reduced(&self) -> [f64; 4] {
         let nu21 = self.nu12 * self.e2 / self.e1;
         let den = 1.0 - self.nu12 * nu21;
-        let (q11, q22, q12, q66) = (
-            self.e1 / den,
-            self.e2 / den,
-            self.nu12 * self.e2 / den,
-            self.g12,
-        );
-        let (s, c) = angle.sin_cos();
-        let (s2, c2) = (s * s, c * c);
         [
-            q11 * c2 * c2 + 2.0 * (q12 + 2.0 * q66) * s2 * c2 + q22 * s2 * s2,
-            (q11 + q22 - 4.0 * q66) * s2 * c2 + q12 * (s2 * s2 + c2 * c2),
-            q11 * s2 * s2 + 2.0 * (q12 + 2.0 * q66) * s2 * c2 + q22 * c2 * c2,
-            (q11 + q22 - 2.0 * q12 - 2.0 * q66) * s2 * c2 + q66 * (s2 * s2 + c2 * c2),
+            self.e1 / den,
+            self.nu12 * self.e2 / den,
+            self.e2 / den,
+            self.g12,
         ]
     }
+
+    /// The reduced stiffnesses Q̄₁₁, Q̄₁₂, Q̄₂₂, Q̄₆₆ of the ply turned by `angle` (rad).
+    fn turned(&self, angle: f64) -> [f64; 4] {
+        rotated(self.reduced(), angle)
+    }
+
+    /// The ply's loss stiffnesses turned by `angle`: each energy term of the ply's axes
+    /// times its loss factor (σ₁ε₁ by η₁, σ₂ε₂ by η₂, τ₁₂γ₁₂ by η₁₂, the Poisson term Q₁₂
+    /// shared between the first two), so that a strain's energy dissipated per cycle over
+    /// 2π is the quadratic form of these, as its stored energy is of Q̄.
+    fn turned_loss(&self, angle: f64) -> [f64; 4] {
+        let [q11, q12, q22, q66] = self.reduced();
+        let [e1, e2, e12] = self.loss;
+        rotated(
+            [e1 * q11, 0.5 * (e1 + e2) * q12, e2 * q22, e12 * q66],
+            angle,
+        )
+    }
 }
+
+/// A symmetric in-plane stiffness [Q₁₁, Q₁₂, Q₂₂, Q₆₆] (no shear coupling in its own
+/// axes) turned by `angle` (rad): Jones 1999, §2.6.
+fn rotated([q11, q12, q22, q66]: [f64; 4], angle: f64) -> [f64; 4] {
+    let (s, c) = angle.sin_cos();
+    let (s2, c2) = (s * s, c * c);
+    [
+        q11 * c2 * c2 + 2.0 * (q12 + 2.0 * q66) * s2 * c2 + q22 * s2 * s2,
+        (q11 + q22 - 4.0 * q66) * s2 * c2 + q12 * (s2 * s2 + c2 * c2),
+        q11 * s2 * s2 + 2.0 * (q12 + 2.0 * q66) * s2 * c2 + q22 * c2 * c2,
+        (q11 + q22 - 2.0 * q12 - 2.0 * q66) * s2 * c2 + q66 * (s2 * s2 + c2 * c2),
+    ]
+}
+
+/// An aluminium alloy's loss factor: Cremer & Heckl's "Structure-Borne Sound" table, about
+/// 1e-4 (second-hand: data/shell_materials.md). Russell's aluminium bats ring with Q ≈
+/// 1000–3000 in bending (η ≤ 1e-3), a bound that includes their joints and grips.
+pub const ALUMINIUM_LOSS: f64 = 1e-4;
+
+/// AS4/3501-6's loss factors: twice the damping ratios measured along and across the
+/// fibres, 0.0556 % and 0.55 % (J. Eng. Mater. Technol. 112, 277 (1990), abstract read);
+/// in-plane shear, matrix-dominated as the transverse is, taken equal to the transverse
+/// (the Adams school's ψ₁₂ is larger, about 7 %, recalled and not read).
+const CARBON_EPOXY_LOSS: [f64; 3] = [1.11e-3, 1.1e-2, 1.1e-2];
 
 /// The materials a layer may name, with their sources (docs/physics.md,
 /// data/shell_materials.md).
 pub const MATERIALS: &[(&str, Ply)] = &[
     // 7050-T7451: Aluminum Association typical values (second-hand)
-    ("al7050", Ply::isotropic(71.7e9, 0.33, 2830.0)),
+    (
+        "al7050",
+        Ply::isotropic_lossy(71.7e9, 0.33, 2830.0, ALUMINIUM_LOSS),
+    ),
     // 7075-T6: E and ρ second-hand; ν that of the 7xxx alloys
-    ("al7075", Ply::isotropic(72.0e9, 0.33, 2810.0)),
+    (
+        "al7075",
+        Ply::isotropic_lossy(72.0e9, 0.33, 2810.0, ALUMINIUM_LOSS),
+    ),
     // the paper's aluminum; ν from ASM 6061-T6
-    ("al6061", Ply::isotropic(69.0e9, 0.33, 2700.0)),
+    (
+        "al6061",
+        Ply::isotropic_lossy(69.0e9, 0.33, 2700.0, ALUMINIUM_LOSS),
+    ),
     // AS4/3501-6 carbon/epoxy, unidirectional, V_f 0.63 (Daniel & Ishai's table)
     (
         "carbon_epoxy",
@@ -95,6 +151,7 @@ pub const MATERIALS: &[(&str, Ply)] = &[
             nu12: 0.27,
             density: 1600.0,
             matrix: true,
+            loss: CARBON_EPOXY_LOSS,
         },
     ),
     // E-glass/epoxy, unidirectional, V_f 0.55 (Daniel & Ishai's table)
@@ -107,6 +164,9 @@ pub const MATERIALS: &[(&str, Ply)] = &[
             nu12: 0.28,
             density: 1970.0,
             matrix: true,
+            // no glass/epoxy damping was read: the same epoxy's values across the
+            // fibres and in shear, and carbon's along them
+            loss: CARBON_EPOXY_LOSS,
         },
     ),
 ];
@@ -181,6 +241,22 @@ impl Wall {
         };
         laminate.wall(1.0, radius)
     }
+
+    /// The wall's stiffnesses times `factor` (its mass unchanged): an isotropic wall's loss
+    /// stiffnesses are its stiffnesses times its loss factor.
+    pub fn stiffness_times(&self, factor: f64) -> Wall {
+        Wall {
+            a11: self.a11 * factor,
+            a12: self.a12 * factor,
+            a22: self.a22 * factor,
+            a66: self.a66 * factor,
+            d11: self.d11 * factor,
+            d12: self.d12 * factor,
+            d22: self.d22 * factor,
+            d66: self.d66 * factor,
+            ..*self
+        }
+    }
 }
 
 impl Laminate {
@@ -222,6 +298,18 @@ impl Laminate {
     /// The wall with every layer's thickness times `scale` (a wall that thins along the
     /// barrel keeps its stack's proportions), at mid-surface radius `radius`.
     pub fn wall(&self, scale: f64, radius: f64) -> Wall {
+        self.stack(scale, radius, Ply::turned)
+    }
+
+    /// The wall's loss stiffnesses (`Ply::turned_loss` summed as [`Self::wall`] sums the
+    /// stiffnesses): the energy a strain dissipates per cycle over 2π is their quadratic
+    /// form. Its mass per area is the wall's.
+    pub fn loss_wall(&self, scale: f64, radius: f64) -> Wall {
+        self.stack(scale, radius, Ply::turned_loss)
+    }
+
+    /// A, D of the stack from each ply's in-plane matrix `q_of(ply, angle)`.
+    fn stack(&self, scale: f64, radius: f64, q_of: fn(&Ply, f64) -> [f64; 4]) -> Wall {
         let mut w = Wall {
             radius,
             mass_per_area: self.mass_per_area() * scale,
@@ -233,7 +321,7 @@ impl Laminate {
             for layer in plies {
                 let t = layer.thickness * scale;
                 let bottom = top - t;
-                let q = layer.ply.expect("a wall holds plies").turned(layer.angle);
+                let q = q_of(&layer.ply.expect("a wall holds plies"), layer.angle);
                 let (m1, m3) = (t, (top.powi(3) - bottom.powi(3)) / 3.0);
                 w.a11 += q[0] * m1;
                 w.a12 += q[1] * m1;

@@ -7,8 +7,8 @@
 
 pub mod band_eigen;
 pub mod barrel;
-pub mod compression;
 pub mod beam;
+pub mod compression;
 pub mod export;
 pub mod hollow_presets;
 pub mod laminate;

@@ -1,7 +1,7 @@
 //! A bat resolved to numbers: outer and inner radius, material and fill along z, and the
 //! cross-section properties (A, I, mass per length) with exact-enough integrals over z.
 
-use crate::bat::laminate::{self, Laminate, Layer};
+use crate::bat::laminate::{self, Laminate, Layer, ALUMINIUM_LOSS};
 use crate::bat::profile::{handle_factor, Profile};
 use crate::error::{out_of_range, ModelError};
 use crate::spec::{BatPreset, BatSpec, BoreSpec, HandleSpec, ProfileSpec, ShellSpec};
@@ -74,6 +74,9 @@ pub struct BatGeometry {
     pub bore: Option<(f64, f64)>,
     /// The hollow part's wall as layers (after any break-in), if given.
     pub laminate: Option<Laminate>,
+    /// The loss factor of a wall without layers: aluminium's for the metal preset, none for
+    /// wood (no loss across the grain was found; docs/physics.md, "Losses in the wall").
+    pub wall_loss_factor: f64,
 }
 
 impl BatGeometry {
@@ -126,6 +129,7 @@ impl BatGeometry {
             shear_modulus,
             shear_coefficient: material.shear_coefficient,
             damping_ratio,
+            wall_loss_factor: if is_wood { 0.0 } else { ALUMINIUM_LOSS },
             shell: shell_of(
                 bat.shell.as_ref(),
                 preset.shell,

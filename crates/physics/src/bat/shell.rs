@@ -55,6 +55,24 @@ pub enum ShellEnd {
 pub trait WallAlong {
     /// The wall at axial position x, m.
     fn wall(&self, x: f64) -> Wall;
+
+    /// The wall's loss stiffnesses at x (`Laminate::loss_wall`), `None` for a wall without
+    /// loss.
+    fn loss(&self, _x: f64) -> Option<Wall> {
+        None
+    }
+}
+
+/// The loss stiffnesses of a wall as a wall, to be assembled as one.
+struct LossOf<'w>(&'w dyn WallAlong);
+
+impl WallAlong for LossOf<'_> {
+    fn wall(&self, x: f64) -> Wall {
+        self.0.loss(x).unwrap_or_else(|| Wall {
+            radius: self.0.wall(x).radius,
+            ..Wall::default()
+        })
+    }
 }
 
 /// One mode: its wave number, angular frequency and its radial shape W (and W′) at the
@@ -64,6 +82,10 @@ pub struct ShellMode {
     pub wave_number: u32,
     /// rad/s.
     pub omega: f64,
+    /// The mode's loss factor: the energy its strains dissipate per cycle over 2π, over
+    /// their stored energy (the loss stiffnesses' Rayleigh quotient, xᵀK″x / xᵀKx; 0 for a
+    /// wall without loss).
+    pub loss_factor: f64,
     pub w: Vec<f64>,
     pub dw: Vec<f64>,
 }
@@ -244,6 +266,8 @@ pub fn modes_of(
     let (k, m) = held_matrices(n, nodes, walls, ends);
     let count = count.min(k.n / 2);
     let (values, vectors) = subspace::lowest(&k, &m, count)?;
+    let lossy = nodes.iter().any(|&x| walls.loss(x).is_some());
+    let loss = lossy.then(|| held_matrices(n, nodes, &LossOf(walls), ends).0);
     Ok((0..values.len())
         .map(|c| {
             let col = vectors.column(c);
@@ -254,9 +278,17 @@ pub fn modes_of(
                 .copied()
                 .fold(0.0, |acc: f64, x| if x.abs() > acc.abs() { x } else { acc });
             let sign = if peak < 0.0 { -1.0 } else { 1.0 };
+            // unit modal mass: xᵀKx = ω²
+            let loss_factor = loss.as_ref().map_or(0.0, |kl| {
+                let x: Vec<f64> = col.iter().copied().collect();
+                let mut y = vec![0.0; x.len()];
+                kl.mul(&x, &mut y);
+                (x.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>() / values[c]).max(0.0)
+            });
             ShellMode {
                 wave_number: n,
                 omega: values[c].max(0.0).sqrt(),
+                loss_factor,
                 w: w.iter().map(|x| sign * x).collect(),
                 dw: (0..nodes.len())
                     .map(|p| sign * col[p * NODE_DOF + 5])

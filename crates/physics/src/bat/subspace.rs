@@ -58,7 +58,7 @@ impl Band {
     }
 
     /// y = A x.
-    fn mul(&self, x: &[f64], y: &mut [f64]) {
+    pub fn mul(&self, x: &[f64], y: &mut [f64]) {
         let w = self.b + 1;
         y.iter_mut().for_each(|v| *v = 0.0);
         for i in 0..self.n {

@@ -50,8 +50,9 @@ pub struct ShellContact {
     pub phi: Vec<f64>,
     /// How the footprint changes with the compression.
     pub footprint: Footprint,
-    /// Modal damping ratio (the bat's material damping).
-    pub zeta: f64,
+    /// Each mode's damping ratio: the bat's material damping (`bat.material.quality_factor`)
+    /// plus half the mode's loss factor from its wall's materials.
+    pub zeta: Vec<f64>,
     /// The lowest breathing mode's frequency (the hoop frequency bats are ranked by), Hz,
     /// and its effective mass at this contact (at the reference compression), kg.
     pub frequency: f64,
@@ -135,7 +136,11 @@ pub fn resolve_shell(
     let lowest = &modes.modes[0];
     Ok(Some(ShellContact {
         omega: modes.modes.iter().map(|m| m.omega).collect(),
-        zeta: bat.damping_ratio,
+        zeta: modes
+            .modes
+            .iter()
+            .map(|m| bat.damping_ratio + 0.5 * m.loss_factor)
+            .collect(),
         frequency: lowest.omega / std::f64::consts::TAU,
         mass: 1.0 / (phi[0] * phi[0]),
         phi,

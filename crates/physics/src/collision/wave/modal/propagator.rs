@@ -35,6 +35,11 @@ impl ModalStep {
     /// Exact step of q̈ + 2ζωq̇ + ω²q = φ f(t), f linear over the step; ζ applies to the
     /// flexible modes (ω > 0) only.
     pub(super) fn new(omega: &[f64], zeta: f64, phi: &[f64], h: f64) -> Self {
+        Self::each(omega, &vec![zeta; omega.len()], phi, h)
+    }
+
+    /// [`Self::new`] with each mode's own damping ratio.
+    pub(super) fn each(omega: &[f64], zetas: &[f64], phi: &[f64], h: f64) -> Self {
         let n = omega.len();
         let mut s = Self {
             cos: Vec::with_capacity(n),
@@ -46,7 +51,7 @@ impl ModalStep {
             v_start: Vec::with_capacity(n),
             v_end: Vec::with_capacity(n),
         };
-        for (&w, &p) in omega.iter().zip(phi) {
+        for ((&w, &p), &zeta) in omega.iter().zip(phi).zip(zetas) {
             if zeta > 0.0 && w > 0.0 {
                 // homogeneous: e^{−ζωt}(cos ω_d t, sin ω_d t); particular solution of the
                 // ramp f0 + (f1 − f0) t/h: q_p = f(t)/ω² − 2ζ (f1 − f0)/(h ω³)
@@ -125,5 +130,14 @@ pub(super) fn damping_rate(omega: &[f64], zeta: f64, qd: &[f64]) -> f64 {
     qd.iter()
         .zip(omega)
         .map(|(v, w)| 2.0 * zeta * w * v * v)
+        .sum()
+}
+
+/// [`damping_rate`] with each mode's own damping ratio.
+pub(super) fn damping_rate_each(omega: &[f64], zetas: &[f64], qd: &[f64]) -> f64 {
+    qd.iter()
+        .zip(omega)
+        .zip(zetas)
+        .map(|((v, w), z)| 2.0 * z * w * v * v)
         .sum()
 }

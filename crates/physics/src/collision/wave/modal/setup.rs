@@ -55,7 +55,7 @@ pub(super) struct Setup<'b> {
 /// footprint's shape φ, which follows the contact, is applied at each step).
 pub(super) struct ShellStep {
     pub(super) omega: Vec<f64>,
-    pub(super) zeta: f64,
+    pub(super) zeta: Vec<f64>,
     pub(super) h: f64,
     pub(super) st: ModalStep,
     pub(super) half: Option<ModalStep>,
@@ -63,13 +63,14 @@ pub(super) struct ShellStep {
 
 impl ShellStep {
     fn new(shell: &ShellContact, h: f64) -> Self {
-        let (omega, zeta) = (&shell.omega, shell.zeta);
+        let (omega, zeta) = (&shell.omega, &shell.zeta);
         let unit = vec![1.0; omega.len()];
-        let st = ModalStep::new(omega, zeta, &unit, h);
-        let half = (zeta > 0.0).then(|| ModalStep::new(omega, zeta, &unit, 0.5 * h));
+        let st = ModalStep::each(omega, zeta, &unit, h);
+        let damped = zeta.iter().any(|&z| z > 0.0);
+        let half = damped.then(|| ModalStep::each(omega, zeta, &unit, 0.5 * h));
         ShellStep {
             omega: omega.clone(),
-            zeta,
+            zeta: zeta.clone(),
             h,
             st,
             half,

@@ -2,7 +2,7 @@
 //! under the contact's normal force (linear over the step), beside the beam.
 
 use super::super::ShellContact;
-use super::propagator::damping_rate;
+use super::propagator::damping_rate_each;
 use super::setup::ShellStep;
 
 /// The shell's coordinates and velocities, the footprint's shape this step (φ of each
@@ -60,7 +60,7 @@ pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
 /// damping's losses over the step (Simpson's rule, the mid-step velocities from an exact
 /// half step).
 pub(super) fn advance(sh: &ShellStep, shell: &mut ShellState, (n0, n1): (f64, f64)) {
-    let rate = |qd: &[f64]| damping_rate(&sh.omega, sh.zeta, qd);
+    let rate = |qd: &[f64]| damping_rate_each(&sh.omega, &sh.zeta, qd);
     if let Some(hs) = &sh.half {
         let nm = 0.5 * (n0 + n1);
         let mid: Vec<f64> = (0..shell.q.len())
