@@ -8,6 +8,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod lab;
 /// The physics (crates/physics): one fully specified collision in, one `Outcome` out.
 pub use batstudy_physics as model;
 pub mod operations;

@@ -20,6 +20,8 @@
 //! - `simulate`: one collision a call (`batstudy.simulate`, each its own one-point study, the
 //!   bat prepared once across calls) against the same collisions as a study's points on one
 //!   thread: the ratio of a call's time to a point's;
+//! - `lab`: the bat lab's latency, from an edit (a knot moved: a new bat) to its answer, for
+//!   a solid and a hollow bat, on every core;
 //! - `memory`: peak resident memory (VmHWM, reset through `/proc/self/clear_refs` before
 //!   each run) of the scaling studies on the most threads and of a large summary-only study.
 //!
@@ -36,6 +38,7 @@ mod batted;
 mod cases;
 pub mod dev;
 mod headroom;
+mod lab;
 mod machine;
 mod measure;
 mod memory;
@@ -121,6 +124,8 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
     optimize::print(out, &optimize);
     let simulate = simulate::bench_simulate(&sz, dir.path())?;
     report::print_simulate(out, &simulate);
+    let lab = lab::bench_lab(opts.quick, scaling.cores)?;
+    lab::print(out, &lab);
 
     machine.loadavg_end = machine::loadavg();
     report::print_end(out, &machine);
@@ -132,6 +137,7 @@ pub fn run(opts: &BenchOptions, out: &mut dyn Write) -> Result<BenchReport, Stri
         batted,
         optimize,
         simulate,
+        lab,
     })
 }
 

@@ -26,6 +26,8 @@ pub struct BenchReport {
     pub optimize: super::optimize::OptimizeBench,
     /// One collision a call (`batstudy.simulate`) against a study's point.
     pub simulate: super::simulate::SimulateBench,
+    /// The bat lab: an edit to its answer.
+    pub lab: super::lab::LabBench,
 }
 
 fn mib(b: Option<u64>) -> String {

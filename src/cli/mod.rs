@@ -19,6 +19,7 @@ pub mod card;
 mod common;
 pub mod export;
 pub mod fly;
+pub mod lab;
 pub mod merge;
 pub mod optimize;
 pub mod plan;
@@ -108,6 +109,11 @@ pub enum Command {
     /// `2500rpm`, `3ft`, `70F`); prints the carry, apex and hang time, and writes the
     /// trajectory as a CSV with `--trajectory`.
     Fly(fly::FlyArgs),
+    /// The bat lab: a local web page where a bat is shaped and hit live (its profile's
+    /// knots dragged, its material, ball, pitch and swing set), with the exit speed along
+    /// the barrel, BBCOR and the rules, and the bat's card, computed by this library.
+    /// Prints the URL to open (127.0.0.1 only, with a random access token).
+    Lab(lab::LabArgs),
 }
 
 /// How this process was started, for what it writes that starts batstudy again (the Slurm
@@ -175,6 +181,7 @@ pub fn run_command(cmd: Command, invocation: &Invocation) -> i32 {
         Command::Card(a) => card::cmd_card(&a),
         Command::Compare(a) => card::cmd_compare(&a),
         Command::Fly(a) => fly::cmd_fly(&a),
+        Command::Lab(a) => lab::cmd_lab(&a),
         Command::Bench {
             quick,
             threads,

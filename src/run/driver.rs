@@ -470,42 +470,52 @@ impl<S: Simulator, E: Encode> Dispatch<'_, S, E> {
         true
     }
 
-    /// Point `i` computed, its failure (a bad point, a bat that could not be prepared, an
-    /// error or a panic of the model) kept as its result.
+    /// Point `i` computed ([`compute_point`]).
     fn compute(&self, i: usize) -> PointRecord {
-        let p = match self.plan.point(i) {
-            Err(e) => {
-                return PointRecord {
-                    index: i,
-                    id: e.id,
-                    bat: 0,
-                    result: Err(e.message),
-                }
+        compute_point(self.plan, self.sim, self.bats, self.history, i)
+    }
+}
+
+/// Point `i` of `plan` computed as a run stores it, its failure (a bad point, a bat that
+/// could not be prepared, an error or a panic of the model) kept as its result: the one
+/// function every front end's numbers come from (the run, the lab).
+pub fn compute_point<S: Simulator>(
+    plan: &Plan,
+    sim: &S,
+    bats: &PreparedBats<S::Bat>,
+    history: Option<&HistoryRequest>,
+    i: usize,
+) -> PointRecord {
+    let p = match plan.point(i) {
+        Err(e) => {
+            return PointRecord {
+                index: i,
+                id: e.id,
+                bat: 0,
+                result: Err(e.message),
             }
-            Ok(p) => p,
-        };
-        let history = self.history.filter(|_| p.record_history);
-        let result = match &self.bats.handles[p.bat as usize] {
-            Err(e) => Err(e.clone()),
-            Ok(bat) => match catch_unwind(AssertUnwindSafe(|| {
-                self.sim.simulate(bat, &p.spec, history)
-            })) {
-                Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
-                Ok(Err(e)) => Err(e),
-                Err(payload) => Err(format!("panic: {}", panic_text(payload))),
-            },
-        };
-        // squared up against the bat's own best q, which preparing the bat found
-        let best_q = self.bats.variants[p.bat as usize].properties.metrics.best_q;
-        let result = result.map(|mut o| {
-            o.batted.squared_up = squared_up(&o.batted, o.exit_speed_lab, best_q);
-            o
-        });
-        PointRecord {
-            index: i,
-            id: p.id,
-            bat: p.bat,
-            result,
         }
+        Ok(p) => p,
+    };
+    let history = history.filter(|_| p.record_history);
+    let result = match &bats.handles[p.bat as usize] {
+        Err(e) => Err(e.clone()),
+        Ok(bat) => match catch_unwind(AssertUnwindSafe(|| sim.simulate(bat, &p.spec, history))) {
+            Ok(Ok(o)) => check_finite_for(&o, p.spec.model).map(|_| o),
+            Ok(Err(e)) => Err(e),
+            Err(payload) => Err(format!("panic: {}", panic_text(payload))),
+        },
+    };
+    // squared up against the bat's own best q, which preparing the bat found
+    let best_q = bats.variants[p.bat as usize].properties.metrics.best_q;
+    let result = result.map(|mut o| {
+        o.batted.squared_up = squared_up(&o.batted, o.exit_speed_lab, best_q);
+        o
+    });
+    PointRecord {
+        index: i,
+        id: p.id,
+        bat: p.bat,
+        result,
     }
 }

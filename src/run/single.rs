@@ -29,8 +29,12 @@ type Kept = Vec<(String, Arc<PreparedBats<Target>>)>;
 
 static KEPT: Mutex<Kept> = Mutex::new(Vec::new());
 
-/// The study's bats, from the kept ones when a call has prepared the same bat before.
-fn bats_of(study: &Study) -> Result<Arc<PreparedBats<Target>>, String> {
+/// The study's bats, from the kept ones when a call has prepared the same bat before (new
+/// ones prepared on `pool`, one thread when it is `None`).
+pub fn bats_of(
+    study: &Study,
+    pool: Option<&rayon::ThreadPool>,
+) -> Result<Arc<PreparedBats<Target>>, String> {
     let key: String = study
         .plan
         .bats()
@@ -45,8 +49,15 @@ fn bats_of(study: &Study) -> Result<Arc<PreparedBats<Target>>, String> {
         return Ok(bats);
     }
     drop(kept);
-    let pool = build_pool(1).map_err(|e| e.to_string())?;
-    let bats = Arc::new(prepare_bats(&ModelSimulator, &study.plan, &pool));
+    let one;
+    let pool = match pool {
+        Some(p) => p,
+        None => {
+            one = build_pool(1).map_err(|e| e.to_string())?;
+            &one
+        }
+    };
+    let bats = Arc::new(prepare_bats(&ModelSimulator, &study.plan, pool));
     let mut kept = KEPT.lock().unwrap_or_else(|p| p.into_inner());
     if kept.len() >= KEPT_BATS {
         kept.remove(0);
@@ -58,7 +69,7 @@ fn bats_of(study: &Study) -> Result<Arc<PreparedBats<Target>>, String> {
 /// The first point of `study` simulated, its bat prepared once across calls. A bat that
 /// could not be prepared, or a collision that fails or gives a non-finite number, is an error.
 pub fn simulate_first_point(study: &Study) -> Result<Single, String> {
-    let bats = bats_of(study)?;
+    let bats = bats_of(study, None)?;
     let request = study.history_request(bats.max_length());
     let point = study.plan.point(0).map_err(|e| e.message)?;
     let bat = bats.handles[point.bat as usize]

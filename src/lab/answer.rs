@@ -1,0 +1,109 @@
+//! What the lab shows for a session: every impact position computed as `batstudy run`
+//! computes it (`run::driver::compute_point`, the bat prepared once and kept), and the
+//! bat's card, as JSON for the page. Numbers are SI; a NaN is `null`.
+
+use super::session;
+use crate::results::BatVariant;
+use crate::run::driver::compute_point;
+use crate::run::single::bats_of;
+use crate::run::ModelSimulator;
+use crate::study::{self, LoadOptions};
+use rayon::prelude::*;
+use serde_json::{json, Value};
+use std::path::Path;
+
+/// The name a session's study is loaded under, in its error messages.
+pub const SESSION_FILE: &str = "lab-session.yaml";
+
+/// The session evaluated: `{session, study, points, bat}`, or `{study, error}` with the study's
+/// positioned message (file, line, field, value and what is allowed) when it is refused.
+pub fn evaluate(session: &Value, pool: &rayon::ThreadPool) -> Value {
+    // a preset just chosen: its profile as knots, which the answer gives back to the page
+    let session = if session["base"]["bat"]["profile"].is_null() {
+        match session::with_knots(session.clone()) {
+            Ok(s) => s,
+            Err(e) => return json!({"error": e}),
+        }
+    } else {
+        session.clone()
+    };
+    let session = &session;
+    let text = match session::study_text(session) {
+        Ok(t) => t,
+        Err(e) => return json!({"error": e}),
+    };
+    let loaded = match study::load_str(&text, Path::new(SESSION_FILE), &LoadOptions::default()) {
+        Ok(s) => s,
+        Err(e) => return json!({"study": text, "error": e.to_string()}),
+    };
+    let bats = match bats_of(&loaded, Some(pool)) {
+        Ok(b) => b,
+        Err(e) => return json!({"study": text, "error": e}),
+    };
+    if let Some(Err(e)) = bats.handles.first() {
+        return json!({"study": text, "error": e});
+    }
+    let plan = &loaded.plan;
+    let records: Vec<_> = pool.install(|| {
+        (0..plan.n_points())
+            .into_par_iter()
+            .map(|i| compute_point(plan, &ModelSimulator, &bats, None, i))
+            .collect()
+    });
+    let points: Vec<Value> = records
+        .iter()
+        .map(|r| {
+            let z = plan.point(r.index).map_or(f64::NAN, |p| p.spec.impact.z);
+            match &r.result {
+                Ok(o) => json!({
+                    "z": z,
+                    "exit_speed_lab": o.exit_speed_lab,
+                    "exit_speed": o.exit_speed,
+                    "bat_speed": o.batted.bat_speed,
+                    "launch_angle": o.batted.launch_angle,
+                    "backspin": o.batted.backspin,
+                    "carry": o.batted.carry,
+                    "grip_vibration_amplitude": o.grip_vibration_amplitude,
+                    "hoop_mode_frequency": o.hoop_frequency,
+                }),
+                Err(e) => json!({"z": z, "error": e}),
+            }
+        })
+        .collect();
+    json!({"session": session, "study": text, "points": points, "bat": card(&bats.variants[0])})
+}
+
+/// A bat's card and its drawing: the profile, the BBCOR scan and the rules.
+fn card(v: &BatVariant) -> Value {
+    let p = &v.properties;
+    let m = &p.metrics;
+    let rules: Vec<Value> = p
+        .rule_checks
+        .iter()
+        .map(|r| json!({"label": r.label, "units": r.units, "value": r.value, "margin": r.margin}))
+        .collect();
+    json!({
+        "label": v.label,
+        "length": p.length,
+        "mass": p.mass,
+        "drop": p.drop(),
+        "z_cm": p.z_cm,
+        "moment_of_inertia_knob6": p.moment_of_inertia_knob6,
+        "barrel_diameter": p.barrel_diameter(),
+        "bending_frequency": p.mode_frequency.first(),
+        "bbcor_max": m.bbcor_max,
+        "bbcor_max_position": m.bbcor_max_position,
+        "sweet_zone_start": m.sweet_zone_start,
+        "sweet_zone_end": m.sweet_zone_end,
+        "hoop_mode_frequency": m.hoop_mode_frequency,
+        "barrel_compression": m.barrel_compression,
+        "best_q": m.best_q,
+        "best_q_position": m.best_q_position,
+        "bbcor_z": m.bbcor_z,
+        "bbcor": m.bbcor,
+        "profile_z": p.z,
+        "outer_radius": p.outer_radius,
+        "inner_radius": p.inner_radius,
+        "rules": rules,
+    })
+}

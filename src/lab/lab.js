@@ -1,0 +1,267 @@
+// The bat lab's page: it edits a session (a study's base block, the model and an impact
+// range), sends it to the server and draws what comes back. Nothing here computes
+// physics: every number shown is the server's (batstudy's library). Text from the server
+// or a study is only ever set as text, never as markup.
+"use strict";
+
+const INCH = 0.0254, OUNCE = 0.028349523125, MPH = 0.44704;
+const OZ_IN2 = OUNCE * INCH * INCH, LBF = 0.45359237 * 9.80665;
+const SVG = "http://www.w3.org/2000/svg";
+const token = new URLSearchParams(location.search).get("token") || "";
+const $ = (id) => document.getElementById(id);
+
+let session = null;     // what the page edits
+let answer = null;      // the server's last answer
+let reference = null;   // a pinned answer, drawn dashed
+let inFlight = false, pending = false, sentAt = 0;
+
+async function api(path, body) {
+  const r = await fetch(path, {
+    method: body === undefined ? "GET" : "POST",
+    headers: { "X-Batstudy-Token": token, "Content-Type": "application/json" },
+    body: body === undefined ? undefined : JSON.stringify(body),
+  });
+  return { status: r.status, json: await r.json() };
+}
+
+// An edit: computed at once, or after the one in flight (only the newest edit waits).
+function changed() {
+  if (inFlight) { pending = true; return; }
+  send();
+}
+
+async function send() {
+  inFlight = true; pending = false; sentAt = performance.now();
+  $("status").textContent = "computing…";
+  let r;
+  try { r = await api("/api/evaluate", session); }
+  catch (e) { r = { status: 0, json: { error: "the lab's server did not answer: " + e } }; }
+  inFlight = false;
+  if (r.status === 200) show(r.json, performance.now() - sentAt);
+  else if (r.status !== 409) $("error").textContent = r.json.error || ("HTTP " + r.status);
+  if (pending) send();
+}
+
+function show(a, ms) {
+  $("study").textContent = a.study || "";
+  if (a.error) {
+    $("error").textContent = a.error;
+    $("status").textContent = "not computed (see below)";
+    document.body.dataset.state = "error";
+    return;
+  }
+  $("error").textContent = "";
+  if (session.refill && a.session) { session = a.session; fillControls(); }
+  answer = a;
+  window.__lab_points = a.points;   // the numbers drawn, as the server sent them
+  const n = a.points.filter((p) => p.exit_speed_lab !== undefined).length;
+  $("status").textContent = `${n} collisions and the bat's card in ${ms.toFixed(0)} ms`;
+  drawProfile(); drawCurve(); drawCard(); drawRules();
+  document.body.dataset.state = "ready";
+  document.body.dataset.answers = String(Number(document.body.dataset.answers || 0) + 1);
+}
+
+// ---- the session's fields -------------------------------------------------------------
+
+function bat() { return session.base.bat; }
+// the profile's knots, [[z, R], ...] in m (a study may write them bare or under `knots`)
+function knots() { const p = bat().profile; return Array.isArray(p) ? p : p.knots; }
+function num(x, d) { return x === null || x === undefined || !isFinite(x) ? "–" : Number(x).toFixed(d); }
+
+function fillControls() {
+  $("preset").value = bat().preset || "r161";
+  const last = knots()[knots().length - 1][0];
+  $("length").value = ((bat().length || last) / INCH).toFixed(2);
+  $("wall").value = bat().shell && bat().shell.thickness ? (bat().shell.thickness * 1000).toFixed(2) : "";
+  $("model").value = session.model;
+  $("pitch").value = session.base.pitch ? (session.base.pitch.speed / MPH).toFixed(0) : "";
+  $("swing").value = session.base.batter ? (session.base.batter.bat_speed / MPH).toFixed(0) : "";
+  $("law").checked = !!(session.base.batter && session.base.batter.exponent);
+  $("zfrom").value = (session.impact[0] / INCH).toFixed(1);
+  $("zto").value = (session.impact[1] / INCH).toFixed(1);
+}
+
+function bind(id, apply) {
+  $(id).addEventListener("change", () => { apply($(id)); changed(); });
+}
+
+function bindControls() {
+  bind("preset", (e) => {
+    session.base.bat = { preset: e.value };   // the preset's own profile, wall and material
+    delete session.base.hoop;
+    session.refill = true;   // the server answers with the preset's knots
+  });
+  bind("length", (e) => { bat().length = Number(e.value) * INCH; });
+  bind("wall", (e) => {
+    if (e.value === "") { if (bat().shell) delete bat().shell.thickness; return; }
+    bat().shell = Object.assign({}, bat().shell || {}, { thickness: Number(e.value) / 1000 });
+    delete bat().shell.thickness_knots; delete bat().shell.layers;
+  });
+  bind("model", (e) => { session.model = e.value; });
+  bind("pitch", (e) => { session.base.pitch = Object.assign({}, session.base.pitch, { speed: Number(e.value) * MPH }); });
+  bind("swing", (e) => { session.base.batter = Object.assign({}, session.base.batter, { bat_speed: Number(e.value) * MPH }); });
+  bind("law", (e) => { session.base.batter = Object.assign({}, session.base.batter, { exponent: e.checked ? 0.27 : 0 }); });
+  bind("zfrom", (e) => { session.impact[0] = Number(e.value) * INCH; });
+  bind("zto", (e) => { session.impact[1] = Number(e.value) * INCH; });
+  $("pin").addEventListener("click", () => { reference = answer; drawProfile(); drawCurve(); });
+  $("save").addEventListener("click", save);
+}
+
+async function save() {
+  const r = await api("/api/save", { name: $("save-name").value, session });
+  $("saved").textContent = r.status === 200 ? "saved: " + r.json.saved.join(", ") : "";
+  $("error").textContent = r.status === 200 ? "" : r.json.error;
+}
+
+// ---- drawing ------------------------------------------------------------------------------
+
+function el(tag, attrs, parent) {
+  const e = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+function clear(svg) { while (svg.firstChild) svg.removeChild(svg.firstChild); }
+
+// the profile in mm: z along, radius up and down (the SVG's y grows downward)
+function outline(z, r) {
+  const top = z.map((zi, i) => `${zi * 1000},${-r[i] * 1000}`);
+  const bottom = z.map((zi, i) => `${zi * 1000},${r[i] * 1000}`).reverse();
+  return top.concat(bottom).join(" ");
+}
+
+function drawProfile() {
+  const svg = $("profile");
+  clear(svg);
+  const length = answer ? answer.bat.length : knots()[knots().length - 1][0];
+  svg.setAttribute("viewBox", `-10 -45 ${length * 1000 + 20} 90`);
+  if (reference) el("polygon", { points: outline(reference.bat.profile_z, reference.bat.outer_radius), class: "ref" }, svg);
+  if (answer) {
+    el("polygon", { points: outline(answer.bat.profile_z, answer.bat.outer_radius), class: "outline" }, svg);
+    if (answer.bat.inner_radius.some((r) => r > 0))
+      el("polygon", { points: outline(answer.bat.profile_z, answer.bat.inner_radius), class: "bore" }, svg);
+  }
+  knots().forEach(([z, r], i) => {
+    const c = el("circle", { cx: z * 1000, cy: -r * 1000, r: 4, class: "knot", "data-index": i }, svg);
+    c.addEventListener("pointerdown", (ev) => drag(ev, i, c));
+  });
+}
+
+// A knot moves up and down (its radius), as a lathe would cut it; 0.1 mm steps.
+function drag(ev, i, circle) {
+  const svg = $("profile");
+  circle.setPointerCapture(ev.pointerId);
+  const move = (e) => {
+    const pt = svg.createSVGPoint();
+    pt.x = e.clientX; pt.y = e.clientY;
+    const local = pt.matrixTransform(svg.getScreenCTM().inverse());
+    const r = Math.min(40, Math.max(4, Math.round(-local.y * 10) / 10)) / 1000;
+    knots()[i] = [knots()[i][0], r];
+    circle.setAttribute("cy", -r * 1000);
+    changed();
+  };
+  const up = () => {
+    circle.removeEventListener("pointermove", move);
+    circle.removeEventListener("pointerup", up);
+  };
+  circle.addEventListener("pointermove", move);
+  circle.addEventListener("pointerup", up);
+}
+
+function drawCurve() {
+  const svg = $("curve");
+  clear(svg);
+  const ok = (a) => a.points.filter((p) => p.exit_speed_lab !== undefined && p.exit_speed_lab !== null);
+  const all = [answer].concat(reference ? [reference] : []);
+  const zs = all.flatMap((a) => ok(a).map((p) => p.z));
+  const vs = all.flatMap((a) => ok(a).map((p) => p.exit_speed_lab / MPH));
+  if (zs.length === 0) return;
+  const [z0, z1] = [Math.min(...zs), Math.max(...zs)];
+  const [v0, v1] = [Math.floor(Math.min(...vs) / 5) * 5, Math.ceil(Math.max(...vs) / 5) * 5];
+  const x = (z) => 50 + (z - z0) / (z1 - z0 || 1) * 800;
+  const y = (v) => 280 - (v - v0) / (v1 - v0 || 1) * 260;
+  const yb = (b) => 280 - (b - 0.3) / 0.3 * 260;   // BBCOR 0.3–0.6 on the right
+  el("line", { x1: 50, y1: 280, x2: 850, y2: 280, class: "axis" }, svg);
+  el("line", { x1: 50, y1: 20, x2: 50, y2: 280, class: "axis" }, svg);
+  for (let v = v0; v <= v1; v += 5) el("text", { x: 8, y: y(v) + 3, class: "tick" }, svg).textContent = `${v}`;
+  for (let z = Math.ceil(z0 / INCH); z <= z1 / INCH; z += 2) el("text", { x: x(z * INCH) - 6, y: 295, class: "tick" }, svg).textContent = `${z}″`;
+  const path = (a, key, scale, cls) => {
+    const pts = ok(a).map((p) => `${x(p.z)},${scale(p[key])}`);
+    el("polyline", { points: pts.join(" "), class: cls }, svg);
+  };
+  if (reference) path(reference, "exit_speed_lab", (v) => y(v / MPH), "ref");
+  path(answer, "exit_speed_lab", (v) => y(v / MPH), "curve");
+  const b = answer.bat;
+  const scan = b.bbcor_z.map((z, i) => [z, b.bbcor[i]]).filter(([z, v]) => v !== null && z >= z0 && z <= z1);
+  el("polyline", { points: scan.map(([z, v]) => `${x(z)},${yb(v)}`).join(" "), class: "bbcor" }, svg);
+  for (const v of [0.4, 0.5]) el("text", { x: 856, y: yb(v) + 3, class: "tick" }, svg).textContent = `${v}`;
+  const best = ok(answer).reduce((m, p) => (p.exit_speed_lab > m.exit_speed_lab ? p : m));
+  const mark = el("circle", { cx: x(best.z), cy: y(best.exit_speed_lab / MPH), r: 4, fill: "#1d3557", id: "best-exit" }, svg);
+  mark.dataset.si = String(best.exit_speed_lab);
+  mark.dataset.z = String(best.z);
+}
+
+function row(table, name, text, id, si) {
+  const tr = document.createElement("tr");
+  const a = document.createElement("td"), b = document.createElement("td");
+  a.textContent = name; b.textContent = text;
+  if (id) { b.id = id; b.dataset.si = String(si); }
+  tr.append(a, b);
+  table.appendChild(tr);
+}
+
+function drawCard() {
+  const t = $("card");
+  t.replaceChildren();
+  const b = answer.bat;
+  row(t, "bat", b.label);
+  row(t, "length", `${num(b.length / INCH, 2)} in`, "card-length", b.length);
+  row(t, "weight", `${num(b.mass / OUNCE, 2)} oz, drop ${num(b.drop, 1)}`, "card-mass", b.mass);
+  row(t, "balance point", `${num(b.z_cm / INCH, 2)} in from the knob`, "card-balance", b.z_cm);
+  row(t, "MOI about 6 in", `${num(b.moment_of_inertia_knob6 / OZ_IN2, 0)} oz in²`, "card-moi6", b.moment_of_inertia_knob6);
+  row(t, "barrel", `${num(b.barrel_diameter / INCH, 3)} in`, "card-barrel", b.barrel_diameter);
+  row(t, "BBCOR", `${num(b.bbcor_max, 4)} at ${num(b.bbcor_max_position / INCH, 1)} in`, "card-bbcor", b.bbcor_max);
+  row(t, "sweet zone", `${num(b.sweet_zone_start / INCH, 1)}–${num(b.sweet_zone_end / INCH, 1)} in (BBCOR within 0.01)`);
+  row(t, "best q", `${num(b.best_q, 3)}`, "card-best-q", b.best_q);
+  row(t, "bending mode 1", `${num(b.bending_frequency, 0)} Hz`);
+  row(t, "hoop mode", b.hoop_mode_frequency === null ? "none (solid)" : `${num(b.hoop_mode_frequency, 0)} Hz`);
+  if (b.barrel_compression !== null) row(t, "barrel compression", `${num(b.barrel_compression / LBF, 0)} lbf at 0.040 in`, "card-compression", b.barrel_compression);
+  const best = ok2(answer.points).reduce((m, p) => (p.exit_speed_lab > m.exit_speed_lab ? p : m));
+  row(t, "best exit speed", `${num(best.exit_speed_lab / MPH, 1)} mph at ${num(best.z / INCH, 1)} in`, "card-best-exit", best.exit_speed_lab);
+  if (best.carry !== null && best.carry !== undefined) row(t, "its carry", `${num(best.carry / 0.3048, 0)} ft at ${num(best.launch_angle * 180 / Math.PI, 0)}°`);
+  row(t, "vibration at the hands", `${num(best.grip_vibration_amplitude * 1000, 2)} mm there`);
+  if (reference) {
+    const rb = ok2(reference.points).reduce((m, p) => (p.exit_speed_lab > m.exit_speed_lab ? p : m));
+    row(t, "reference", `${num(reference.bat.mass / OUNCE, 2)} oz, BBCOR ${num(reference.bat.bbcor_max, 4)}, best ${num(rb.exit_speed_lab / MPH, 1)} mph`);
+  }
+}
+
+function ok2(points) { return points.filter((p) => p.exit_speed_lab !== undefined && p.exit_speed_lab !== null); }
+
+function drawRules() {
+  const t = $("rules");
+  t.replaceChildren();
+  for (const r of answer.bat.rules) {
+    const tr = document.createElement("tr");
+    const a = document.createElement("td"), b = document.createElement("td");
+    a.textContent = r.label;
+    const passes = r.margin !== null && r.margin >= 0;
+    b.textContent = r.margin === null ? "cannot judge" : passes ? "passes" : "FAILS";
+    b.className = passes ? "passes" : "fails";
+    tr.append(a, b);
+    t.appendChild(tr);
+  }
+}
+
+// ---- start ----------------------------------------------------------------------------------
+
+(async function start() {
+  const r = await api("/api/start");
+  if (r.status !== 200) { $("error").textContent = "the lab refused the page: " + JSON.stringify(r.json); return; }
+  session = r.json;
+  fillControls();
+  bindControls();
+  drawProfile();
+  changed();
+})();
