@@ -172,6 +172,9 @@ fn the_modes_flexibility_approaches_the_static_one_from_below() {
         let shapes = batstudy::model::bat::shell::ShellModes {
             nodes: nodes.clone(),
             modes: modes_of(2, &nodes, &wall, ends, count).unwrap(),
+            factors: Vec::new(),
+            static_nodes: Vec::new(),
+            held: Vec::new(),
         };
         (0..shapes.modes.len())
             .map(|j| {

@@ -3,7 +3,7 @@
 
 use super::laminate::Wall;
 use super::section::BatGeometry;
-use super::shell::{mesh, ShellEnd, ShellModes, WallAlong};
+use super::shell::{mesh, ShellEnd, ShellModes, WallAlong, STATIC_ELEMENTS};
 use crate::error::ModelError;
 
 /// Circumferential wave numbers solved: the ovalling n = 2 is the trampoline; n = 3 and 4
@@ -114,8 +114,9 @@ pub fn barrel_modes(
         return Ok(None);
     };
     let nodes = mesh(start, g.length, &g.breakpoints(), resolution.elements);
+    let static_nodes = mesh(start, g.length, &g.breakpoints(), STATIC_ELEMENTS);
     ShellModes::solve(
-        nodes,
+        (nodes, static_nodes),
         &BarrelWall(g),
         ends,
         &resolution.wave_numbers,

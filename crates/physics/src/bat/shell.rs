@@ -97,7 +97,19 @@ pub struct ShellModes {
     pub nodes: Vec<f64>,
     /// Every mode found, sorted by frequency.
     pub modes: Vec<ShellMode>,
+    /// Each wave number's stiffness (ends held) on `static_nodes`, factored: the static
+    /// response to a load, all modes of that wave number at once (what the kept modes leave
+    /// out, `static_over_footprint`).
+    pub factors: Vec<(u32, Band)>,
+    /// The finer mesh of the static solves (a load on a shell bends it locally, which
+    /// converges more slowly with the mesh than the lowest modes do).
+    pub static_nodes: Vec<f64>,
+    /// The dofs the ends hold on `static_nodes` (no load reaches them).
+    pub held: Vec<usize>,
 }
+
+/// Elements of the static solves' mesh (`ShellModes::static_nodes`), besides the knots.
+pub const STATIC_ELEMENTS: usize = 240;
 
 /// The axial mesh: the breakpoints inside [start, end] (in any order) kept as nodes, each piece cut into
 /// equal elements no longer than (end − start)/`elements`.
@@ -349,20 +361,79 @@ pub fn static_radial(
 }
 
 impl ShellModes {
-    /// The modes of every wave number in `wave_numbers`, `per_wave` of each.
+    /// The modes of every wave number in `wave_numbers`, `per_wave` of each, on `nodes`;
+    /// their static stiffness on `static_nodes`.
     pub fn solve(
-        nodes: Vec<f64>,
+        (nodes, static_nodes): (Vec<f64>, Vec<f64>),
         walls: &dyn WallAlong,
         ends: (ShellEnd, ShellEnd),
         wave_numbers: &[u32],
         per_wave: usize,
     ) -> Result<Self, ModelError> {
         let mut modes = Vec::new();
+        let mut factors = Vec::new();
         for &n in wave_numbers {
             modes.extend(modes_of(n, &nodes, walls, ends, per_wave)?);
+            let k = held_matrices(n, &static_nodes, walls, ends).0;
+            let factored = k.factor().ok_or(ModelError::Unsupported(
+                "the shell's stiffness is not positive definite (a wall of zero thickness?)",
+            ))?;
+            factors.push((n, factored));
         }
         modes.sort_by(|a, b| a.omega.total_cmp(&b.omega));
-        Ok(ShellModes { nodes, modes })
+        let mut held_dofs = held(ends.0, 0);
+        held_dofs.extend(held(ends.1, static_nodes.len() - 1));
+        Ok(ShellModes {
+            nodes,
+            modes,
+            factors,
+            static_nodes,
+            held: held_dofs,
+        })
+    }
+
+    /// The static radial displacement, averaged over an elliptic footprint (semi-axes
+    /// `axes` along and around, m, centred at x on a wall of outer radius `radius`), of a
+    /// unit force spread evenly over it, summed over the wave numbers solved, m/N: fᵀK⁻¹f,
+    /// which the modal expansion writes Σ φⱼ²/ωⱼ² over every mode of those wave numbers. Less
+    /// the kept modes' sum, it is what the truncation leaves out.
+    pub fn static_over_footprint(&self, x: f64, axes: (f64, f64), radius: f64) -> f64 {
+        let points = footprint_points(x, axes);
+        self.factors
+            .iter()
+            .map(|(n, k)| {
+                let f = self.load_vector(*n, &points, radius);
+                let mut u = f.clone();
+                k.solve_factored(&mut u);
+                f.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// The consistent load vector of wave number n for a unit force spread over the
+    /// footprint's quadrature points (x, arc offset, weight): each point's share of cos nθ
+    /// on the W shape functions of its element.
+    fn load_vector(&self, n: u32, points: &[(f64, f64, f64)], radius: f64) -> Vec<f64> {
+        let nodes = &self.static_nodes;
+        let mut f = vec![0.0; nodes.len() * NODE_DOF];
+        let total: f64 = points.iter().map(|p| p.2).sum();
+        for &(x, s, w) in points {
+            if !(nodes[0]..=nodes[nodes.len() - 1]).contains(&x) {
+                continue;
+            }
+            let e = nodes.partition_point(|&z| z <= x).clamp(1, nodes.len() - 1) - 1;
+            let le = nodes[e + 1] - nodes[e];
+            let (val, _, _) = hermite((x - nodes[e]) / le, le);
+            let share = w / total * (f64::from(n) * s / radius).cos();
+            for (k, v) in val.iter().enumerate() {
+                f[e * NODE_DOF + dof(2, k)] += share * v;
+            }
+        }
+        // a held dof does not move: the load there goes into the support
+        for &i in &self.held {
+            f[i] = 0.0;
+        }
+        f
     }
 
     /// Mode `j`'s radial shape W at axial position x (Hermite interpolation; 0 off the
@@ -393,21 +464,33 @@ impl ShellModes {
     /// per newton, and the footprint's mean displacement per unit modal coordinate). A 4×4
     /// Gauss rule over the footprint's square in polar form.
     pub fn over_footprint(&self, j: usize, x: f64, axes: (f64, f64), radius: f64) -> f64 {
-        if axes.0 <= 0.0 || axes.1 <= 0.0 {
-            return self.radial(j, x);
-        }
         let n = f64::from(self.modes[j].wave_number);
-        let mut sum = 0.0;
-        let mut weight = 0.0;
-        for &(r, wr) in &GAUSS {
-            for &(t, wt) in &GAUSS {
-                let phi = t * std::f64::consts::TAU;
-                let (dx, ds) = (r * axes.0 * phi.cos(), r * axes.1 * phi.sin());
-                let w = wr * wt * r;
-                sum += w * self.radial(j, x + dx) * (n * ds / radius).cos();
-                weight += w;
-            }
-        }
-        sum / weight
+        let points = footprint_points(x, axes);
+        let weight: f64 = points.iter().map(|p| p.2).sum();
+        points
+            .iter()
+            .map(|&(z, s, w)| w * self.radial(j, z) * (n * s / radius).cos())
+            .sum::<f64>()
+            / weight
     }
+}
+
+/// The footprint's quadrature: (axial position, arc offset, weight) of a 4×4 Gauss rule
+/// over the ellipse in polar form; one point at x for a footprint of no size.
+fn footprint_points(x: f64, axes: (f64, f64)) -> Vec<(f64, f64, f64)> {
+    if axes.0 <= 0.0 || axes.1 <= 0.0 {
+        return vec![(x, 0.0, 1.0)];
+    }
+    let mut points = Vec::with_capacity(GAUSS.len() * GAUSS.len());
+    for &(r, wr) in &GAUSS {
+        for &(t, wt) in &GAUSS {
+            let phi = t * std::f64::consts::TAU;
+            points.push((
+                x + r * axes.0 * phi.cos(),
+                r * axes.1 * phi.sin(),
+                wr * wt * r,
+            ));
+        }
+    }
+    points
 }

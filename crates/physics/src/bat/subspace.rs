@@ -87,6 +87,17 @@ impl Band {
         Some(x)
     }
 
+    /// The band Cholesky factor of a positive definite matrix (`None` if it is not), for
+    /// [`Self::solve_factored`].
+    pub fn factor(&self) -> Option<Band> {
+        self.cholesky()
+    }
+
+    /// Solve A x = f in place, `self` being A's [`Self::factor`].
+    pub fn solve_factored(&self, x: &mut [f64]) {
+        self.solve(x);
+    }
+
     /// The dense matrix (tests, small problems).
     pub fn to_dense(&self) -> DMatrix<f64> {
         DMatrix::from_fn(self.n, self.n, |i, j| self.get(i, j))

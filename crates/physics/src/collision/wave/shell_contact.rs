@@ -57,6 +57,12 @@ pub struct ShellContact {
     /// and its effective mass at this contact (at the reference compression), kg.
     pub frequency: f64,
     pub mass: f64,
+    /// The static compliance the kept modes leave out at the reference footprint, m/N: the
+    /// wave numbers' static response (`ShellModes::static_over_footprint`) less Σ φⱼ²/ωⱼ² of
+    /// the kept modes. Their axial overtones lie far above the contact's frequency and
+    /// answer quasi-statically, a spring in series with the kept modes (the
+    /// mode-acceleration method, as the beam's dropped modes are treated).
+    pub residual: f64,
 }
 
 impl ShellContact {
@@ -107,6 +113,15 @@ pub fn resolve_shell(
     }
     let radius = bat.geometry.outer_radius(z);
     let n = modes.modes.len();
+    let reference_axes = |ball: f64| match hoop.patch_radius {
+        Some(patch) => (patch, patch),
+        None => footprint_axes(
+            reference_compression(spec, bat, radius),
+            ball,
+            radius,
+            hoop.footprint_ratio.unwrap_or(HERTZ_FOOTPRINT_RATIO),
+        ),
+    };
     let (phi, footprint) = match hoop.patch_radius {
         Some(patch) => (
             (0..n)
@@ -134,7 +149,16 @@ pub fn resolve_shell(
         }
     };
     let lowest = &modes.modes[0];
+    let kept: f64 = modes
+        .modes
+        .iter()
+        .zip(&phi)
+        .map(|(m, p)| p * p / (m.omega * m.omega))
+        .sum();
+    let axes = reference_axes(spec.ball_radius());
+    let residual = (modes.static_over_footprint(z, axes, radius) - kept).max(0.0);
     Ok(Some(ShellContact {
+        residual,
         omega: modes.modes.iter().map(|m| m.omega).collect(),
         zeta: modes
             .modes

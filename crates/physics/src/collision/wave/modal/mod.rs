@@ -256,7 +256,10 @@ fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> Fi
         (Some(hp), _) => {
             0.5 * hp.mass * state.vh * state.vh + 0.5 * hp.stiffness * state.hoop_stretch(c).powi(2)
         }
-        (None, Some(sh)) => state.shell.energy(sh),
+        // with the left-out modes' strain energy under the final load (zero once separated)
+        (None, Some(sh)) => {
+            state.shell.energy(sh) + 0.5 * sh.residual * state.contact_force().powi(2)
+        }
         (None, None) => 0.0,
     };
     let bat_rigid_energy = qd[..bat.modes.n_rigid].iter().map(|x| 0.5 * x * x).sum();

@@ -54,6 +54,8 @@ pub(super) struct Setup<'b> {
 /// The shell's modes over one step: their propagators under a unit generalised force (the
 /// footprint's shape φ, which follows the contact, is applied at each step).
 pub(super) struct ShellStep {
+    /// The left-out modes' static compliance at the footprint, m/N (`ShellContact::residual`).
+    pub(super) residual: f64,
     pub(super) omega: Vec<f64>,
     pub(super) zeta: Vec<f64>,
     pub(super) h: f64,
@@ -69,6 +71,7 @@ impl ShellStep {
         let damped = zeta.iter().any(|&z| z > 0.0);
         let half = damped.then(|| ModalStep::each(omega, zeta, &unit, 0.5 * h));
         ShellStep {
+            residual: shell.residual,
             omega: omega.clone(),
             zeta: zeta.clone(),
             h,

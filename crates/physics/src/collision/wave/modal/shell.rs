@@ -43,7 +43,8 @@ impl ShellState {
 }
 
 /// Where the shell's contact point goes over the step without the end force (free motion
-/// and the start force `n0`), and its compliance to the end force.
+/// and the start force `n0`), and its compliance to the end force (the kept modes' and the
+/// left-out modes' static one).
 pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
     let st = &sh.st;
     let moved: f64 = (0..shell.q.len())
@@ -53,7 +54,8 @@ pub(super) fn free(sh: &ShellStep, shell: &ShellState, n0: f64) -> (f64, f64) {
         })
         .sum();
     let (g_start, g_end) = sh.compliances(&shell.phi);
-    (shell.r + moved + g_start * n0, g_end)
+    // the left-out modes follow the end force at once
+    (shell.r + moved + g_start * n0, g_end + sh.residual)
 }
 
 /// The modes' exact update under the normal force (n0 → n1) over the footprint, and their

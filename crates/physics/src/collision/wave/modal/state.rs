@@ -77,8 +77,8 @@ impl State {
     /// The hoop spring's stretch: the hoop mass's displacement less the bat's surface point's,
     /// along ŷ head-on, along the line of centres n̂ in an oblique contact.
     pub(super) fn hoop_stretch(&self, c: &Collision) -> f64 {
-        if c.shell.is_some() {
-            return self.shell.r;
+        if let Some(sh) = &c.shell {
+            return self.shell.r + sh.residual * self.contact_force();
         }
         match (&c.oblique, &self.tangential) {
             (Some(o), Some(t)) => self.xh - (o.cos * self.y_c + o.sin * t.bat_x),
