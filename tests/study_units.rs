@@ -110,3 +110,27 @@ fn a_bare_number_in_the_trades_unit_names_the_suffix_meant() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("write `34in`"), "{err}");
 }
+
+/// The loading coefficient's coordinate carries its power where every point has the same α
+/// (N/m^α by F = k₁ s^α: `N m^-1.84` for Nathan 2000's α), a unit pint and UDUNITS parse; a
+/// study that sweeps α keeps the symbol.
+#[test]
+fn the_loading_coefficients_units_carry_the_studys_power() {
+    let units_of_k1 = |text: &str| {
+        let s = load(text).unwrap_or_else(|e| panic!("{e}"));
+        s.plan
+            .shape()
+            .dims
+            .iter()
+            .flat_map(|d| d.coords.iter())
+            .find(|c| c.path == "ball.law.k1")
+            .map(|c| c.units.clone())
+            .unwrap()
+    };
+    let base = "name: k\nbase:\n  ball: {law: {kind: power_law}}\n  impact: {z: 0.7}\ngrid:\n  ball.law.k1: [5.0e7, 6.5e7]\n";
+    assert_eq!(units_of_k1(base), "N m^-1.84");
+    let set = base.replace("kind: power_law}", "kind: power_law, alpha: 1.5}");
+    assert_eq!(units_of_k1(&set), "N m^-1.5");
+    let swept = format!("{base}  ball.law.alpha: [1.5, 1.84]\n");
+    assert_eq!(units_of_k1(&swept), "N m^-alpha");
+}

@@ -54,9 +54,10 @@ pub(super) fn build_plan(
     check_one_block_per_path(cx, file, &dims)?;
     let n = check_size(cx, file, &dims, opts)?;
     let defaults = with_defaults(&base);
-    let shape = ResultShape {
+    let mut shape = ResultShape {
         dims: dims.iter().map(|d| dim_to_shape(d, &defaults)).collect(),
     };
+    k1_units_with_the_power(&mut shape, &dims, &defaults);
     check_stored_names(cx, file, &dims, &shape)?;
     let profiles = load_profiles(cx, file, &base, &dims)?;
     let bat_dims: Vec<usize> = (0..dims.len())
@@ -687,4 +688,23 @@ fn check_unused(
         )
         .field(rule.field)
         .allowed(format!("leave it out (it is used only {})", rule.used_when)))
+}
+
+/// The loading coefficient `ball.law.k1` is in N/m^α: where every point has the same α (the
+/// study sets it and sweeps it nowhere), its coordinate's units carry that power, `N m^-1.5`,
+/// which unit libraries (pint, UDUNITS) parse; where α varies the units stay `N m^-alpha`.
+fn k1_units_with_the_power(shape: &mut ResultShape, dims: &[PlanDim], defaults: &Value) {
+    const ALPHA: &str = "ball.law.alpha";
+    let swept = dims
+        .iter()
+        .any(|d| d.params.iter().any(|(p, _)| p == ALPHA));
+    let alpha = super::paths::get_path(defaults, ALPHA).and_then(Value::as_f64);
+    let (false, Some(alpha)) = (swept, alpha) else {
+        return;
+    };
+    for coord in shape.dims.iter_mut().flat_map(|d| d.coords.iter_mut()) {
+        if coord.path == "ball.law.k1" && !coord.units.is_empty() {
+            coord.units = format!("N m^-{alpha}");
+        }
+    }
 }
