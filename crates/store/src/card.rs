@@ -315,6 +315,12 @@ fn render_one(c: &BatCard, s: &mut String) {
             inch(c.best_q_position)
         ),
     );
+    render_rules(c, s);
+}
+
+/// The card's rules: each limit of the rule sets for the bat with its margin and verdict,
+/// and the rule sets that are not for it.
+fn render_rules(c: &BatCard, s: &mut String) {
     let _ = writeln!(
         s,
         "  rules (margin: how far inside the limit; negative breaks it)"
