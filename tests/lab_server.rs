@@ -222,6 +222,39 @@ fn a_saved_session_run_by_batstudy_gives_the_labs_numbers() {
     assert!(!dir.path().parent().unwrap().join("escape.yaml").exists());
 }
 
+/// The lathe's reading of the knots: a knot dragged 1 mm below its neighbour is the largest
+/// fall between the handle and the barrel, where it is and by exactly that much, and it
+/// bends the profile more sharply than anything in the R161's own smooth table (whose falls,
+/// wiggles of its measured radii, are far below a tenth of a millimetre).
+#[test]
+fn the_lathe_reads_the_knots() {
+    let dir = tempfile::tempdir().unwrap();
+    let lab = start(dir.path());
+    let (_, mut session) = api(&lab, "GET", "/api/start", "");
+    let (_, answer) = api(&lab, "POST", "/api/evaluate", &session.to_string());
+    let lathe = &answer["lathe"];
+    let fall = lathe["largest_fall"]["by"].as_f64().unwrap_or(0.0);
+    assert!(fall < 1e-4, "{lathe}");
+    let bend = lathe["sharpest_bend"].as_f64().unwrap();
+    let knots = session["base"]["bat"]["profile"]["knots"]
+        .as_array_mut()
+        .unwrap();
+    let i = knots.len() - 23;
+    let (z, before) = (
+        knots[i][0].as_f64().unwrap(),
+        knots[i - 1][1].as_f64().unwrap(),
+    );
+    knots[i][1] = serde_json::json!(before - 1e-3);
+    let (_, answer) = api(&lab, "POST", "/api/evaluate", &session.to_string());
+    let lathe = &answer["lathe"];
+    assert_eq!(lathe["largest_fall"]["at"].as_f64(), Some(z), "{lathe}");
+    assert!((lathe["largest_fall"]["by"].as_f64().unwrap() - 1e-3).abs() < 1e-12);
+    assert!(
+        lathe["sharpest_bend"].as_f64().unwrap() > 10.0 * bend,
+        "{lathe}"
+    );
+}
+
 #[test]
 fn a_bad_value_gets_the_studys_positioned_message() {
     let dir = tempfile::tempdir().unwrap();

@@ -70,7 +70,13 @@ pub fn evaluate(session: &Value, pool: &rayon::ThreadPool) -> Value {
             }
         })
         .collect();
-    json!({"session": session, "study": text, "points": points, "bat": card(&bats.variants[0])})
+    json!({
+        "session": session,
+        "study": text,
+        "points": points,
+        "bat": card(&bats.variants[0]),
+        "lathe": lathe(&session["base"]["bat"]["profile"]),
+    })
 }
 
 /// A bat's card and its drawing: the profile, the BBCOR scan and the rules.
@@ -105,5 +111,59 @@ fn card(v: &BatVariant) -> Value {
         "outer_radius": p.outer_radius,
         "inner_radius": p.inner_radius,
         "rules": rules,
+    })
+}
+
+/// What a lathe holds on a radius, m: 0.01 mm on a diameter (`profile_export`'s rounding).
+const LATHE_RADIUS: f64 = 5e-6;
+
+/// What a lathe would say of the profile's knots: whether the radius rises from the
+/// handle's thinnest knot to the barrel's thickest (the largest fall between neighbouring
+/// knots there that is more than a lathe holds: where, m from the knob, and by how much, m), and the sharpest bend there, 1/m: the curvature of the parabola through three
+/// neighbouring knots, 2 |δ₁ − δ₀| / (h₀ + h₁) with δ the secants (the bound
+/// `optimize.profile.shape.max_curvature` sets on a design). `null` without knots.
+fn lathe(profile: &Value) -> Value {
+    let knots = profile.get("knots").unwrap_or(profile);
+    let Some(rows) = knots.as_array() else {
+        return Value::Null;
+    };
+    let k: Vec<(f64, f64)> = rows
+        .iter()
+        .filter_map(|r| Some((r.get(0)?.as_f64()?, r.get(1)?.as_f64()?)))
+        .collect();
+    if k.len() < 3 {
+        return Value::Null;
+    }
+    let by_radius = |a: &&(f64, f64), b: &&(f64, f64)| a.1.total_cmp(&b.1);
+    let thinnest = k
+        .iter()
+        .enumerate()
+        .min_by(|a, b| by_radius(&a.1, &b.1))
+        .map_or(0, |m| m.0);
+    let thickest = k[thinnest..]
+        .iter()
+        .enumerate()
+        .max_by(|a, b| by_radius(&a.1, &b.1))
+        .map_or(thinnest, |m| thinnest + m.0);
+    let span = &k[thinnest..=thickest];
+    let fall = span
+        .windows(2)
+        .map(|w| (w[1].0, w[0].1 - w[1].1))
+        .filter(|&(_, by)| by > LATHE_RADIUS)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(at, by)| json!({"at": at, "by": by}));
+    let bend = span
+        .windows(3)
+        .map(|w| {
+            let (h0, h1) = (w[1].0 - w[0].0, w[2].0 - w[1].0);
+            let (d0, d1) = ((w[1].1 - w[0].1) / h0, (w[2].1 - w[1].1) / h1);
+            2.0 * (d1 - d0).abs() / (h0 + h1)
+        })
+        .fold(0.0, f64::max);
+    json!({
+        "rises_from": k[thinnest].0,
+        "rises_to": k[thickest].0,
+        "largest_fall": fall,
+        "sharpest_bend": bend,
     })
 }

@@ -226,6 +226,13 @@ function drawCard() {
   row(t, "best q", `${num(b.best_q, 3)}`, "card-best-q", b.best_q);
   row(t, "bending mode 1", `${num(b.bending_frequency, 0)} Hz`);
   row(t, "hoop mode", b.hoop_mode_frequency === null ? "none (solid)" : `${num(b.hoop_mode_frequency, 0)} Hz`);
+  const l = answer.lathe;
+  if (l) {
+    const rise = l.largest_fall === null
+      ? `rises from ${num(l.rises_from / INCH, 1)} to ${num(l.rises_to / INCH, 1)} in`
+      : `falls ${num(l.largest_fall.by * 1000, 3)} mm at ${num(l.largest_fall.at / INCH, 1)} in, between the handle and the barrel's thickest`;
+    row(t, "lathe", `${rise}; sharpest bend ${num(l.sharpest_bend, 2)} /m`, "card-lathe", l.sharpest_bend);
+  }
   if (b.barrel_compression !== null) row(t, "barrel compression", `${num(b.barrel_compression / LBF, 0)} lbf at 0.040 in`, "card-compression", b.barrel_compression);
   const best = ok2(answer.points).reduce((m, p) => (p.exit_speed_lab > m.exit_speed_lab ? p : m));
   row(t, "best exit speed", `${num(best.exit_speed_lab / MPH, 1)} mph at ${num(best.z / INCH, 1)} in`, "card-best-exit", best.exit_speed_lab);
