@@ -337,7 +337,6 @@ pub fn static_radial(
         }
     }
     let load = |x: f64| (x - centre).abs() <= half_length * (1.0 + 1e-12);
-    let mut f = vec![0.0; k.n];
     let mut weights = vec![0.0; k.n];
     for (e, x) in nodes.windows(2).enumerate() {
         let (le, mid) = (x[1] - x[0], 0.5 * (x[0] + x[1]));
@@ -352,8 +351,7 @@ pub fn static_radial(
             }
         }
     }
-    f.copy_from_slice(&weights);
-    let w = k.solve_positive(&f).ok_or(ModelError::Unsupported(
+    let w = k.solve_positive(&weights).ok_or(ModelError::Unsupported(
         "the shell's stiffness is not positive definite (a wall of zero thickness?)",
     ))?;
     // the mean of W over the load = Σ wᵢ ∫ Nᵢ / (2 b): the same weights as the load's

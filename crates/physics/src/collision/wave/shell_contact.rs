@@ -113,21 +113,14 @@ pub fn resolve_shell(
     }
     let radius = bat.geometry.outer_radius(z);
     let n = modes.modes.len();
-    let reference_axes = |ball: f64| match hoop.patch_radius {
-        Some(patch) => (patch, patch),
-        None => footprint_axes(
-            reference_compression(spec, bat, radius),
-            ball,
-            radius,
-            hoop.footprint_ratio.unwrap_or(HERTZ_FOOTPRINT_RATIO),
-        ),
-    };
-    let (phi, footprint) = match hoop.patch_radius {
+    // φ at the reference footprint, how the footprint changes, and the reference's axes
+    let (phi, footprint, axes) = match hoop.patch_radius {
         Some(patch) => (
             (0..n)
                 .map(|j| modes.over_patch(j, z, patch, radius))
                 .collect(),
             Footprint::Fixed,
+            (patch, patch),
         ),
         None => {
             let ratio = hoop.footprint_ratio.unwrap_or(HERTZ_FOOTPRINT_RATIO);
@@ -145,7 +138,8 @@ pub fn resolve_shell(
             let table: Vec<Vec<f64>> = (0..rows)
                 .map(|k| at(s_top * (k as f64 / (rows - 1) as f64).powi(2)))
                 .collect();
-            (at(reference), Footprint::Growing { s_top, table })
+            let axes = footprint_axes(reference, ball, radius, ratio);
+            (at(reference), Footprint::Growing { s_top, table }, axes)
         }
     };
     let lowest = &modes.modes[0];
@@ -155,7 +149,6 @@ pub fn resolve_shell(
         .zip(&phi)
         .map(|(m, p)| p * p / (m.omega * m.omega))
         .sum();
-    let axes = reference_axes(spec.ball_radius());
     let residual = (modes.static_over_footprint(z, axes, radius) - kept).max(0.0);
     Ok(Some(ShellContact {
         residual,
