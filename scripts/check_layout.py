@@ -122,6 +122,7 @@ BAT = {
     "sweet_zone_start": (("bat",), "m"), "sweet_zone_end": (("bat",), "m"),
     "sweet_zone_length": (("bat",), "m"), "hoop_mode_frequency": (("bat",), "Hz"),
     "barrel_compression": (("bat",), "N"),
+    "wall_stress_ratio": (("bat",), "1"), "wall_stress_ratio_position": (("bat",), "m"),
     "best_q": (("bat",), "1"), "best_q_position": (("bat",), "m"),
     "rule_units": (("rule_check",), ""),
     # each limit in its own units (attribute units_from: rule_units)

@@ -144,6 +144,7 @@ fn lamination_limits() {
         density: 1600.0,
         matrix: true,
         loss: [0.0; 3],
+        strength: batstudy::model::bat::laminate::Strength::Unknown,
     };
     let at = |angle: f64| {
         Laminate {

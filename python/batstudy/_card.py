@@ -26,6 +26,8 @@ _FROM_BAT = [
     ("sweet_zone_length", "sweet_zone_length"),
     ("hoop_mode_frequency", "hoop_mode_frequency"),
     ("barrel_compression", "barrel_compression"),
+    ("wall_stress_ratio", "wall_stress_ratio"),
+    ("wall_stress_ratio_position", "wall_stress_ratio_position"),
     ("best_q", "best_q"),
     ("best_q_position", "best_q_position"),
     ("rule_value", "rule_value"),
@@ -35,7 +37,8 @@ _FROM_BAT = [
 
 # the card's quantities that older files lack (layout 7 added the best q; the barrel
 # compression came within layout 7)
-_OPTIONAL = {"best_q": "1", "best_q_position": "m", "barrel_compression": "N"}
+_OPTIONAL = {"best_q": "1", "best_q_position": "m", "barrel_compression": "N",
+             "wall_stress_ratio": "1", "wall_stress_ratio_position": "m"}
 
 # the trade's units beside SI: (new variable, SI variable, scale, units)
 _TRADE = [
@@ -64,7 +67,9 @@ def bat_card(tree, bat=None):
     free-free bending mode) and ``hoop_mode_frequency`` (the wall's lowest breathing mode;
     NaN for a solid bat), ``barrel_compression`` (N: the static force that closes the
     barrel's diameter by 0.040 in 6 in from its end, the trade's barrel compression; NaN
-    without a shell barrel), ``best_q`` and where (``best_q_position``: the best collision
+    without a shell barrel), ``wall_stress_ratio`` and where (``wall_stress_ratio_position``:
+    the barrel wall's largest stress under the BBCOR shots over its strength; above 1 it
+    would dent or crack; NaN without a shell barrel), ``best_q`` and where (``best_q_position``: the best collision
     efficiency in the field's convention, exit = q pitch + (1 + q) bat speed 6 in from the
     end, at a 70-mph swing meeting an 82-mph pitch); along ``rule_check`` each rule's ``rule_value``, ``rule_margin``
     (negative: the bat breaks it), ``rule_units``, ``rule_passes`` and ``rule_applies``

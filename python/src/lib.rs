@@ -138,6 +138,8 @@ fn bat_dict<'py>(
         ("sweet_zone_end", m.sweet_zone_end),
         ("hoop_mode_frequency", m.hoop_mode_frequency),
         ("barrel_compression", m.barrel_compression),
+        ("wall_stress_ratio", m.wall_stress_ratio),
+        ("wall_stress_ratio_position", m.wall_stress_ratio_position),
         ("best_q", m.best_q),
         ("best_q_position", m.best_q_position),
     ] {

@@ -234,6 +234,7 @@ function drawCard() {
     row(t, "lathe", `${rise}; sharpest bend ${num(l.sharpest_bend, 2)} /m`, "card-lathe", l.sharpest_bend);
   }
   if (b.barrel_compression !== null) row(t, "barrel compression", `${num(b.barrel_compression / LBF, 0)} lbf at 0.040 in`, "card-compression", b.barrel_compression);
+  if (b.wall_stress_ratio !== null) row(t, "wall stress", `${num(b.wall_stress_ratio, 2)} of its strength at ${num(b.wall_stress_ratio_position / INCH, 1)} in${b.wall_stress_ratio > 1 ? " (would dent or crack)" : ""}`, "card-wall-stress", b.wall_stress_ratio);
   const best = ok2(answer.points).reduce((m, p) => (p.exit_speed_lab > m.exit_speed_lab ? p : m));
   row(t, "best exit speed", `${num(best.exit_speed_lab / MPH, 1)} mph at ${num(best.z / INCH, 1)} in`, "card-best-exit", best.exit_speed_lab);
   if (best.carry !== null && best.carry !== undefined) row(t, "its carry", `${num(best.carry / 0.3048, 0)} ft at ${num(best.launch_angle * 180 / Math.PI, 0)}°`);

@@ -9,7 +9,7 @@
 
 use super::design::Design;
 use super::quantity::{aggregate, BatQuantity, Quantity, Sweet};
-use super::rules::protocol_bbcor;
+use super::rules::protocol;
 use crate::model::measures::sweet::find_sweet_spot;
 use crate::model::outcome::Outcome;
 use crate::model::spec::CollisionSpec;
@@ -46,6 +46,9 @@ type BatCache = (HashMap<String, Arc<Target>>, Vec<String>);
 struct Grid {
     specs: Vec<CollisionSpec>,
     bats: Vec<Arc<Target>>,
+    /// The BBCOR protocol's [BBCOR, wall stress ratio] of each distinct bat and ball, run
+    /// once when a quantity first needs it.
+    protocol: std::sync::OnceLock<Vec<[f64; 2]>>,
 }
 
 impl<'a> Evaluator<'a> {
@@ -112,7 +115,11 @@ impl<'a> Evaluator<'a> {
             specs.push(spec);
         }
         let bats = self.bats(&specs)?;
-        Ok(Grid { specs, bats })
+        Ok(Grid {
+            specs,
+            bats,
+            protocol: std::sync::OnceLock::new(),
+        })
     }
 
     /// The prepared bat of every point: from the cache, or prepared now, the distinct new
@@ -164,7 +171,8 @@ impl<'a> Evaluator<'a> {
         let values: Vec<f64> = match q {
             Quantity::Summary(k) => outcomes.iter().map(|o| summary_floats(o)[k]).collect(),
             Quantity::Sweet(s) => self.sweet_values(s, outcomes),
-            Quantity::Bat(BatQuantity::Bbcor) => self.protocol_values(grid),
+            Quantity::Bat(BatQuantity::Bbcor) => self.protocol_values(grid, 0),
+            Quantity::Bat(BatQuantity::WallStressRatio) => self.protocol_values(grid, 1),
             Quantity::Bat(b) => grid.bats.iter().map(|t| b.of(&t.properties())).collect(),
         };
         aggregate(&values, over)
@@ -213,19 +221,31 @@ impl<'a> Evaluator<'a> {
         out
     }
 
-    /// The protocol's BBCOR of each distinct bat and ball of the grid (a sample of balls
-    /// certifies the bat with each of them), the scans on every core.
-    fn protocol_values(&self, grid: &Grid) -> Vec<f64> {
-        let mut seen: std::collections::HashSet<(*const Target, String)> = Default::default();
-        let distinct: Vec<(&CollisionSpec, &Arc<Target>)> = grid
-            .specs
-            .iter()
-            .zip(&grid.bats)
-            .filter(|(s, t)| seen.insert((Arc::as_ptr(t), format!("{:?}", s.ball))))
-            .collect();
-        distinct
-            .par_iter()
-            .map(|(s, t)| protocol_bbcor(s, t))
-            .collect()
+    /// The protocol's BBCOR (`which` 0) or wall stress ratio (1) of each distinct bat and
+    /// ball of the grid (a sample of balls certifies the bat with each of them), the scans
+    /// on every core, with the stress when the design asks for it anywhere.
+    fn protocol_values(&self, grid: &Grid, which: usize) -> Vec<f64> {
+        let stress = self.needs_stress();
+        let values = grid.protocol.get_or_init(|| {
+            let mut seen: std::collections::HashSet<(*const Target, String)> = Default::default();
+            let distinct: Vec<(&CollisionSpec, &Arc<Target>)> = grid
+                .specs
+                .iter()
+                .zip(&grid.bats)
+                .filter(|(s, t)| seen.insert((Arc::as_ptr(t), format!("{:?}", s.ball))))
+                .collect();
+            distinct
+                .par_iter()
+                .map(|(s, t)| protocol(s, t, stress))
+                .collect()
+        });
+        values.iter().map(|v| v[which]).collect()
+    }
+
+    /// Whether the objective or a limit is the wall's stress.
+    fn needs_stress(&self) -> bool {
+        let stress = Quantity::Bat(BatQuantity::WallStressRatio);
+        self.design.objective.quantity == stress
+            || self.design.limits.iter().any(|l| l.quantity == stress)
     }
 }

@@ -35,6 +35,9 @@ pub enum BatQuantity {
     /// The BBCOR protocol's BBCOR: the study's ball at 136 mph on the bat at rest, the
     /// maximum along the barrel (`crate::optimize::rules`).
     Bbcor,
+    /// The wall's largest stress ratio under the BBCOR protocol's shots
+    /// (`metrics::protocol_scan`): 1 where it would dent or crack.
+    WallStressRatio,
 }
 
 /// A quantity by name.
@@ -60,6 +63,7 @@ impl BatQuantity {
             BatQuantity::BarrelDiameter => p.barrel_diameter(),
             BatQuantity::Drop => p.drop(),
             BatQuantity::Bbcor => p.metrics.bbcor_max,
+            BatQuantity::WallStressRatio => p.metrics.wall_stress_ratio,
         }
     }
 }
@@ -95,6 +99,7 @@ const BAT: &[(&str, BatQuantity, &str)] = &[
     ("bat.barrel_diameter", BatQuantity::BarrelDiameter, "m"),
     ("bat.drop", BatQuantity::Drop, "1"),
     ("bat.bbcor", BatQuantity::Bbcor, "1"),
+    ("bat.wall_stress_ratio", BatQuantity::WallStressRatio, "1"),
 ];
 
 impl Quantity {

@@ -14,14 +14,14 @@
 //!   solid wood (checked when the study is loaded: no shell, bore or fill).
 
 use super::quantity::{BatQuantity, Quantity};
-use crate::model::measures::metrics::{bbcor_scan_mapped, BbcorShot};
+use crate::model::measures::metrics::{protocol_scan, BbcorShot};
 use crate::model::measures::sweet::find_maximum;
 use crate::model::outcome::{BatProperties, RuleCheck, SOLID_WOOD_CHECK};
 use crate::model::spec::BatSpec;
 use crate::model::spec::CollisionSpec;
 use crate::model::Target;
+use crate::run::adapters::parallel_scan;
 use crate::study::optimize_block::{Aggregate, RuleSet};
-use rayon::prelude::*;
 
 pub use crate::model::units::{INCH, OUNCE};
 
@@ -185,16 +185,32 @@ pub fn rule_checks(p: &BatProperties, spec: &BatSpec) -> Vec<RuleCheck> {
 /// unconstrained); the largest BBCOR along the barrel, parabola-refined. NaN for a rigid
 /// target or if no collision of the scan succeeds.
 pub fn protocol_bbcor(spec: &CollisionSpec, target: &Target) -> f64 {
+    protocol(spec, target, false)[0]
+}
+
+/// [`protocol_bbcor`], and with `with_stress` the wall's largest stress ratio under the
+/// scan's shots (`metrics::protocol_scan`; NaN without it).
+pub fn protocol(spec: &CollisionSpec, target: &Target, with_stress: bool) -> [f64; 2] {
     let Some(bat) = target.bat() else {
-        return f64::NAN;
-    };
-    let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
-        z.par_iter().map(|&z| f(z)).collect()
+        return [f64::NAN; 2];
     };
     let shot = BbcorShot::of(spec);
-    match bbcor_scan_mapped(bat, &spec.bat, &spec.numerics, &shot, &parallel) {
-        Ok((z, bbcor)) => find_maximum(&z, &bbcor).map_or(f64::NAN, |m| m.1),
-        Err(_) => f64::NAN,
+    match protocol_scan(
+        bat,
+        &spec.bat,
+        &spec.numerics,
+        &shot,
+        &parallel_scan,
+        with_stress,
+    ) {
+        Ok(scan) => [
+            find_maximum(&scan.z, &scan.bbcor).map_or(f64::NAN, |m| m.1),
+            scan.wall_stress_ratio
+                .iter()
+                .copied()
+                .fold(f64::NAN, f64::max),
+        ],
+        Err(_) => [f64::NAN; 2],
     }
 }
 

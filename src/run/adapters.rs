@@ -3,7 +3,7 @@
 
 use super::traits::{Encode, Simulator, Sink};
 use crate::model::bat::shapes;
-use crate::model::measures::metrics::{bat_metrics_mapped, BbcorShot};
+use crate::model::measures::metrics::{bat_metrics_mapped, BbcorShot, ScanPoint};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
@@ -11,6 +11,12 @@ use crate::results::{PointGroups, PointRecord, ShapeSource};
 use crate::store::{EncodedRecord, RecordEncoder, Session};
 use rayon::prelude::*;
 use std::sync::Arc;
+
+/// A scan's collisions (`metrics::ScanMap`) on every core of the current pool, each value
+/// computed alone: the same whatever the threads.
+pub fn parallel_scan(z: &[f64], f: &ScanPoint) -> Vec<[f64; 2]> {
+    z.par_iter().map(|&z| f(z)).collect()
+}
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;
@@ -31,10 +37,7 @@ impl Simulator for ModelSimulator {
             // it): they are most of preparing a bat, and one after the other a one-bat study
             // would leave cores idle. Each value is computed alone: the same whatever the
             // threads.
-            let parallel = |z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)| -> Vec<f64> {
-                z.par_iter().map(|&z| f(z)).collect()
-            };
-            properties.metrics = bat_metrics_mapped(prepared, bat, numerics, shot, &parallel)
+            properties.metrics = bat_metrics_mapped(prepared, bat, numerics, shot, &parallel_scan)
                 .map_err(|e| e.to_string())?;
             properties.rule_checks = crate::optimize::rules::rule_checks(&properties, bat);
         }

@@ -294,6 +294,10 @@ pub struct Outcome {
     /// `protocol::KNOB6`) after the ball has left, rigid motion excluded, m (0 for the rigid
     /// model). See `bat::motion::grip_vibration_amplitude`.
     pub grip_vibration_amplitude: f64,
+    /// The barrel wall at the instants its stress can peak (the largest contact force and
+    /// the largest displacement under the ball; `bat::wall_stress`). Empty without the
+    /// shell's breathing modes.
+    pub wall_instants: Vec<crate::bat::wall_stress::WallInstant>,
     /// Change of the grip point's rigid-body velocity caused by the collision, m/s, + along
     /// the incoming ball (zero for an impact at the grip's centre of percussion).
     pub grip_recoil_speed: f64,
@@ -409,6 +413,14 @@ pub struct BatMetrics {
     /// anvil 6 in from its end (`bat::compression::BASEBALL`), N: the trade's barrel
     /// compression, from the shell; NaN for a bat without a shell barrel.
     pub barrel_compression: f64,
+    /// The largest stress ratio of the barrel's wall under the BBCOR scan's shots (its von
+    /// Mises stress over its yield for a metal, the Tsai–Hill index of its worst ply for a
+    /// laminate; `bat::wall_stress`), 1: above 1 the certification's impact would dent or
+    /// crack it there. NaN without the shell's breathing modes in the shot, or for a wood
+    /// wall.
+    pub wall_stress_ratio: f64,
+    /// Where that largest ratio is, m from the knob.
+    pub wall_stress_ratio_position: f64,
     /// The ball and hoop the scan fired and gave (`metrics::BbcorShot`), canonical JSON.
     pub bbcor_shot: String,
     /// The bat's best collision efficiency in the field's convention at the field's
@@ -433,6 +445,8 @@ impl Default for BatMetrics {
             sweet_zone_end: f64::NAN,
             hoop_mode_frequency: f64::NAN,
             barrel_compression: f64::NAN,
+            wall_stress_ratio: f64::NAN,
+            wall_stress_ratio_position: f64::NAN,
             bbcor_shot: String::new(),
             best_q: f64::NAN,
             best_q_position: f64::NAN,

@@ -93,6 +93,10 @@ pub struct BatCard {
     /// The barrel compression (force at 0.040 in, 6 in from the end), N (NaN without a
     /// shell barrel, or in a file written before it was stored).
     pub barrel_compression: f64,
+    /// The wall's largest stress ratio under the BBCOR scan's shots, and where, m (NaN
+    /// without a shell barrel, or in a file written before it was stored).
+    pub wall_stress_ratio: f64,
+    pub wall_stress_ratio_position: f64,
     /// The best collision efficiency in the field's convention at the field's reference
     /// swing, and where, m from the knob (NaN in files before layout 7).
     pub best_q: f64,
@@ -161,6 +165,8 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
         optional(l::BAT_BEST_Q_POS.name),
     );
     let compression = optional(l::BAT_BARREL_COMPRESSION.name);
+    let stress = optional(l::BAT_WALL_STRESS_RATIO.name);
+    let stress_z = optional(l::BAT_WALL_STRESS_POS.name);
     let modes = floats(l::BAT_MODE_FREQ.name)?;
     let per = modes.len().checked_div(n).unwrap_or(0);
     let shots = texts(l::BAT_BBCOR_SHOT.name)?;
@@ -191,6 +197,8 @@ pub fn bat_cards(path: &Path) -> Result<Vec<BatCard>, StoreError> {
             bending_frequency: if per > 0 { modes[i * per] } else { f64::NAN },
             hoop_mode_frequency: hoop[i],
             barrel_compression: compression[i],
+            wall_stress_ratio: stress[i],
+            wall_stress_ratio_position: stress_z[i],
             best_q: best_q[i],
             best_q_position: best_q_z[i],
             rules: (0..nr)
@@ -221,7 +229,7 @@ fn render_one(c: &BatCard, s: &mut String) {
     let inch = |m: f64| m / INCH;
     let _ = writeln!(s, "{}", printable(&c.label, false));
     let mut row = |name: &str, text: String| {
-        let _ = writeln!(s, "  {name:<18}{text}");
+        let _ = writeln!(s, "  {name:<19}{text}");
     };
     row(
         "length",
@@ -303,6 +311,22 @@ fn render_one(c: &BatCard, s: &mut String) {
                 c.barrel_compression / POUND_FORCE,
                 c.barrel_compression,
                 c.barrel_compression * 1.25 / POUND_FORCE
+            ),
+        );
+    }
+    if c.wall_stress_ratio.is_finite() {
+        row(
+            "wall stress",
+            format!(
+                "{:.2} of its strength at {:.3} m ({:.1} in) under the BBCOR shot: {}",
+                c.wall_stress_ratio,
+                c.wall_stress_ratio_position,
+                c.wall_stress_ratio_position / INCH,
+                if c.wall_stress_ratio > 1.0 {
+                    "the certification's impact would dent or crack it there"
+                } else {
+                    "within it everywhere along the barrel"
+                }
             ),
         );
     }

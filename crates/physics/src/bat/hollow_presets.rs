@@ -10,6 +10,7 @@
 //! patents describe (fibres near axial inside, near hoop outside), thick enough to certify
 //! after break-in.
 
+use super::laminate::AL7050_YIELD;
 use crate::spec::{BatPreset, BatSpec, LayerSpec, MaterialSpec, ProfileSpec};
 
 /// 33 in, m.
@@ -106,6 +107,7 @@ pub fn expand(bat: &BatSpec) -> BatSpec {
         out.material = MaterialSpec {
             density: out.material.density.or(Some(2830.0)),
             youngs_modulus: out.material.youngs_modulus.or(Some(71.7e9)),
+            yield_strength: out.material.yield_strength.or(Some(AL7050_YIELD)),
             ..out.material
         };
     }

@@ -31,6 +31,23 @@ pub struct Ply {
     /// them and in in-plane shear: the share of each strain energy a cycle dissipates,
     /// over 2π (Adams & Bacon's decomposition, J. Compos. Mater. 7, 402 (1973)).
     pub loss: [f64; 3],
+    /// What the ply can carry (`Strength::Unknown` where no source gives it).
+    pub strength: Strength,
+}
+
+/// A material's strength, Pa: a metal's yield, or a ply's along and across its fibres
+/// (tension and compression) and in in-plane shear.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Strength {
+    Unknown,
+    Yield(f64),
+    Ply {
+        xt: f64,
+        xc: f64,
+        yt: f64,
+        yc: f64,
+        s12: f64,
+    },
 }
 
 impl Ply {
@@ -44,6 +61,43 @@ impl Ply {
             density,
             matrix: false,
             loss: [0.0; 3],
+            strength: Strength::Unknown,
+        }
+    }
+
+    /// The same material with `strength`.
+    pub const fn with_strength(self, strength: Strength) -> Self {
+        Ply { strength, ..self }
+    }
+
+    /// The stress ratio of the ply at fibre angle `angle` (rad from the bat's axis) under
+    /// the wall strains (ε_x, ε_θ) with no shear: the factor by which the load could grow
+    /// before it fails, inverted (1 at failure). A metal's von Mises stress over its
+    /// yield; a ply's Tsai–Hill index (Jones 1999, §2.9) with the tensile or compressive
+    /// strength each stress's sign calls for, as a stress ratio (its square root). NaN
+    /// with no strength.
+    pub fn stress_ratio(&self, angle: f64, (ex, et): (f64, f64)) -> f64 {
+        let (c, s) = (angle.cos(), angle.sin());
+        let e1 = ex * c * c + et * s * s;
+        let e2 = ex * s * s + et * c * c;
+        let g12 = 2.0 * s * c * (et - ex);
+        let [q11, q12, q22, q66] = self.reduced();
+        let (s1, s2, t12) = (q11 * e1 + q12 * e2, q12 * e1 + q22 * e2, q66 * g12);
+        match self.strength {
+            Strength::Unknown => f64::NAN,
+            Strength::Yield(y) => (s1 * s1 - s1 * s2 + s2 * s2 + 3.0 * t12 * t12).sqrt() / y,
+            Strength::Ply {
+                xt,
+                xc,
+                yt,
+                yc,
+                s12,
+            } => {
+                let x = if s1 >= 0.0 { xt } else { xc };
+                let y = if s2 >= 0.0 { yt } else { yc };
+                ((s1 / x).powi(2) - s1 * s2 / (x * x) + (s2 / y).powi(2) + (t12 / s12).powi(2))
+                    .sqrt()
+            }
         }
     }
 
@@ -123,23 +177,32 @@ pub const ALUMINIUM_LOSS: f64 = 1e-4;
 /// (the Adams school's ψ₁₂ is larger, about 7 %, recalled and not read).
 const CARBON_EPOXY_LOSS: [f64; 3] = [1.11e-3, 1.1e-2, 1.1e-2];
 
+/// Typical 0.2 % tensile yield of 7050-T7451 and of 6061-T6, Pa (Aluminum Association
+/// typical values, second-hand: data/shell_strengths.md). The handbook's design minima for
+/// 7050-T7451 plate are 441–462 MPa.
+pub const AL7050_YIELD: f64 = 469e6;
+pub const AL6061_YIELD: f64 = 276e6;
+
 /// The materials a layer may name, with their sources (docs/physics.md,
 /// data/shell_materials.md).
 pub const MATERIALS: &[(&str, Ply)] = &[
     // 7050-T7451: Aluminum Association typical values (second-hand)
     (
         "al7050",
-        Ply::isotropic_lossy(71.7e9, 0.33, 2830.0, ALUMINIUM_LOSS),
+        Ply::isotropic_lossy(71.7e9, 0.33, 2830.0, ALUMINIUM_LOSS)
+            .with_strength(Strength::Yield(AL7050_YIELD)),
     ),
     // 7075-T6: E and ρ second-hand; ν that of the 7xxx alloys
     (
         "al7075",
-        Ply::isotropic_lossy(72.0e9, 0.33, 2810.0, ALUMINIUM_LOSS),
+        Ply::isotropic_lossy(72.0e9, 0.33, 2810.0, ALUMINIUM_LOSS)
+            .with_strength(Strength::Yield(503e6)),
     ),
     // the paper's aluminum; ν from ASM 6061-T6
     (
         "al6061",
-        Ply::isotropic_lossy(69.0e9, 0.33, 2700.0, ALUMINIUM_LOSS),
+        Ply::isotropic_lossy(69.0e9, 0.33, 2700.0, ALUMINIUM_LOSS)
+            .with_strength(Strength::Yield(AL6061_YIELD)),
     ),
     // AS4/3501-6 carbon/epoxy, unidirectional, V_f 0.63 (Daniel & Ishai's table)
     (
@@ -152,6 +215,14 @@ pub const MATERIALS: &[(&str, Ply)] = &[
             density: 1600.0,
             matrix: true,
             loss: CARBON_EPOXY_LOSS,
+            // the World-Wide Failure Exercise's AS4/3501-6 (data/shell_strengths.md)
+            strength: Strength::Ply {
+                xt: 1950e6,
+                xc: 1480e6,
+                yt: 48e6,
+                yc: 200e6,
+                s12: 79e6,
+            },
         },
     ),
     // E-glass/epoxy, unidirectional, V_f 0.55 (Daniel & Ishai's table)
@@ -167,6 +238,14 @@ pub const MATERIALS: &[(&str, Ply)] = &[
             // no glass/epoxy damping was read: the same epoxy's values across the
             // fibres and in shear, and carbon's along them
             loss: CARBON_EPOXY_LOSS,
+            // the World-Wide Failure Exercise's E-glass/LY556 (V_f 0.62, data/shell_strengths.md)
+            strength: Strength::Ply {
+                xt: 1140e6,
+                xc: 570e6,
+                yt: 35e6,
+                yc: 114e6,
+                s12: 72e6,
+            },
         },
     ),
 ];
@@ -335,6 +414,30 @@ impl Laminate {
             }
         }
         w
+    }
+
+    /// The largest stress ratio (`Ply::stress_ratio`) over the plies' faces of the stack
+    /// scaled by `scale`, under the mid-surface strains and curvature changes
+    /// [ε_x, ε_θ, κ_x, κ_θ] on a line with no shear: each wall (between gaps) strained as
+    /// ε + z κ about its own mid-plane, z outward. NaN where a ply's strength is unknown.
+    pub fn stress_ratio(&self, scale: f64, [ex, et, kx, kt]: [f64; 4]) -> f64 {
+        let mut worst = 0.0_f64;
+        for plies in self.walls() {
+            let mut top = 0.5 * plies.iter().map(|l| l.thickness * scale).sum::<f64>();
+            for layer in plies {
+                let ply = layer.ply.expect("a wall holds plies");
+                for z in [top, top - layer.thickness * scale] {
+                    let r = ply.stress_ratio(layer.angle, (ex + z * kx, et + z * kt));
+                    worst = if r.is_nan() || worst.is_nan() {
+                        f64::NAN
+                    } else {
+                        worst.max(r)
+                    };
+                }
+                top -= layer.thickness * scale;
+            }
+        }
+        worst
     }
 
     /// The axial modulus the beam sees, (A₁₁ − A₁₂²/A₂₂)/thickness over the whole

@@ -22,6 +22,7 @@ pub mod shapes;
 pub mod shell;
 pub mod static_memo;
 pub mod subspace;
+pub mod wall_stress;
 
 pub use prepared::*;
 

@@ -53,6 +53,10 @@ pub struct PreparedBat {
     /// first asks for them.
     pub(crate) shell_modes:
         std::sync::OnceLock<Result<Option<super::shell::ShellModes>, ModelError>>,
+    /// The hollow part's stiffness for the wall's stress (`wall_stress::WallStatics`),
+    /// factored when a stress is first asked for.
+    pub(crate) wall_statics:
+        std::sync::OnceLock<Result<Option<super::wall_stress::WallStatics>, ModelError>>,
     /// The resolution those modes are solved at (`numerics.shell_*`).
     shell_resolution: super::barrel::ShellResolution,
     properties: BatProperties,
@@ -130,6 +134,7 @@ pub fn prepare_bat(bat: &BatSpec, numerics: &NumericsSpec) -> Result<PreparedBat
         shape_max: std::sync::OnceLock::new(),
         static_shapes: Default::default(),
         shell_modes: std::sync::OnceLock::new(),
+        wall_statics: std::sync::OnceLock::new(),
         shell_resolution: super::barrel::ShellResolution::of(numerics),
         properties,
     })
@@ -232,6 +237,16 @@ impl PreparedBat {
     /// Moment of inertia of the lumped beam about its CM, kg·m².
     pub fn inertia_cm(&self) -> f64 {
         self.inertia_cm
+    }
+
+    /// The hollow part's statics for the wall's stress (`None` for a solid bat), factored
+    /// on first use.
+    pub fn wall_statics(&self) -> Result<Option<&super::wall_stress::WallStatics>, ModelError> {
+        self.wall_statics
+            .get_or_init(|| super::wall_stress::WallStatics::of(&self.geometry))
+            .as_ref()
+            .map(Option::as_ref)
+            .map_err(Clone::clone)
     }
 
     /// The hollow part's breathing modes (`None` for a solid bat), solved on first use.

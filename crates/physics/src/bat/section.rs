@@ -1,7 +1,7 @@
 //! A bat resolved to numbers: outer and inner radius, material and fill along z, and the
 //! cross-section properties (A, I, mass per length) with exact-enough integrals over z.
 
-use crate::bat::laminate::{self, Laminate, Layer, ALUMINIUM_LOSS};
+use crate::bat::laminate::{self, Laminate, Layer, AL6061_YIELD, ALUMINIUM_LOSS};
 use crate::bat::profile::{handle_factor, Profile};
 use crate::error::{out_of_range, ModelError};
 use crate::spec::{BatPreset, BatSpec, BoreSpec, HandleSpec, ProfileSpec, ShellSpec};
@@ -77,6 +77,9 @@ pub struct BatGeometry {
     /// The loss factor of a wall without layers: aluminium's for the metal preset, none for
     /// wood (no loss across the grain was found; docs/physics.md, "Losses in the wall").
     pub wall_loss_factor: f64,
+    /// The yield strength of a wall without layers, Pa (NaN for wood: a wood wall's
+    /// strength across the grain is not modelled).
+    pub yield_strength: f64,
 }
 
 impl BatGeometry {
@@ -130,6 +133,18 @@ impl BatGeometry {
             shear_coefficient: material.shear_coefficient,
             damping_ratio,
             wall_loss_factor: if is_wood { 0.0 } else { ALUMINIUM_LOSS },
+            yield_strength: match (material.yield_strength, is_wood) {
+                (Some(y), _) if !(y > 0.0 && y.is_finite()) => {
+                    return Err(out_of_range(
+                        "bat.material.yield_strength",
+                        y,
+                        "a finite number > 0 Pa",
+                    ))
+                }
+                (Some(y), _) => y,
+                (None, true) => f64::NAN,
+                (None, false) => AL6061_YIELD,
+            },
             shell: shell_of(
                 bat.shell.as_ref(),
                 preset.shell,

@@ -88,6 +88,8 @@ pub struct ShellMode {
     pub loss_factor: f64,
     pub w: Vec<f64>,
     pub dw: Vec<f64>,
+    /// Every dof at the nodes (U, U′, V, V′, W, W′ per node), for the mode's strains.
+    pub shape: Vec<f64>,
 }
 
 /// The shell's lowest modes for the wave numbers asked, on one axial mesh.
@@ -258,9 +260,7 @@ pub fn held_matrices(
     ends: (ShellEnd, ShellEnd),
 ) -> (Band, Band) {
     let (mut k, mut m) = assemble(n, nodes, walls);
-    let mut removed = held(ends.0, 0);
-    removed.extend(held(ends.1, nodes.len() - 1));
-    for &i in &removed {
+    for &i in &held_dofs(ends, nodes.len()) {
         k.hold(i, 1.0);
         m.hold(i, 0.0);
     }
@@ -305,26 +305,22 @@ pub fn modes_of(
                 dw: (0..nodes.len())
                     .map(|p| sign * col[p * NODE_DOF + 5])
                     .collect(),
+                shape: col.iter().map(|x| sign * x).collect(),
             }
         })
         .collect())
 }
 
-/// The static response of wave number n to a radial load spread evenly over
-/// [`centre` − `half_length`, `centre` + `half_length`] along the axis, of unit total
-/// amplitude (∫ q dx = 1 N for the cos nθ component): the mean radial displacement W over
-/// that length, m/N. n = 0 is the axisymmetric squeeze: its energies integrate over 2π
-/// (twice the n ≥ 1 matrices), its V (torsion, which no radial load drives) is held, and
-/// so is U at the first node when no end holds the tube along its axis. The load's edges
-/// should be nodes of `nodes` (then the element integrals are exact).
-pub fn static_radial(
+/// The stiffness of wave number n for a static solve, the ends held. n = 0 is the
+/// axisymmetric squeeze: its energies integrate over 2π (twice the n ≥ 1 matrices), its V
+/// (torsion, which no radial load drives) is held, and so is U at the first node when no
+/// end holds the tube along its axis.
+pub fn static_stiffness(
     n: u32,
     nodes: &[f64],
     walls: &dyn WallAlong,
     ends: (ShellEnd, ShellEnd),
-    centre: f64,
-    half_length: f64,
-) -> Result<f64, ModelError> {
+) -> Band {
     let (mut k, _) = held_matrices(n, nodes, walls, ends);
     if n == 0 {
         k.scale(2.0);
@@ -336,6 +332,46 @@ pub fn static_radial(
             k.hold(0, 1.0);
         }
     }
+    k
+}
+
+/// The dofs the ends hold on a mesh of `nodes` nodes.
+pub fn held_dofs(ends: (ShellEnd, ShellEnd), nodes: usize) -> Vec<usize> {
+    let mut removed = held(ends.0, 0);
+    removed.extend(held(ends.1, nodes - 1));
+    removed
+}
+
+/// The membrane strains and curvature changes (ε_x, ε_θ, κ_x, κ_θ) at axial position x on
+/// the line θ = 0 of the wave-number-n field `u` (every dof at `nodes`), on a wall of
+/// mid-surface radius `radius`. γ and τ go as sin nθ and vanish on that line.
+pub fn strains_at(n: u32, nodes: &[f64], u: &[f64], radius: f64, x: f64) -> [f64; 4] {
+    let e = nodes.partition_point(|&z| z <= x).clamp(1, nodes.len() - 1) - 1;
+    let le = nodes[e + 1] - nodes[e];
+    let xi = ((x - nodes[e]) / le).clamp(0.0, 1.0);
+    let (b, _) = strain_rows(f64::from(n), radius, &hermite(xi, le));
+    let at = |row: usize| -> f64 {
+        (0..12)
+            .map(|i| b[row][i] * u[e * NODE_DOF + i])
+            .sum::<f64>()
+    };
+    [at(0), at(1), at(3), at(4)]
+}
+
+/// The static response of wave number n to a radial load spread evenly over
+/// [`centre` − `half_length`, `centre` + `half_length`] along the axis, of unit total
+/// amplitude (∫ q dx = 1 N for the cos nθ component): the mean radial displacement W over
+/// that length, m/N (n = 0 as [`static_stiffness`] holds it). The load's edges should be
+/// nodes of `nodes` (then the element integrals are exact).
+pub fn static_radial(
+    n: u32,
+    nodes: &[f64],
+    walls: &dyn WallAlong,
+    ends: (ShellEnd, ShellEnd),
+    centre: f64,
+    half_length: f64,
+) -> Result<f64, ModelError> {
+    let k = static_stiffness(n, nodes, walls, ends);
     let load = |x: f64| (x - centre).abs() <= half_length * (1.0 + 1e-12);
     let mut weights = vec![0.0; k.n];
     for (e, x) in nodes.windows(2).enumerate() {
@@ -379,14 +415,12 @@ impl ShellModes {
             factors.push((n, factored));
         }
         modes.sort_by(|a, b| a.omega.total_cmp(&b.omega));
-        let mut held_dofs = held(ends.0, 0);
-        held_dofs.extend(held(ends.1, static_nodes.len() - 1));
         Ok(ShellModes {
+            held: held_dofs(ends, static_nodes.len()),
             nodes,
             modes,
             factors,
             static_nodes,
-            held: held_dofs,
         })
     }
 
@@ -400,38 +434,12 @@ impl ShellModes {
         self.factors
             .iter()
             .map(|(n, k)| {
-                let f = self.load_vector(*n, &points, radius);
+                let f = footprint_load(*n, &self.static_nodes, &self.held, &points, radius);
                 let mut u = f.clone();
                 k.solve_factored(&mut u);
                 f.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>()
             })
             .sum()
-    }
-
-    /// The consistent load vector of wave number n for a unit force spread over the
-    /// footprint's quadrature points (x, arc offset, weight): each point's share of cos nθ
-    /// on the W shape functions of its element.
-    fn load_vector(&self, n: u32, points: &[(f64, f64, f64)], radius: f64) -> Vec<f64> {
-        let nodes = &self.static_nodes;
-        let mut f = vec![0.0; nodes.len() * NODE_DOF];
-        let total: f64 = points.iter().map(|p| p.2).sum();
-        for &(x, s, w) in points {
-            if !(nodes[0]..=nodes[nodes.len() - 1]).contains(&x) {
-                continue;
-            }
-            let e = nodes.partition_point(|&z| z <= x).clamp(1, nodes.len() - 1) - 1;
-            let le = nodes[e + 1] - nodes[e];
-            let (val, _, _) = hermite((x - nodes[e]) / le, le);
-            let share = w / total * (f64::from(n) * s / radius).cos();
-            for (k, v) in val.iter().enumerate() {
-                f[e * NODE_DOF + dof(2, k)] += share * v;
-            }
-        }
-        // a held dof does not move: the load there goes into the support
-        for &i in &self.held {
-            f[i] = 0.0;
-        }
-        f
     }
 
     /// Mode `j`'s radial shape W at axial position x (Hermite interpolation; 0 off the
@@ -471,6 +479,63 @@ impl ShellModes {
             .sum::<f64>()
             / weight
     }
+}
+
+/// The consistent load vector of wave number n on `nodes` for a unit force spread over
+/// a footprint's quadrature points (x, arc offset, weight): each point's share of cos nθ
+/// on the W shape functions of its element; nothing on the `held` dofs (a held dof does not
+/// move: the load there goes into the support).
+pub fn footprint_load(
+    n: u32,
+    nodes: &[f64],
+    held: &[usize],
+    points: &[(f64, f64, f64)],
+    radius: f64,
+) -> Vec<f64> {
+    let mut f = vec![0.0; nodes.len() * NODE_DOF];
+    let total: f64 = points.iter().map(|p| p.2).sum();
+    for &(x, s, w) in points {
+        if !(nodes[0]..=nodes[nodes.len() - 1]).contains(&x) {
+            continue;
+        }
+        let e = nodes.partition_point(|&z| z <= x).clamp(1, nodes.len() - 1) - 1;
+        let le = nodes[e + 1] - nodes[e];
+        let (val, _, _) = hermite((x - nodes[e]) / le, le);
+        let share = w / total * (f64::from(n) * s / radius).cos();
+        for (k, v) in val.iter().enumerate() {
+            f[e * NODE_DOF + dof(2, k)] += share * v;
+        }
+    }
+    for &i in held {
+        f[i] = 0.0;
+    }
+    f
+}
+
+/// A finer quadrature of the footprint for loads of high wave number (a cos nθ that turns
+/// many times across it): `rings` × 4 Gauss points in the radius (a composite rule over
+/// equal rings) and `spokes` equally spaced angles (exact for the angle's trigonometric
+/// polynomials of degree below `spokes`).
+pub fn footprint_points_fine(
+    x: f64,
+    axes: (f64, f64),
+    rings: usize,
+    spokes: usize,
+) -> Vec<(f64, f64, f64)> {
+    if axes.0 <= 0.0 || axes.1 <= 0.0 {
+        return vec![(x, 0.0, 1.0)];
+    }
+    let mut points = Vec::with_capacity(rings * GAUSS.len() * spokes);
+    for ring in 0..rings {
+        for &(g, wg) in &GAUSS {
+            let r = (ring as f64 + g) / rings as f64;
+            for k in 0..spokes {
+                let phi = (k as f64 + 0.5) / spokes as f64 * std::f64::consts::TAU;
+                points.push((x + r * axes.0 * phi.cos(), r * axes.1 * phi.sin(), wg * r));
+            }
+        }
+    }
+    points
 }
 
 /// The footprint's quadrature: (axial position, arc offset, weight) of a 4×4 Gauss rule

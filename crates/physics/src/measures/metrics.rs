@@ -33,6 +33,7 @@
 //! the pivot (the conjugate point).
 
 use crate::bat::compression::{barrel_compression, BASEBALL, RESOLUTION};
+use crate::bat::wall_stress;
 use crate::bat::PreparedBat;
 use crate::collision::simulate::simulate;
 use crate::error::ModelError;
@@ -143,10 +144,14 @@ pub fn bat_metrics(
 /// Runs a scan's collisions: `f` at each position, the values in the positions' order. Each
 /// value depends on its position alone, so a caller may run them in any order or in
 /// parallel (the runner does: the BBCOR scan is most of preparing a bat).
-pub type ScanMap<'a> = dyn Fn(&[f64], &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> + Sync + 'a;
+pub type ScanMap<'a> = dyn Fn(&[f64], &ScanPoint) -> Vec<[f64; 2]> + Sync + 'a;
+
+/// What a scan computes at one position: its value, and a second one beside it (the wall's
+/// stress ratio in the BBCOR scan; NaN where there is none).
+pub type ScanPoint<'a> = dyn Fn(f64) -> [f64; 2] + Sync + 'a;
 
 /// The scan's collisions one after the other.
-pub fn in_order(z: &[f64], f: &(dyn Fn(f64) -> f64 + Sync)) -> Vec<f64> {
+pub fn in_order(z: &[f64], f: &ScanPoint) -> Vec<[f64; 2]> {
     z.iter().map(|&z| f(z)).collect()
 }
 
@@ -160,7 +165,20 @@ pub fn bat_metrics_mapped(
 ) -> Result<BatMetrics, ModelError> {
     let p = bat.properties();
     let node = |k: usize| p.mode_nodes.get(k).map_or(f64::NAN, |n| barrel_node(n));
-    let (bbcor_z, bbcor) = bbcor_scan_mapped(bat, bat_spec, numerics, shot, map)?;
+    let scan = protocol_scan(bat, bat_spec, numerics, shot, map, true)?;
+    let (bbcor_z, bbcor) = (scan.z, scan.bbcor);
+    let (wall_stress_ratio_position, wall_stress_ratio) = scan
+        .z_stress
+        .iter()
+        .zip(&scan.wall_stress_ratio)
+        .filter(|(_, r)| r.is_finite())
+        .fold((f64::NAN, f64::NAN), |best, (&z, &r)| {
+            if best.1.is_nan() || r > best.1 {
+                (z, r)
+            } else {
+                best
+            }
+        });
     let zone = find_zone(&bbcor_z, &bbcor, BBCOR_ZONE_DROP);
     let (best_q, best_q_position) = if bbcor_z.is_empty() {
         (f64::NAN, f64::NAN)
@@ -193,6 +211,8 @@ pub fn bat_metrics_mapped(
         } else {
             barrel_compression(bat.geometry(), &BASEBALL, RESOLUTION)?
         },
+        wall_stress_ratio,
+        wall_stress_ratio_position,
         bbcor_shot: shot.json(),
         best_q,
         best_q_position,
@@ -239,8 +259,34 @@ pub fn bbcor_scan_mapped(
     shot: &BbcorShot,
     map: &ScanMap,
 ) -> Result<(Vec<f64>, Vec<f64>), ModelError> {
+    let scan = protocol_scan(bat, bat_spec, numerics, shot, map, false)?;
+    Ok((scan.z, scan.bbcor))
+}
+
+/// The BBCOR protocol's scan along the barrel, and the wall's stress ratio under each of its
+/// shots (`bat::wall_stress`; NaN where the ball does not meet a shell).
+#[derive(Debug, Clone, Default)]
+pub struct ProtocolScan {
+    pub z: Vec<f64>,
+    pub bbcor: Vec<f64>,
+    /// The positions the stress is read at (the scan's, within the barrel's shell) and its
+    /// ratio to the wall's strength there.
+    pub z_stress: Vec<f64>,
+    pub wall_stress_ratio: Vec<f64>,
+}
+
+/// [`bbcor_scan_mapped`], and the wall's stress ratio at each shot when `with_stress` (for
+/// a bat with the shell's breathing modes in its shot's hoop).
+pub fn protocol_scan(
+    bat: &PreparedBat,
+    bat_spec: &BatSpec,
+    numerics: &NumericsSpec,
+    shot: &BbcorShot,
+    map: &ScanMap,
+    with_stress: bool,
+) -> Result<ProtocolScan, ModelError> {
     if bat_spec.ends != EndsSpec::default() {
-        return Ok((Vec::new(), Vec::new()));
+        return Ok(ProtocolScan::default());
     }
     let p = bat.properties();
     let (z0, z1) = (p.z_cm, p.length - BBCOR_SCAN_END_MARGIN);
@@ -249,26 +295,10 @@ pub fn bbcor_scan_mapped(
         .map(|k| z0 + k as f64 * BBCOR_SCAN_STEP)
         .filter(|&z| z <= z1 + 1e-12)
         .collect();
-    let spec = CollisionSpec {
-        model: ModelKind::Wave,
-        // the bat free, as the protocol evaluates it (ASTM F2219: unconstrained)
-        bat: BatSpec {
-            grip: None,
-            ..bat_spec.clone()
-        },
-        // the protocol's head-on shot of a ball without spin
-        ball: BallSpec {
-            speed: BBCOR_BALL_SPEED,
-            spin: 0.0,
-            ..shot.ball.clone()
-        },
-        swing: SwingSpec::default(),
-        hoop: shot.hoop.clone(),
-        impact: ImpactSpec { z: z0, offset: 0.0 },
-        numerics: numerics.clone(),
-        batter: None,
-        flight: None,
-        pitch: None,
+    let spec = protocol_shot(bat_spec, numerics, shot, z0);
+    let stress = match with_stress && !bat_spec.has_wood_wall() {
+        true => bat.wall_statics()?.zip(bat.shell_modes()?),
+        false => None,
     };
     let at = |zi: f64| {
         let mut spec = spec.clone();
@@ -276,13 +306,59 @@ pub fn bbcor_scan_mapped(
         match simulate(&spec, bat, None) {
             Ok(o) => {
                 let m_e = free_effective_mass(p.mass, p.z_cm, p.moment_of_inertia, zi);
-                bbcor_from_efficiency(o.collision_efficiency, spec.ball.mass, m_e)
+                let ratio = stress.map_or(f64::NAN, |(statics, modes)| {
+                    wall_stress::peak_ratio(bat.geometry(), statics, modes, zi, &o.wall_instants)
+                });
+                [
+                    bbcor_from_efficiency(o.collision_efficiency, spec.ball.mass, m_e),
+                    ratio,
+                ]
             }
-            Err(_) => f64::NAN,
+            Err(_) => [f64::NAN; 2],
         }
     };
     let out = map(&z, &at);
-    Ok((z, out))
+    let stressed: Vec<(f64, f64)> = z
+        .iter()
+        .zip(&out)
+        .filter(|(_, v)| v[1].is_finite())
+        .map(|(&z, v)| (z, v[1]))
+        .collect();
+    Ok(ProtocolScan {
+        bbcor: out.iter().map(|v| v[0]).collect(),
+        z_stress: stressed.iter().map(|s| s.0).collect(),
+        wall_stress_ratio: stressed.iter().map(|s| s.1).collect(),
+        z,
+    })
+}
+
+/// The protocol's shot at `z`: `shot`'s ball at [`BBCOR_BALL_SPEED`] without spin, head-on,
+/// its hoop, the bat at rest and free (ASTM F2219: unconstrained).
+fn protocol_shot(
+    bat_spec: &BatSpec,
+    numerics: &NumericsSpec,
+    shot: &BbcorShot,
+    z: f64,
+) -> CollisionSpec {
+    CollisionSpec {
+        model: ModelKind::Wave,
+        bat: BatSpec {
+            grip: None,
+            ..bat_spec.clone()
+        },
+        ball: BallSpec {
+            speed: BBCOR_BALL_SPEED,
+            spin: 0.0,
+            ..shot.ball.clone()
+        },
+        swing: SwingSpec::default(),
+        hoop: shot.hoop.clone(),
+        impact: ImpactSpec { z, offset: 0.0 },
+        numerics: numerics.clone(),
+        batter: None,
+        flight: None,
+        pitch: None,
+    }
 }
 
 /// Spacing of the best-q scan along the barrel, m (the peak is refined by a parabola).
@@ -310,11 +386,12 @@ pub fn best_q(
     let at = |zi: f64| {
         let mut spec = spec.clone();
         spec.impact.z = zi;
-        simulate(&spec, bat, None).map_or(f64::NAN, |o| {
+        let q = simulate(&spec, bat, None).map_or(f64::NAN, |o| {
             collision_efficiency_q(o.exit_speed_lab, REFERENCE_PITCH_SPEED, v_bat)
-        })
+        });
+        [q, f64::NAN]
     };
-    let q = map(&z, &at);
+    let q: Vec<f64> = map(&z, &at).into_iter().map(|v| v[0]).collect();
     let (position, peak) = find_maximum(&z, &q).unwrap_or((f64::NAN, f64::NAN));
     Ok((peak, position))
 }

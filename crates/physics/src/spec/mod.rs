@@ -320,6 +320,12 @@ pub struct MaterialSpec {
     /// ζ = 1/(2Q), applied exactly by the modal integrator). Default `null`: undamped.
     #[serde(default)]
     pub quality_factor: Option<f64>,
+    /// Yield strength of a metal wall in Pa (0.2 % offset, tension), what its stress under
+    /// the certification impact is measured against (`/bat/wall_stress_ratio`). Default:
+    /// the preset's (276e6 aluminum, 6061-T6; 469e6 alloy_bbcor, 7050-T7451: typical values,
+    /// data/shell_strengths.md); none for wood.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_strength: Option<f64>,
 }
 
 /// A hollow shell: the wall of thickness `thickness` for z ≥ `from`; solid before.

@@ -222,7 +222,7 @@ impl BatGroup<'_> {
     /// barrel compression.
     fn card(&self, p: &[&BatProperties]) -> Result<(), StoreError> {
         type Getter = fn(&BatProperties) -> f64;
-        let per_bat: [(&VarDef, Getter); 7] = [
+        let per_bat: [(&VarDef, Getter); 9] = [
             (&l::BAT_DROP, |p| p.drop()),
             (&l::BAT_BARREL_DIAMETER, |p| p.barrel_diameter()),
             (&l::BAT_SWEET_ZONE_START, |p| p.metrics.sweet_zone_start),
@@ -232,6 +232,10 @@ impl BatGroup<'_> {
             }),
             (&l::BAT_HOOP_MODE_FREQ, |p| p.metrics.hoop_mode_frequency),
             (&l::BAT_BARREL_COMPRESSION, |p| p.metrics.barrel_compression),
+            (&l::BAT_WALL_STRESS_RATIO, |p| p.metrics.wall_stress_ratio),
+            (&l::BAT_WALL_STRESS_POS, |p| {
+                p.metrics.wall_stress_ratio_position
+            }),
         ];
         for (def, get) in per_bat {
             let values = p.iter().map(|p| get(p)).collect();

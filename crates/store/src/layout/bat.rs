@@ -147,6 +147,18 @@ pub const BAT_BARREL_COMPRESSION: VarDef = v(
     "barrel compression",
     "force that closes the barrel's diameter by 0.040 in between a load head and an anvil 6 in from its end, from the shell (NaN without a shell barrel)",
 );
+pub const BAT_WALL_STRESS_RATIO: VarDef = v(
+    "wall_stress_ratio",
+    "1",
+    "wall stress ratio",
+    "largest ratio of the barrel wall's stress under the BBCOR scan's shots to its strength (von Mises over yield for a metal, Tsai-Hill for a laminate's worst ply): above 1 the certification's impact dents or cracks it (NaN without the shell's breathing modes, or for a wood wall)",
+);
+pub const BAT_WALL_STRESS_POS: VarDef = v(
+    "wall_stress_ratio_position",
+    "m",
+    "wall stress position",
+    "where the wall stress ratio is largest, from the knob",
+);
 pub const RULE_CHECK_DIM: VarDef = v(
     "rule_check",
     "",

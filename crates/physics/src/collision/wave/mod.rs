@@ -133,6 +133,8 @@ struct FinalState {
     modes: usize,
     /// The oblique contact's final state (modal integrator; `None` head-on).
     tangential: Option<modal::tangential::Tangential>,
+    /// The barrel wall at the instants its stress can peak (empty without a shell).
+    wall: Vec<crate::bat::wall_stress::WallInstant>,
 }
 
 /// Run one wave-model collision.
@@ -352,6 +354,7 @@ fn outcome_of(
         energy,
         recontact: contact.recontact,
         grip_vibration_amplitude: fin.grip_amplitude,
+        wall_instants: fin.wall.clone(),
         grip_recoil_speed: grip_recoil_speed(
             fin.bat_momentum,
             fin.bat_angular_momentum - c.omega * bat.inertia_cm,

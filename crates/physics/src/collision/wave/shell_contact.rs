@@ -63,6 +63,30 @@ pub struct ShellContact {
     /// answer quasi-statically, a spring in series with the kept modes (the
     /// mode-acceleration method, as the beam's dropped modes are treated).
     pub residual: f64,
+    /// The footprint's size as the compression changes.
+    pub size: FootprintSize,
+}
+
+/// The footprint's semi-axes as the compression changes: a fixed patch's radius, or the
+/// growing contact's rule ([`footprint_axes`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FootprintSize {
+    Patch(f64),
+    Growing { ball: f64, barrel: f64, ratio: f64 },
+}
+
+impl FootprintSize {
+    /// The semi-axes (along the bat, around it) at compression `s`, m.
+    pub fn axes(&self, s: f64) -> (f64, f64) {
+        match *self {
+            FootprintSize::Patch(p) => (p, p),
+            FootprintSize::Growing {
+                ball,
+                barrel,
+                ratio,
+            } => footprint_axes(s, ball, barrel, ratio),
+        }
+    }
 }
 
 impl ShellContact {
@@ -114,21 +138,24 @@ pub fn resolve_shell(
     let radius = bat.geometry.outer_radius(z);
     let n = modes.modes.len();
     // φ at the reference footprint, how the footprint changes, and the reference's axes
-    let (phi, footprint, axes) = match hoop.patch_radius {
+    let (phi, footprint, axes, size) = match hoop.patch_radius {
         Some(patch) => (
             (0..n)
                 .map(|j| modes.over_patch(j, z, patch, radius))
                 .collect(),
             Footprint::Fixed,
             (patch, patch),
+            FootprintSize::Patch(patch),
         ),
         None => {
-            let ratio = hoop.footprint_ratio.unwrap_or(HERTZ_FOOTPRINT_RATIO);
-            let ball = spec.ball_radius();
+            let size = FootprintSize::Growing {
+                ball: spec.ball_radius(),
+                barrel: radius,
+                ratio: hoop.footprint_ratio.unwrap_or(HERTZ_FOOTPRINT_RATIO),
+            };
             let at = |s: f64| -> Vec<f64> {
-                let axes = footprint_axes(s, ball, radius, ratio);
                 (0..n)
-                    .map(|j| modes.over_footprint(j, z, axes, radius))
+                    .map(|j| modes.over_footprint(j, z, size.axes(s), radius))
                     .collect()
             };
             let reference = reference_compression(spec, bat, radius);
@@ -138,8 +165,13 @@ pub fn resolve_shell(
             let table: Vec<Vec<f64>> = (0..rows)
                 .map(|k| at(s_top * (k as f64 / (rows - 1) as f64).powi(2)))
                 .collect();
-            let axes = footprint_axes(reference, ball, radius, ratio);
-            (at(reference), Footprint::Growing { s_top, table }, axes)
+            let axes = size.axes(reference);
+            (
+                at(reference),
+                Footprint::Growing { s_top, table },
+                axes,
+                size,
+            )
         }
     };
     let lowest = &modes.modes[0];
@@ -162,6 +194,7 @@ pub fn resolve_shell(
         mass: 1.0 / (phi[0] * phi[0]),
         phi,
         footprint,
+        size,
     }))
 }
 

@@ -278,5 +278,6 @@ fn final_state(c: &Collision, bat: &PreparedBat, state: &mut State) -> FinalStat
         steps: state.steps,
         modes: y.len(),
         tangential: None,
+        wall: Vec::new(),
     }
 }

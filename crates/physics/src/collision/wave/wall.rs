@@ -133,6 +133,7 @@ fn wall_outcome(m: f64, v0: f64, v: f64, contact: &Contact) -> Outcome {
         recontact: contact.recontact,
         grip_vibration_amplitude: 0.0,
         grip_recoil_speed: 0.0,
+        wall_instants: Vec::new(),
         ball_exit: BallExit {
             along: v,
             across: 0.0,

@@ -120,6 +120,10 @@ fn step(c: &Collision, s: &Setup, state: &mut State, contact: &mut Contact) {
         advance_oblique(c, o, s.h, state, dy_before, forces);
     }
     ball_and_contact(c, s, state, contact, (new_force, new_hoop_force, new_s));
+    if let Some(sh) = &c.shell {
+        let force = state.contact_force();
+        state.shell.watch(sh, force, state.s);
+    }
 }
 
 /// The patch's stiffness for this step; a shrinking patch lets go of its shear, and the
@@ -282,5 +286,6 @@ fn final_state(c: &Collision, bat: &PreparedBat, s: &Setup, state: &State) -> Fi
         steps: state.steps,
         modes: s.n,
         tangential: state.tangential,
+        wall: state.shell.instants(),
     }
 }

@@ -4,6 +4,7 @@
 use super::super::ShellContact;
 use super::propagator::damping_rate_each;
 use super::setup::ShellStep;
+use crate::bat::wall_stress::WallInstant;
 
 /// The shell's coordinates and velocities, the footprint's shape this step (φ of each
 /// mode), its displacement at the contact (inward, along the contact normal: the work
@@ -16,6 +17,10 @@ pub(super) struct ShellState {
     pub(super) phi: Vec<f64>,
     pub(super) r: f64,
     pub(super) damping: f64,
+    /// The wall at its largest contact force and at its largest displacement under the
+    /// ball (`bat::wall_stress`), with those largest values.
+    pub(super) at_force: (f64, WallInstant),
+    pub(super) at_deflection: (f64, WallInstant),
 }
 
 impl ShellState {
@@ -34,6 +39,34 @@ impl ShellState {
         (0..self.q.len())
             .map(|j| 0.5 * (self.qd[j].powi(2) + (sh.omega[j] * self.q[j]).powi(2)))
             .sum()
+    }
+
+    /// After a step that ends with contact force `force` at compression `s`: keep the
+    /// wall's state if the force or the displacement under the ball (the kept modes' and
+    /// the left-out modes' static share) is the largest yet.
+    pub(super) fn watch(&mut self, contact: &ShellContact, force: f64, s: f64) {
+        let deflection = self.r + contact.residual * force;
+        let instant = || WallInstant {
+            force,
+            axes: contact.size.axes(s),
+            q: self.q.clone(),
+            phi: self.phi.clone(),
+        };
+        if force > self.at_force.0 {
+            self.at_force = (force, instant());
+        }
+        if deflection > self.at_deflection.0 {
+            self.at_deflection = (deflection, instant());
+        }
+    }
+
+    /// The instants kept by [`Self::watch`] (none if the ball never pressed the wall).
+    pub(super) fn instants(&self) -> Vec<WallInstant> {
+        [&self.at_force, &self.at_deflection]
+            .into_iter()
+            .filter(|(peak, _)| *peak > 0.0)
+            .map(|(_, i)| i.clone())
+            .collect()
     }
 
     /// The footprint for a step that starts at compression `s`.
