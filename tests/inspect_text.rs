@@ -173,7 +173,7 @@ fn the_bat_card_states_what_each_bat_is_and_how_it_stands_under_each_rule() {
     assert!(cards[1].contains(&line), "{line} in\n{}", cards[1]);
     // the best q in the field's convention, where the bat's BBCOR scan is
     assert!(
-        cards.iter().all(|c| c.contains("best q            0.")),
+        cards.iter().all(|c| c.contains("best q             0.")),
         "{text}"
     );
     // the table: a row per bat under two header lines, the rules kept as the cards count them

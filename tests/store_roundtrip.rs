@@ -233,6 +233,7 @@ fn outcome(info: &StudyInfo, index: usize) -> Result<Outcome, String> {
         recontact: index % 5 == 0,
         grip_vibration_amplitude: 1e-4 * (1.0 + (z - 0.7).abs()),
         grip_recoil_speed: 0.5 - z,
+        wall_instants: Vec::new(),
         // not stored: what the launch is computed from
         ball_exit: Default::default(),
         tangential_cor: 0.3 + 1e-4 * index as f64,
