@@ -14,14 +14,14 @@
 //!   solid wood (checked when the study is loaded: no shell, bore or fill).
 
 use super::quantity::{BatQuantity, Quantity};
-use crate::model::measures::metrics::{protocol_scan, BbcorShot};
+use crate::model::measures::metrics::{protocol_scan, BbcorShot, ScanPoint};
 use crate::model::measures::sweet::find_maximum;
 use crate::model::outcome::{BatProperties, RuleCheck, SOLID_WOOD_CHECK};
 use crate::model::spec::BatSpec;
 use crate::model::spec::CollisionSpec;
 use crate::model::Target;
-use crate::run::adapters::parallel_scan;
 use crate::study::optimize_block::{Aggregate, RuleSet};
+use rayon::prelude::*;
 
 pub use crate::model::units::{INCH, OUNCE};
 
@@ -177,6 +177,12 @@ pub fn rule_checks(p: &BatProperties, spec: &BatSpec) -> Vec<RuleCheck> {
         }
     }
     out
+}
+
+/// A scan's collisions (`metrics::ScanMap`) on every core of the current pool, each value
+/// computed alone: the same whatever the threads.
+pub fn parallel_scan(z: &[f64], f: &ScanPoint) -> Vec<[f64; 2]> {
+    z.par_iter().map(|&z| f(z)).collect()
 }
 
 /// The BBCOR protocol on a candidate (`metrics::bbcor_scan_mapped`, the one scan `/bat` stores

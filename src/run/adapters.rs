@@ -3,20 +3,14 @@
 
 use super::traits::{Encode, Simulator, Sink};
 use crate::model::bat::shapes;
-use crate::model::measures::metrics::{bat_metrics_mapped, BbcorShot, ScanPoint};
+use crate::model::measures::metrics::{bat_metrics_mapped, BbcorShot};
 use crate::model::outcome::{BatProperties, HistoryRequest, Outcome};
 use crate::model::spec::{BatSpec, CollisionSpec, NumericsSpec};
 use crate::model::{simulate_target, Target};
+use crate::optimize::rules::parallel_scan;
 use crate::results::{PointGroups, PointRecord, ShapeSource};
 use crate::store::{EncodedRecord, RecordEncoder, Session};
-use rayon::prelude::*;
 use std::sync::Arc;
-
-/// A scan's collisions (`metrics::ScanMap`) on every core of the current pool, each value
-/// computed alone: the same whatever the threads.
-pub fn parallel_scan(z: &[f64], f: &ScanPoint) -> Vec<[f64; 2]> {
-    z.par_iter().map(|&z| f(z)).collect()
-}
 
 /// The collision models of `crate::model`.
 pub struct ModelSimulator;
