@@ -152,9 +152,13 @@ impl Design {
         let (Some(shape), Some((z, radius, wall))) = (self.shape, &self.profile) else {
             return Vec::new();
         };
-        let mut lists = vec![(z.as_slice(), radius.as_slice(), false, shape)];
+        let radii = Shape {
+            max_slope: None,
+            ..shape
+        };
+        let mut lists = vec![(z.as_slice(), radius.as_slice(), false, radii)];
         if let Some(wall) = wall {
-            lists.push((z.as_slice(), wall.as_slice(), true, shape.without_rise()));
+            lists.push((z.as_slice(), wall.as_slice(), true, shape.for_wall()));
         }
         lists
     }
@@ -297,6 +301,9 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
     check_plausible_bounds(study, &variables)?;
     let objective = objective_of(study, &block)?;
     let mut limits = limits_of(study, &block)?;
+    if swing_answers_to_the_bat(study) {
+        limits.extend(super::rules::swing_law_limits());
+    }
     let pareto = match &block.pareto {
         Some(p) => Some(pareto_of(study, p, &mut limits)?),
         None => None,
@@ -314,6 +321,16 @@ pub fn design_of(study: &Study) -> Result<Option<Design>, StudyError> {
     };
     check_start(study, &design)?;
     Ok(Some(design))
+}
+
+/// Whether the study's batter swings each bat at a speed that answers to its moment of
+/// inertia (a swing law with an exponent other than 0), read at its first point.
+fn swing_answers_to_the_bat(study: &Study) -> bool {
+    let plan = &study.plan;
+    plan.resolve_over(plan.base(), &plan.shape().unravel(0))
+        .ok()
+        .and_then(|spec| spec.batter)
+        .is_some_and(|b| b.exponent != 0.0)
 }
 
 fn bounds_ok(b: &Bounds) -> Result<f64, &'static str> {
@@ -477,7 +494,10 @@ fn shape_of(
     let shape = Shape {
         rising: s.rising,
         max_curvature: s.max_curvature,
+        // the wall's gradient (`Shape::for_wall`); the radii's list drops it
+        max_slope: s.max_wall_slope,
     };
+    check_wall_slope(study, p, vars, s.max_wall_slope)?;
     let Some([a, b]) = s.rising else {
         return Ok(Some(shape));
     };
@@ -515,6 +535,57 @@ fn shape_of(
         )
     })?;
     Ok(Some(shape))
+}
+
+/// `profile.shape.max_wall_slope`, checked: > 0, with the wall's knots given, and their
+/// fixed values and bounds within its reach of each other.
+fn check_wall_slope(
+    study: &Study,
+    p: &crate::study::optimize_block::ProfileDesign,
+    vars: &[Variable],
+    slope: Option<f64>,
+) -> Result<(), StudyError> {
+    let Some(g) = slope else { return Ok(()) };
+    let here = at(&["profile", "shape", "max_wall_slope"]);
+    let bad = |msg: String, allowed: &str| {
+        located(study, &here, msg)
+            .field("optimize.profile.shape.max_wall_slope")
+            .value(crate::model::error::number_text(g))
+            .allowed(allowed.to_string())
+    };
+    if !(g.is_finite() && g > 0.0) {
+        return Err(bad(
+            "bad wall gradient bound".into(),
+            "a gradient > 0, m of wall per m along the bat",
+        ));
+    }
+    let Some(thickness) = &p.thickness else {
+        return Err(bad(
+            "a wall gradient bound without wall knots".into(),
+            "`optimize.profile.thickness` beside it",
+        ));
+    };
+    let mut bounds: Vec<(f64, f64)> = thickness
+        .iter()
+        .map(|k| match k {
+            Knot::Fixed(t) => (*t, *t),
+            Knot::Free(b) => (b.min, b.max),
+        })
+        .collect();
+    for v in vars.iter().filter(|v| v.wall) {
+        if let Some(k) = v.knot {
+            bounds[k] = (v.min, v.max);
+        }
+    }
+    profile_shape::check_slope(&p.z, &bounds, g).map_err(|(k, j)| {
+        bad(
+            format!(
+                "the wall cannot pass from knot {k} (z = {} m, {}–{} m) to knot {j} (z = {} m, {}–{} m) within the gradient",
+                p.z[k], bounds[k].0, bounds[k].1, p.z[j], bounds[j].0, bounds[j].1
+            ),
+            "a gradient that lets every pair of wall knots' bounds meet",
+        )
+    })
 }
 
 /// A profile's fixed values (NaN where a variable), its variables pushed to `vars`; the

@@ -21,17 +21,20 @@ use batstudy_physics::bat::profile_spline;
 pub const SAMPLE_STEP: f64 = 0.005;
 
 /// What a profile's knots keep: the radius does not fall between neighbouring knots within
-/// `rising` (m from the knob), and the parabola through three neighbouring knots has a
-/// curvature of at most `max_curvature` (1/m).
+/// `rising` (m from the knob), the parabola through three neighbouring knots has a
+/// curvature of at most `max_curvature` (1/m), and neighbouring knots differ by at most
+/// `max_slope` per metre between them (a wall's thickness gradient).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Shape {
     pub rising: Option<[f64; 2]>,
     pub max_curvature: Option<f64>,
+    pub max_slope: Option<f64>,
 }
 
 impl Shape {
-    /// The same curvature bound without a rising span (a wall's thickness need not rise).
-    pub fn without_rise(&self) -> Shape {
+    /// The wall's shape: the same curvature and gradient bounds without a rising span (a
+    /// wall's thickness need not rise).
+    pub fn for_wall(&self) -> Shape {
         Shape {
             rising: None,
             ..*self
@@ -88,7 +91,55 @@ fn interval(z: &[f64], bounds: &[(f64, f64)], r: &[f64], k: usize, shape: &Shape
         Some((c, _)) if c > hi => (hi, hi),
         _ => (lo, hi),
     };
-    viable_interval(z, bounds, r, k, (lo, hi), shape)
+    let (lo, hi) = viable_interval(z, bounds, r, k, (lo, hi), shape);
+    slope_interval(z, bounds, r, k, (lo, hi), shape)
+}
+
+/// Knot k's interval narrowed by the gradient bound: within `max_slope` × the spacing of the
+/// knot before it, and close enough to every later knot's bounds to reach them at that
+/// slope. Where a fixed knot leaves it no room, the bounds win.
+fn slope_interval(
+    z: &[f64],
+    bounds: &[(f64, f64)],
+    r: &[f64],
+    k: usize,
+    (lo, hi): (f64, f64),
+    shape: &Shape,
+) -> (f64, f64) {
+    let Some(g) = shape.max_slope else {
+        return (lo, hi);
+    };
+    let (mut a, mut b) = (f64::NEG_INFINITY, f64::INFINITY);
+    if k > 0 {
+        let reach = g * (z[k] - z[k - 1]);
+        (a, b) = (r[k - 1] - reach, r[k - 1] + reach);
+    }
+    for j in k + 1..z.len() {
+        let reach = g * (z[j] - z[k]);
+        (a, b) = (a.max(bounds[j].0 - reach), b.min(bounds[j].1 + reach));
+    }
+    match (a.max(lo), b.min(hi)) {
+        (c, d) if c <= d => (c, d),
+        _ if b < lo => (lo, lo),
+        _ if a > hi => (hi, hi),
+        _ => (lo, hi),
+    }
+}
+
+/// Whether fixed knots and bounds leave a gradient-bounded list possible: the first pair
+/// (k, j) whose bounds lie further apart than `max_slope` × their spacing otherwise.
+pub fn check_slope(z: &[f64], bounds: &[(f64, f64)], max_slope: f64) -> Result<(), (usize, usize)> {
+    for k in 0..z.len() {
+        for j in k + 1..z.len() {
+            let reach = max_slope * (z[j] - z[k]);
+            if bounds[k].0 - bounds[j].1 > reach * (1.0 + 1e-12)
+                || bounds[j].0 - bounds[k].1 > reach * (1.0 + 1e-12)
+            {
+                return Err((k, j));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Knot k's bounds narrowed by the rise: at least the knot before it, at most every later
@@ -232,6 +283,7 @@ mod tests {
         let shape = Shape {
             rising: Some([0.0, 0.3]),
             max_curvature: None,
+            max_slope: None,
         };
         let r = place(&z, &bounds, &[0.0, 1.0, 1.0, 0.0], &shape);
         assert_eq!(r, vec![0.01, 0.03, 0.03, 0.03]);

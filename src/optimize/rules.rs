@@ -80,6 +80,19 @@ impl Limit {
     }
 }
 
+/// The swing law's measured range as two limits on the swing weight (the moment of inertia
+/// about the 6-in point within `SWING_LAW_MOI6`): a search whose batter answers to each
+/// bat's moment of inertia keeps its candidates where the law was measured, and its report
+/// shows how far inside they are.
+pub fn swing_law_limits() -> [Limit; 2] {
+    let [lo, hi] = crate::model::spec::SWING_LAW_MOI6;
+    let source = "the swing law's measured range";
+    [
+        bat_limit(BatQuantity::MomentOfInertiaKnob6, Some(lo), None, source),
+        bat_limit(BatQuantity::MomentOfInertiaKnob6, None, Some(hi), source),
+    ]
+}
+
 fn bat_limit(q: BatQuantity, min: Option<f64>, max: Option<f64>, source: &str) -> Limit {
     Limit {
         quantity: Quantity::Bat(q),

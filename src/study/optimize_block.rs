@@ -152,6 +152,11 @@ pub struct ProfileShape {
     /// 1/m (> 0). Default: unbounded.
     #[serde(default)]
     pub max_curvature: Option<f64>,
+    /// The largest change of a hollow bat's wall thickness between neighbouring knots per
+    /// metre between them, m/m (> 0; `optimize.profile.thickness` needed): a wall a maker can
+    /// draw, without a thin band beside a thick one. Default: unbounded.
+    #[serde(default)]
+    pub max_wall_slope: Option<f64>,
 }
 
 /// How a quantity over the study's grid becomes one number.
