@@ -21,10 +21,11 @@ pub struct LabArgs {
     pub jobs: Option<usize>,
 }
 
-/// The session to start with, from the input's kind.
-fn start_session(input: Option<&PathBuf>) -> Result<serde_json::Value, String> {
+/// The sessions to start with (one per bat of a study or a results file, labelled; the
+/// default one alone), from the input's kind.
+fn start_sessions(input: Option<&PathBuf>) -> Result<Vec<(String, serde_json::Value)>, String> {
     let Some(path) = input else {
-        return session::default_session();
+        return Ok(vec![("r161".into(), session::default_session()?)]);
     };
     let is_h5 = path.extension().is_some_and(|e| e == "h5");
     let text = if is_h5 {
@@ -34,12 +35,16 @@ fn start_session(input: Option<&PathBuf>) -> Result<serde_json::Value, String> {
     } else {
         std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?
     };
-    session::session_of_study(&text, path)
+    session::sessions_of_study(&text, path)
 }
 
 pub(super) fn cmd_lab(a: &LabArgs) -> i32 {
-    let start = match start_session(a.input.as_ref()) {
-        Ok(s) => s,
+    let starts = match start_sessions(a.input.as_ref()) {
+        Ok(s) if !s.is_empty() => s,
+        Ok(_) => {
+            eprintln!("error: the study has no point to start from");
+            return EXIT_BAD_INPUT;
+        }
         Err(e) => {
             eprintln!("error: {e}");
             return EXIT_BAD_INPUT;
@@ -51,7 +56,7 @@ pub(super) fn cmd_lab(a: &LabArgs) -> i32 {
         return EXIT_BAD_INPUT;
     }
     let settings = LabSettings {
-        start,
+        starts,
         out_dir,
         port: a.port,
         threads: a.jobs.unwrap_or(0),

@@ -1,6 +1,7 @@
 //! The lab's local web server: loopback only, every request carrying the session's random
 //! token, none from another origin. The page and its script are served from the binary;
-//! `/api/evaluate` answers a session (`answer::evaluate`); `/api/save` writes its study
+//! `/api/start` is the session the page opens with and `/api/bats` every bat's of the file
+//! it was started with; `/api/evaluate` answers a session (`answer::evaluate`); `/api/save` writes its study
 //! (and the bat's profile) into the one directory the user named.
 //!
 //! Edits that arrive while one is being computed are coalesced: the evaluator keeps only
@@ -23,8 +24,9 @@ const MAX_BODY: u64 = 1 << 20;
 
 /// What the server is started with.
 pub struct LabSettings {
-    /// The session the page opens with.
-    pub start: Value,
+    /// The sessions the page may open, one per bat of the study or results file it was
+    /// started with (labelled as `/bat` labels them); the page opens the first.
+    pub starts: Vec<(String, Value)>,
     /// Where `/api/save` may write.
     pub out_dir: PathBuf,
     /// Port on 127.0.0.1 (0: any free one).
@@ -138,7 +140,16 @@ impl Shared {
             (Method::Get, "/lab.js") => {
                 respond(request, 200, SCRIPT, "text/javascript; charset=utf-8")
             }
-            (Method::Get, "/api/start") => respond_json(request, 200, &self.settings.start),
+            (Method::Get, "/api/start") => respond_json(request, 200, &self.settings.starts[0].1),
+            (Method::Get, "/api/bats") => {
+                let bats: Vec<Value> = self
+                    .settings
+                    .starts
+                    .iter()
+                    .map(|(label, session)| json!({"label": label, "session": session}))
+                    .collect();
+                respond_json(request, 200, &Value::Array(bats))
+            }
             (Method::Post, "/api/evaluate") => match body_json(&mut request) {
                 Ok(s) => mailbox.put(s, request),
                 Err(e) => respond_json(request, 400, &json!({ "error": e })),

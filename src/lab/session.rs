@@ -27,12 +27,38 @@ pub fn default_session() -> Result<Value, String> {
     with_knots(json!({"model": "wave", "base": base, "impact": [0.50, 0.83, 0.01]}))
 }
 
-/// The session of a study's first point (its bat, ball, swing, pitch; the study's other
-/// axes dropped), along the barrel from 50 cm to 3 cm short of the end.
-pub fn session_of_study(text: &str, path: &Path) -> Result<Value, String> {
+/// Points looked through for the study's bats (a bat that first appears later is not
+/// offered).
+const MAX_POINTS_SEARCHED: usize = 100_000;
+
+/// One session per bat of a study, labelled as the results file's `/bat` labels them: the
+/// session of the first point that uses the bat (its ball, swing and pitch; the study's
+/// other axes dropped), along the barrel from 50 cm to 3 cm short of the end. The study's
+/// first point's bat comes first.
+pub fn sessions_of_study(text: &str, path: &Path) -> Result<Vec<(String, Value)>, String> {
     let loaded = study::load_str(text, path, &LoadOptions::default()).map_err(|e| e.to_string())?;
-    let point = loaded.plan.point(0).map_err(|e| e.message)?;
-    let spec: &CollisionSpec = &point.spec;
+    let plan = &loaded.plan;
+    let mut found: Vec<Option<Value>> = vec![None; plan.bats().len()];
+    let mut order = Vec::new();
+    for flat in 0..plan.n_points().min(MAX_POINTS_SEARCHED) {
+        let point = plan.point(flat).map_err(|e| e.message)?;
+        let slot = &mut found[point.bat as usize];
+        if slot.is_none() {
+            *slot = Some(session_of_point(&point.spec)?);
+            order.push(point.bat as usize);
+        }
+        if order.len() == found.len() {
+            break;
+        }
+    }
+    Ok(order
+        .into_iter()
+        .filter_map(|b| Some((plan.bats()[b].label.clone(), found[b].take()?)))
+        .collect())
+}
+
+/// The session of one point's collision.
+fn session_of_point(spec: &CollisionSpec) -> Result<Value, String> {
     let mut base = serde_json::to_value(spec).map_err(|e| e.to_string())?;
     let model = base
         .as_object_mut()
