@@ -11,6 +11,8 @@ const token = new URLSearchParams(location.search).get("token") || "";
 const $ = (id) => document.getElementById(id);
 
 let session = null;     // what the page edits
+let species = [];       // the wood species the server offers, with their materials
+let fileBats = [];      // the bats of the file the lab was started with, with their sessions
 let answer = null;      // the server's last answer
 let reference = null;   // a pinned answer, drawn dashed
 let inFlight = false, pending = false, sentAt = 0;
@@ -79,6 +81,40 @@ function fillControls() {
   $("law").checked = !!(session.base.batter && session.base.batter.exponent);
   $("zfrom").value = (session.impact[0] / INCH).toFixed(1);
   $("zto").value = (session.impact[1] / INCH).toFixed(1);
+  $("grip").value = bat().grip ? "pinned" : "";
+  const m = bat().material || {};
+  const s = species.findIndex((x) => x.density === m.density && x.youngs_modulus === m.youngs_modulus);
+  $("species").value = String(s >= 0 ? s : (m.density === undefined ? 0 : -1));
+  $("species").disabled = !isWood();
+  fillWallKnots();
+}
+
+function isWood() { return ["r161", "corked", undefined].includes(bat().preset) && !(bat().shell && bat().shell.layers); }
+
+// a hollow bat's wall along the bat: its thickness knots as numbers to edit (z read-only)
+function fillWallKnots() {
+  const box = $("wall-knots");
+  while (box.firstChild) box.removeChild(box.firstChild);
+  const k = bat().shell && bat().shell.thickness_knots;
+  if (!k) return;
+  const t = document.createElement("table");
+  const head = document.createElement("tr");
+  for (const h of ["wall at", "mm"]) { const c = document.createElement("td"); c.textContent = h; head.appendChild(c); }
+  t.appendChild(head);
+  k.forEach((knot, i) => {
+    const tr = document.createElement("tr");
+    const z = document.createElement("td");
+    z.textContent = `${num(knot[0] / INCH, 1)} in`;
+    const cell = document.createElement("td");
+    const input = document.createElement("input");
+    Object.assign(input, { type: "number", step: "0.1", value: (knot[1] * 1000).toFixed(2) });
+    input.id = `wall-knot-${i}`;
+    input.addEventListener("change", () => { k[i][1] = Number(input.value) / 1000; changed(); });
+    cell.appendChild(input);
+    tr.append(z, cell);
+    t.appendChild(tr);
+  });
+  box.appendChild(t);
 }
 
 function bind(id, apply) {
@@ -96,6 +132,21 @@ function bindControls() {
     if (e.value === "") { if (bat().shell) delete bat().shell.thickness; return; }
     bat().shell = Object.assign({}, bat().shell || {}, { thickness: Number(e.value) / 1000 });
     delete bat().shell.thickness_knots; delete bat().shell.layers;
+    fillWallKnots();
+  });
+  bind("species", (e) => {
+    const s = species[Number(e.value)];
+    if (!s) return;
+    bat().material = Object.assign({}, bat().material, { density: s.density, youngs_modulus: s.youngs_modulus });
+  });
+  bind("grip", (e) => {
+    if (e.value) bat().grip = { z: 6 * INCH, kind: "pinned" };
+    else delete bat().grip;
+  });
+  bind("bats", (e) => {
+    session = JSON.parse(JSON.stringify(fileBats[Number(e.value)].session));
+    reference = null;
+    fillControls();
   });
   bind("model", (e) => { session.model = e.value; });
   bind("pitch", (e) => { session.base.pitch = Object.assign({}, session.base.pitch, { speed: Number(e.value) * MPH }); });
@@ -268,6 +319,24 @@ function drawRules() {
   const r = await api("/api/start");
   if (r.status !== 200) { $("error").textContent = "the lab refused the page: " + JSON.stringify(r.json); return; }
   session = r.json;
+  species = (await api("/api/species")).json;
+  for (const [i, s] of species.entries()) {
+    const o = document.createElement("option");
+    o.value = String(i); o.textContent = s.name;
+    $("species").appendChild(o);
+  }
+  const other = document.createElement("option");
+  other.value = "-1"; other.textContent = "the study's own"; other.hidden = true;
+  $("species").appendChild(other);
+  fileBats = (await api("/api/bats")).json;
+  if (fileBats.length > 1) {
+    for (const [i, b] of fileBats.entries()) {
+      const o = document.createElement("option");
+      o.value = String(i); o.textContent = b.label;
+      $("bats").appendChild(o);
+    }
+    $("bats-row").hidden = false;
+  }
   fillControls();
   bindControls();
   drawProfile();

@@ -7,5 +7,6 @@ pub mod answer;
 pub mod save;
 pub mod server;
 pub mod session;
+pub mod species;
 
 pub use server::{Lab, LabSettings};

@@ -44,7 +44,8 @@ pub fn sessions_of_study(text: &str, path: &Path) -> Result<Vec<(String, Value)>
         let point = plan.point(flat).map_err(|e| e.message)?;
         let slot = &mut found[point.bat as usize];
         if slot.is_none() {
-            *slot = Some(session_of_point(&point.spec)?);
+            let tree = plan.value_at(&plan.shape().unravel(flat));
+            *slot = Some(session_of_point(&tree, &point.spec)?);
             order.push(point.bat as usize);
         }
         if order.len() == found.len() {
@@ -57,17 +58,24 @@ pub fn sessions_of_study(text: &str, path: &Path) -> Result<Vec<(String, Value)>
         .collect())
 }
 
-/// The session of one point's collision.
-fn session_of_point(spec: &CollisionSpec) -> Result<Value, String> {
-    let mut base = serde_json::to_value(spec).map_err(|e| e.to_string())?;
-    let model = base
-        .as_object_mut()
-        .and_then(|m| m.remove("model"))
-        .unwrap_or(json!("wave"));
+/// The session of one point: its parameters as the study wrote them (`tree`, so that what
+/// the study left to its presets stays theirs), a profile read from a CSV written out as the
+/// knots it resolved to (`spec`), without its impact position.
+fn session_of_point<T: serde::Serialize>(tree: &T, spec: &CollisionSpec) -> Result<Value, String> {
+    let mut base = serde_json::to_value(tree).map_err(|e| e.to_string())?;
+    let model = serde_json::to_value(spec.model).map_err(|e| e.to_string())?;
     if let Some(m) = base.as_object_mut() {
+        m.remove("model");
         m.remove("impact");
         if spec.impact.offset != 0.0 {
             m.insert("impact".into(), json!({"offset": spec.impact.offset}));
+        }
+    }
+    if base["bat"]["profile"].get("csv").is_some() {
+        base["bat"]["profile"] =
+            serde_json::to_value(&spec.bat.profile).map_err(|e| e.to_string())?;
+        if let Some(shell) = &spec.bat.shell {
+            base["bat"]["shell"] = serde_json::to_value(shell).map_err(|e| e.to_string())?;
         }
     }
     let length = BatGeometry::resolve(&spec.bat).map_or(0.84, |g| g.length);
@@ -80,11 +88,31 @@ fn round_cm(x: f64) -> f64 {
 }
 
 /// The session with its bat's profile written out as knots (`[[z, R], ...]`, m) where it
-/// was the preset's, so that the page can drag them.
+/// was the preset's, so that the page can drag them; and a hollow preset's wall along the
+/// bat as its thickness knots (`bat.shell.thickness_knots`, m), so that the page can edit
+/// them.
 pub fn with_knots(mut session: Value) -> Result<Value, String> {
     let bat = session["base"]["bat"].clone();
     let spec: crate::model::spec::BatSpec =
         serde_json::from_value(bat).map_err(|e| format!("bat: {e}"))?;
+    let expanded = crate::model::bat::hollow_presets::expand(&spec);
+    let own_wall = spec
+        .shell
+        .as_ref()
+        .is_some_and(|s| s.thickness.is_some() || s.thickness_knots.is_some());
+    if let (false, Some(knots)) = (
+        own_wall,
+        expanded
+            .shell
+            .as_ref()
+            .and_then(|s| s.thickness_knots.clone()),
+    ) {
+        let shell = &mut session["base"]["bat"]["shell"];
+        if !shell.is_object() {
+            *shell = json!({});
+        }
+        shell["thickness_knots"] = json!(knots);
+    }
     if spec.profile.is_none() {
         let g = BatGeometry::resolve(&spec).map_err(|e| e.to_string())?;
         let knots: Vec<[f64; 2]> = g

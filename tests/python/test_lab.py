@@ -132,3 +132,54 @@ def test_a_bad_value_shows_its_message_and_strangers_are_refused(tmp_path):
                 urllib.request.urlopen(req, timeout=10)
             assert e.value.code == status, headers
     assert not errors, errors
+
+
+def settle(page, after):
+    """Wait for the answer after `after` and for the page to be idle; return the count."""
+    answers = wait_answers(page, after)
+    wait_js(page, "document.body.dataset.state === 'ready' && !document.getElementById('status').textContent.startsWith('computing')")
+    return int(page.evaluate("document.body.dataset.answers"))
+
+
+def test_a_results_files_bats_a_species_a_wall_and_the_hands(tmp_path):
+    """Started on a study of two bats, the page offers both and opens the second; a wood bat
+    takes a species (maple, denser than the R161's ash in the handbook, weighs more); a hollow
+    bat's wall knot made thicker adds weight; pinned hands change the curve. Each answer is
+    the library's: the saved study, run, gives the page's weight."""
+    study = tmp_path / "two.yaml"
+    study.write_text("name: two\nmodel: wave\nbase:\n  bat: {preset: r161}\n  ball: {preset: mlb}\n"
+                     "grid:\n  bat.preset: [r161, alloy_bbcor]\n  impact.z: [0.7]\n")
+    errors, requests = [], []
+    with lab(tmp_path, str(study)) as url, browser_page(errors, requests) as page:
+        page.goto(url)
+        answers = settle(page, 0)
+        labels = page.eval_on_selector_all("#bats option", "os => os.map(o => o.textContent)")
+        assert len(labels) == 2 and "alloy_bbcor" in labels[1], labels
+        ash = si(page, "card-mass")
+        page.select_option("#species", label="maple")
+        answers = settle(page, answers)
+        maple = si(page, "card-mass")
+        assert maple > ash * 1.03, (ash, maple)   # 0.63 / 0.60 of the wood's density
+        best_free = si(page, "best-exit")
+        page.select_option("#grip", "pinned")
+        answers = settle(page, answers)
+        assert si(page, "best-exit") != best_free
+        # the second bat: the hollow preset with its wall along the bat as knots
+        page.select_option("#bats", "1")
+        answers = settle(page, answers)
+        assert page.locator("#wall-knots input").count() >= 4
+        light = si(page, "card-mass")
+        last = page.locator("#wall-knots input").last
+        last.fill(str(float(last.input_value()) + 1.0))
+        last.dispatch_event("change")
+        answers = settle(page, answers)
+        heavy = si(page, "card-mass")
+        assert heavy > light
+        page.fill("#save-name", "walled")
+        page.click("#save")
+        wait_js(page, "document.getElementById('saved').textContent.startsWith('saved')")
+        out = tmp_path / "walled.h5"
+        subprocess.run([BIN, "run", str(tmp_path / "walled.yaml"), "-o", str(out)], check=True, capture_output=True)
+        with h5py.File(out, "r") as f:
+            assert f["bat/mass"][0] == heavy
+        assert not errors, errors
