@@ -3,6 +3,7 @@
 //! bat's card, as JSON for the page. Numbers are SI; a NaN is `null`.
 
 use super::session;
+use crate::optimize::profile_shape::{self, Shape};
 use crate::results::BatVariant;
 use crate::run::driver::compute_point;
 use crate::run::single::bats_of;
@@ -27,7 +28,10 @@ pub fn evaluate(session: &Value, pool: &rayon::ThreadPool) -> Value {
     } else {
         session.clone()
     };
-    let session = &session;
+    let session = &match turned(session) {
+        Ok(s) => s,
+        Err(e) => return json!({"error": e}),
+    };
     let text = match session::study_text(session) {
         Ok(t) => t,
         Err(e) => return json!({"error": e}),
@@ -77,6 +81,70 @@ pub fn evaluate(session: &Value, pool: &rayon::ThreadPool) -> Value {
         "bat": card(&bats.variants[0]),
         "lathe": lathe(&session["base"]["bat"]["profile"]),
     })
+}
+
+/// The radii a drag may give a knot, m (the page's own clamp).
+const KNOT_RADIUS: (f64, f64) = (0.004, 0.040);
+
+/// The session with its knots turned as a lathe would when it asks for it (`lathe:
+/// {max_curvature}`, 1/m): each knot from the handle's thinnest on, in order, moved to the
+/// nearest radius that keeps the radius from falling from there to the end and the knots'
+/// curvature within the bound (`optimize::profile_shape`, the rule the design
+/// searches keep); unchanged without `lathe`.
+fn turned(session: Value) -> Result<Value, String> {
+    let Some(bound) = session.get("lathe").and_then(|l| l.get("max_curvature")) else {
+        return Ok(session);
+    };
+    let kappa = bound
+        .as_f64()
+        .filter(|k| k.is_finite() && *k > 0.0)
+        .ok_or_else(|| {
+            format!("session.lathe.max_curvature: {bound} is not a curvature > 0, 1/m")
+        })?;
+    let mut session = session;
+    let profile = &mut session["base"]["bat"]["profile"];
+    let knots = if profile.get("knots").is_some() {
+        &mut profile["knots"]
+    } else {
+        profile
+    };
+    let Some(rows) = knots.as_array() else {
+        return Ok(session);
+    };
+    let k: Vec<(f64, f64)> = rows
+        .iter()
+        .filter_map(|r| Some((r.get(0)?.as_f64()?, r.get(1)?.as_f64()?)))
+        .collect();
+    if k.len() < 3 || k.len() != rows.len() {
+        return Ok(session);
+    }
+    let z: Vec<f64> = k.iter().map(|p| p.0).collect();
+    let r: Vec<f64> = k.iter().map(|p| p.1).collect();
+    let thinnest = r
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .map_or(0, |m| m.0);
+    let shape = Shape {
+        rising: Some([z[thinnest], z[z.len() - 1]]),
+        max_curvature: Some(kappa),
+        max_slope: None,
+    };
+    // the knob and the handle down to its thinnest knot as they are (a lathe's rules are
+    // for the taper and the barrel; the knob's flare bends far more than they allow)
+    let bounds: Vec<(f64, f64)> = r
+        .iter()
+        .enumerate()
+        .map(|(i, &ri)| if i < thinnest { (ri, ri) } else { KNOT_RADIUS })
+        .collect();
+    let t = profile_shape::fractions(&z, &bounds, &r, &shape);
+    let placed = profile_shape::place(&z, &bounds, &t, &shape);
+    *knots = json!(z
+        .iter()
+        .zip(&placed)
+        .map(|(z, r)| [*z, *r])
+        .collect::<Vec<_>>());
+    Ok(session)
 }
 
 /// A bat's card and its drawing: the profile, the BBCOR scan and the rules.

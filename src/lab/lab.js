@@ -54,6 +54,8 @@ function show(a, ms) {
   }
   $("error").textContent = "";
   if (session.refill && a.session) { session = a.session; fillControls(); }
+  // turned by the server (`lathe`): the knots as a lathe leaves them, unless newer edits wait
+  else if (session.lathe && a.session && !pending) { session.base.bat.profile = a.session.base.bat.profile; }
   answer = a;
   window.__lab_points = a.points;   // the numbers drawn, as the server sent them
   const n = a.points.filter((p) => p.exit_speed_lab !== undefined).length;
@@ -82,6 +84,8 @@ function fillControls() {
   $("zfrom").value = (session.impact[0] / INCH).toFixed(1);
   $("zto").value = (session.impact[1] / INCH).toFixed(1);
   $("grip").value = bat().grip ? "pinned" : "";
+  $("lathe").checked = !!session.lathe;
+  if (session.lathe) $("lathe-bend").value = String(session.lathe.max_curvature);
   const m = bat().material || {};
   const s = species.findIndex((x) => x.density === m.density && x.youngs_modulus === m.youngs_modulus);
   $("species").value = String(s >= 0 ? s : (m.density === undefined ? 0 : -1));
@@ -139,6 +143,12 @@ function bindControls() {
     if (!s) return;
     bat().material = Object.assign({}, bat().material, { density: s.density, youngs_modulus: s.youngs_modulus });
   });
+  const lathe = () => {
+    if ($("lathe").checked) session.lathe = { max_curvature: Number($("lathe-bend").value) };
+    else delete session.lathe;
+  };
+  bind("lathe", lathe);
+  bind("lathe-bend", lathe);
   bind("grip", (e) => {
     if (e.value) bat().grip = { z: 6 * INCH, kind: "pinned" };
     else delete bat().grip;

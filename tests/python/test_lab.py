@@ -183,3 +183,34 @@ def test_a_results_files_bats_a_species_a_wall_and_the_hands(tmp_path):
         with h5py.File(out, "r") as f:
             assert f["bat/mass"][0] == heavy
         assert not errors, errors
+
+
+def test_a_turnable_bat_is_what_a_lathe_leaves(tmp_path):
+    """With "keep it turnable", a knot dragged into a dip is lifted back: the answer's lathe
+    reading shows no fall between the handle's thinnest knot and the barrel beyond what a
+    lathe holds, and no bend sharper than the bound asked; without it the dip stays."""
+    errors, requests = [], []
+    with lab(tmp_path) as url, browser_page(errors, requests) as page:
+        page.goto(url)
+        answers = settle(page, 0)
+
+        def dip():
+            knots = page.locator("circle.knot")
+            box = knots.nth(knots.count() - 8).bounding_box()
+            x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+            page.mouse.move(x, y)
+            page.mouse.down()
+            page.mouse.move(x, y + 10, steps=4)   # down in the drawing: a smaller radius
+            page.mouse.up()
+
+        dip()
+        answers = settle(page, answers)
+        lathe = page.evaluate("JSON.stringify(answer.lathe)")
+        assert json.loads(lathe)["largest_fall"] is not None, lathe
+        page.check("#lathe")
+        page.dispatch_event("#lathe", "change")
+        answers = settle(page, answers)
+        reading = json.loads(page.evaluate("JSON.stringify(answer.lathe)"))
+        assert reading["largest_fall"] is None, reading
+        assert reading["sharpest_bend"] <= 1.0 + 1e-9, reading
+        assert not errors, errors
