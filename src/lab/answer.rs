@@ -79,8 +79,44 @@ pub fn evaluate(session: &Value, pool: &rayon::ThreadPool) -> Value {
         "study": text,
         "points": points,
         "bat": card(&bats.variants[0]),
+        "modes": bats.handles[0].as_ref().map_or(Value::Null, |t| vibrations(t)),
         "lathe": lathe(&session["base"]["bat"]["profile"]),
     })
+}
+
+/// The bat's vibrations to draw: its two lowest bending modes (frequency, Hz, and shape
+/// along the bat, largest |value| 1) and its wall's lowest breathing mode (frequency, and
+/// its radial shape along the hollow part, largest 1; `null` for a solid bat).
+fn vibrations(target: &crate::model::Target) -> Value {
+    let Some(bat) = target.bat() else {
+        return Value::Null;
+    };
+    let unit = |v: Vec<f64>| -> Vec<f64> {
+        let top = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        v.iter()
+            .map(|x| if top > 0.0 { x / top } else { 0.0 })
+            .collect()
+    };
+    let z = crate::model::bat::shapes::shape_points(bat);
+    let frequencies = &bat.properties().mode_frequency;
+    let bending: Vec<Value> = crate::model::bat::shapes::bending_shapes(bat, 2)
+        .into_iter()
+        .zip(frequencies)
+        .map(|(shape, f)| json!({"frequency": f, "z": z, "shape": unit(shape)}))
+        .collect();
+    let hoop = match bat.shell_modes() {
+        Ok(Some(s)) if !s.modes.is_empty() => {
+            let w: Vec<f64> = s.nodes.iter().map(|&x| s.radial(0, x)).collect();
+            json!({
+                "frequency": s.modes[0].omega / std::f64::consts::TAU,
+                "wave_number": s.modes[0].wave_number,
+                "z": s.nodes,
+                "shape": unit(w),
+            })
+        }
+        _ => Value::Null,
+    };
+    json!({"bending": bending, "hoop": hoop})
 }
 
 /// The radii a drag may give a knot, m (the page's own clamp).

@@ -60,7 +60,7 @@ function show(a, ms) {
   window.__lab_points = a.points;   // the numbers drawn, as the server sent them
   const n = a.points.filter((p) => p.exit_speed_lab !== undefined).length;
   $("status").textContent = `${n} collisions and the bat's card in ${ms.toFixed(0)} ms`;
-  drawProfile(); drawCurve(); drawCard(); drawRules();
+  drawProfile(); drawCurve(); drawSting(); drawModes(); drawCard(); drawRules();
   document.body.dataset.state = "ready";
   document.body.dataset.answers = String(Number(document.body.dataset.answers || 0) + 1);
 }
@@ -261,6 +261,51 @@ function drawCurve() {
   const mark = el("circle", { cx: x(best.z), cy: y(best.exit_speed_lab / MPH), r: 4, fill: "#1d3557", id: "best-exit" }, svg);
   mark.dataset.si = String(best.exit_speed_lab);
   mark.dataset.z = String(best.z);
+}
+
+// the vibration the hands feel after each impact, along the same barrel as the curve
+function drawSting() {
+  const svg = $("sting");
+  clear(svg);
+  const pts = answer.points.filter((p) => p.grip_vibration_amplitude !== undefined && p.grip_vibration_amplitude !== null);
+  if (pts.length === 0) return;
+  const zs = pts.map((p) => p.z), mm = pts.map((p) => p.grip_vibration_amplitude * 1000);
+  const [z0, z1] = [Math.min(...zs), Math.max(...zs)];
+  const top = Math.max(...mm) || 1;
+  const x = (z) => 50 + (z - z0) / (z1 - z0 || 1) * 800;
+  const y = (v) => 125 - v / top * 110;
+  el("line", { x1: 50, y1: 125, x2: 850, y2: 125, class: "axis" }, svg);
+  el("text", { x: 4, y: 18, class: "tick" }, svg).textContent = `${num(top, 2)} mm`;
+  el("text", { x: 30, y: 128, class: "tick" }, svg).textContent = "0";
+  el("polyline", { points: pts.map((p, i) => `${x(p.z)},${y(mm[i])}`).join(" "), class: "sting" }, svg);
+  const quiet = pts.reduce((m, p) => (p.grip_vibration_amplitude < m.grip_vibration_amplitude ? p : m));
+  const mark = el("circle", { cx: x(quiet.z), cy: y(quiet.grip_vibration_amplitude * 1000), r: 4, fill: "#e76f51", id: "quietest" }, svg);
+  mark.dataset.z = String(quiet.z);
+}
+
+// the bat's two lowest bending modes along the bat and its wall's lowest breathing mode
+// along the hollow part, each scaled to its largest value (the server's shapes)
+function drawModes() {
+  const svg = $("modes");
+  clear(svg);
+  const m = answer.modes;
+  const legend = $("modes-legend");
+  legend.textContent = "";
+  if (!m) return;
+  const length = answer.bat.length;
+  const x = (z) => 50 + z / length * 800;
+  const y = (v) => 70 - v * 60;
+  el("line", { x1: 50, y1: 70, x2: 850, y2: 70, class: "axis" }, svg);
+  const words = [];
+  m.bending.forEach((b, i) => {
+    el("polyline", { points: b.z.map((z, k) => `${x(z)},${y(b.shape[k])}`).join(" "), class: `mode${i + 1}`, id: `bending-${i + 1}` }, svg);
+    words.push(`${i === 0 ? "━" : "╍"} bending mode ${i + 1}, ${num(b.frequency, 0)} Hz`);
+  });
+  if (m.hoop) {
+    el("polyline", { points: m.hoop.z.map((z, k) => `${x(z)},${y(m.hoop.shape[k])}`).join(" "), class: "hoopshape", id: "hoop-shape" }, svg);
+    words.push(`red: the wall's lowest breathing mode (n = ${m.hoop.wave_number}), ${num(m.hoop.frequency, 0)} Hz, its radial motion along the barrel`);
+  }
+  legend.textContent = words.join("   ");
 }
 
 function row(table, name, text, id, si) {

@@ -214,3 +214,34 @@ def test_a_turnable_bat_is_what_a_lathe_leaves(tmp_path):
         assert reading["largest_fall"] is None, reading
         assert reading["sharpest_bend"] <= 1.0 + 1e-9, reading
         assert not errors, errors
+
+
+def test_the_vibrations_are_drawn_from_the_librarys_modes(tmp_path):
+    """The sting along the barrel and the mode shapes come from the server: a solid bat has
+    two bending modes and no breathing mode; a hollow preset's lowest breathing mode is
+    drawn along its barrel, at the card's hoop frequency. The quietest impact for the hands
+    lies near the first bending mode's barrel node (Cross 1998; Nathan 2000: the sweet spot
+    of vibration), within 5 cm of it."""
+    errors, requests = [], []
+    with lab(tmp_path) as url, browser_page(errors, requests) as page:
+        page.goto(url)
+        answers = settle(page, 0)
+        assert page.locator("#bending-1").count() == 1 and page.locator("#bending-2").count() == 1
+        assert page.locator("#hoop-shape").count() == 0
+        modes = json.loads(page.evaluate("JSON.stringify(answer.modes)"))
+        shape = modes["bending"][0]
+        # the barrel's node of mode 1: where its shape changes sign beyond the middle
+        z, w = np.array(shape["z"]), np.array(shape["shape"])
+        crossings = [z[i] + (z[i + 1] - z[i]) * w[i] / (w[i] - w[i + 1])
+                     for i in range(len(z) - 1) if z[i] > 0.4 and w[i] * w[i + 1] < 0]
+        quiet = float(page.get_attribute("#quietest", "data-z"))
+        assert crossings and abs(quiet - crossings[0]) < 0.05, (quiet, crossings)
+        page.select_option("#preset", "alloy_bbcor")
+        page.dispatch_event("#preset", "change")
+        answers = settle(page, answers)
+        assert page.locator("#hoop-shape").count() == 1
+        hoop = json.loads(page.evaluate("JSON.stringify(answer.modes.hoop)"))
+        # the same mode the collisions breathe with
+        first = json.loads(page.evaluate("JSON.stringify(answer.points[0])"))
+        assert hoop["frequency"] == first["hoop_mode_frequency"], (hoop["frequency"], first)
+        assert not errors, errors

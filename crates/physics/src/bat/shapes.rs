@@ -73,3 +73,15 @@ pub fn scaled_shapes(bat: &PreparedBat, modes: Range<usize>) -> Vec<f64> {
     }
     out
 }
+
+/// The lowest `count` flexible (bending) modes' scaled shapes at the shape points, one
+/// `[point]` vector per mode (fewer for a bat with fewer modes), dimensionless.
+pub fn bending_shapes(bat: &PreparedBat, count: usize) -> Vec<Vec<f64>> {
+    let first = bat.modes.n_rigid;
+    let last = (first + count).min(n_modes(bat));
+    let points = shape_point_weights(bat).len().max(1);
+    scaled_shapes(bat, first..last)
+        .chunks_exact(points)
+        .map(<[f64]>::to_vec)
+        .collect()
+}
