@@ -13,6 +13,7 @@ const $ = (id) => document.getElementById(id);
 let session = null;     // what the page edits
 let species = [];       // the wood species the server offers, with their materials
 let fileBats = [];      // the bats of the file the lab was started with, with their sessions
+let balls = [];         // the balls the server offers (COR shifts about the calibrated mean)
 let answer = null;      // the server's last answer
 let reference = null;   // a pinned answer, drawn dashed
 let inFlight = false, pending = false, sentAt = 0;
@@ -84,6 +85,9 @@ function fillControls() {
   $("zfrom").value = (session.impact[0] / INCH).toFixed(1);
   $("zto").value = (session.impact[1] / INCH).toFixed(1);
   $("grip").value = bat().grip ? "pinned" : "";
+  const shift = (session.base.ball && session.base.ball.law && session.base.ball.law.cor_shift) || 0;
+  $("ball").value = String(Math.max(0, balls.findIndex((b) => b.cor_shift === shift)));
+  $("ball").disabled = !(session.base.ball && session.base.ball.preset === "mlb");
   $("lathe").checked = !!session.lathe;
   if (session.lathe) $("lathe-bend").value = String(session.lathe.max_curvature);
   const m = bat().material || {};
@@ -149,6 +153,13 @@ function bindControls() {
   };
   bind("lathe", lathe);
   bind("lathe-bend", lathe);
+  bind("ball", (e) => {
+    const b = balls[Number(e.value)];
+    const ball = session.base.ball;
+    ball.law = Object.assign({}, ball.law, { cor_shift: b.cor_shift });
+    if (b.cor_shift === 0) delete ball.law.cor_shift;
+    if (Object.keys(ball.law).length === 0) delete ball.law;
+  });
   bind("grip", (e) => {
     if (e.value) bat().grip = { z: 6 * INCH, kind: "pinned" };
     else delete bat().grip;
@@ -383,6 +394,12 @@ function drawRules() {
   const other = document.createElement("option");
   other.value = "-1"; other.textContent = "the study's own"; other.hidden = true;
   $("species").appendChild(other);
+  balls = (await api("/api/balls")).json;
+  for (const [i, b] of balls.entries()) {
+    const o = document.createElement("option");
+    o.value = String(i); o.textContent = b.name;
+    $("ball").appendChild(o);
+  }
   fileBats = (await api("/api/bats")).json;
   if (fileBats.length > 1) {
     for (const [i, b] of fileBats.entries()) {

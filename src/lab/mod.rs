@@ -4,6 +4,7 @@
 //! and a profile (`save`).
 
 pub mod answer;
+pub mod balls;
 pub mod save;
 pub mod server;
 pub mod session;

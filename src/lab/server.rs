@@ -8,7 +8,7 @@
 //! the newest waiting session and answers the older ones `409` (superseded), so a flood of
 //! drags costs one computation at a time and never a queue.
 
-use super::{answer, save, session, species};
+use super::{answer, balls, save, session, species};
 use serde_json::{json, Value};
 use std::io::Read;
 use std::path::PathBuf;
@@ -142,6 +142,7 @@ impl Shared {
             }
             (Method::Get, "/api/start") => respond_json(request, 200, &self.settings.starts[0].1),
             (Method::Get, "/api/species") => respond_json(request, 200, &species::species()),
+            (Method::Get, "/api/balls") => respond_json(request, 200, &balls::balls()),
             (Method::Get, "/api/bats") => {
                 let bats: Vec<Value> = self
                     .settings

@@ -245,3 +245,22 @@ def test_the_vibrations_are_drawn_from_the_librarys_modes(tmp_path):
         first = json.loads(page.evaluate("JSON.stringify(answer.points[0])"))
         assert hoop["frequency"] == first["hoop_mode_frequency"], (hoop["frequency"], first)
         assert not errors, errors
+
+
+def test_a_lively_ball_and_a_dead_one(tmp_path):
+    """The ball's spread: a ball 2 SD livelier than the calibrated mean (COR + 0.010) gives
+    the bat a higher BBCOR and a longer best exit speed, a dead one lower (BBCOR is the
+    ball's COR on the bat: it moves with it)."""
+    errors, requests = [], []
+    with lab(tmp_path) as url, browser_page(errors, requests) as page:
+        page.goto(url)
+        answers = settle(page, 0)
+        mean_bbcor, mean_best = si(page, "card-bbcor"), si(page, "best-exit")
+        page.select_option("#ball", "1")
+        answers = settle(page, answers)
+        assert si(page, "card-bbcor") > mean_bbcor and si(page, "best-exit") > mean_best
+        page.select_option("#ball", "2")
+        answers = settle(page, answers)
+        assert si(page, "card-bbcor") < mean_bbcor and si(page, "best-exit") < mean_best
+        assert "cor_shift: -0.01" in page.text_content("#study")
+        assert not errors, errors
