@@ -14,6 +14,7 @@ let session = null;     // what the page edits
 let species = [];       // the wood species the server offers, with their materials
 let fileBats = [];      // the bats of the file the lab was started with, with their sessions
 let balls = [];         // the balls the server offers (COR shifts about the calibrated mean)
+let materials = [];     // the materials a wall's ply may be
 let answer = null;      // the server's last answer
 let reference = null;   // a pinned answer, drawn dashed
 let inFlight = false, pending = false, sentAt = 0;
@@ -54,7 +55,9 @@ function show(a, ms) {
     return;
   }
   $("error").textContent = "";
-  if (session.refill && a.session) { session = a.session; fillControls(); }
+  // a preset just chosen: its knots, wall and plies as the server wrote them (once: the
+  // answer echoes the flag, and later edits must not be overwritten by older answers)
+  if (session.refill && a.session) { session = a.session; delete session.refill; fillControls(); }
   // turned by the server (`lathe`): the knots as a lathe leaves them, unless newer edits wait
   else if (session.lathe && a.session && !pending) { session.base.bat.profile = a.session.base.bat.profile; }
   answer = a;
@@ -95,6 +98,45 @@ function fillControls() {
   $("species").value = String(s >= 0 ? s : (m.density === undefined ? 0 : -1));
   $("species").disabled = !isWood();
   fillWallKnots();
+  fillPlies();
+  const bore = bat().bore;
+  $("bored").checked = !!bore;
+  if (bore) {
+    $("bore-diameter").value = (bore.diameter / INCH).toFixed(2);
+    $("bore-depth").value = (bore.depth / INCH).toFixed(1);
+    $("bore-fill").value = String(bore.fill_density || 0);
+  }
+  for (const id of ["bored", "bore-diameter", "bore-depth", "bore-fill"]) $(id).disabled = bat().preset !== "r161";
+}
+
+// a layered wall's plies, outside in: material, thickness (mm; they scale with the wall
+// along the bat) and fibre angle (degrees from the bat's axis)
+function fillPlies() {
+  const box = $("plies");
+  while (box.firstChild) box.removeChild(box.firstChild);
+  const layers = bat().shell && bat().shell.layers;
+  if (!layers) return;
+  const t = document.createElement("table");
+  const head = document.createElement("tr");
+  for (const h of ["ply (outside in)", "mm", "deg"]) { const c = document.createElement("td"); c.textContent = h; head.appendChild(c); }
+  t.appendChild(head);
+  layers.forEach((layer, i) => {
+    const tr = document.createElement("tr");
+    const pick = document.createElement("select");
+    pick.id = `ply-material-${i}`;
+    for (const m of materials) { const o = document.createElement("option"); o.value = m; o.textContent = m; pick.appendChild(o); }
+    pick.value = layer.material;
+    pick.addEventListener("change", () => { layer.material = pick.value; changed(); });
+    const thick = Object.assign(document.createElement("input"), { type: "number", step: "0.05", value: (layer.thickness * 1000).toFixed(2) });
+    thick.id = `ply-thickness-${i}`;
+    thick.addEventListener("change", () => { layer.thickness = Number(thick.value) / 1000; changed(); });
+    const angle = Object.assign(document.createElement("input"), { type: "number", step: "5", value: ((layer.angle || 0) * 180 / Math.PI).toFixed(0) });
+    angle.id = `ply-angle-${i}`;
+    angle.addEventListener("change", () => { layer.angle = Number(angle.value) * Math.PI / 180; changed(); });
+    for (const x of [pick, thick, angle]) { const c = document.createElement("td"); c.appendChild(x); tr.appendChild(c); }
+    t.appendChild(tr);
+  });
+  box.appendChild(t);
 }
 
 function isWood() { return ["r161", "corked", undefined].includes(bat().preset) && !(bat().shell && bat().shell.layers); }
@@ -139,7 +181,7 @@ function bindControls() {
   bind("wall", (e) => {
     if (e.value === "") { if (bat().shell) delete bat().shell.thickness; return; }
     bat().shell = Object.assign({}, bat().shell || {}, { thickness: Number(e.value) / 1000 });
-    delete bat().shell.thickness_knots; delete bat().shell.layers;
+    delete bat().shell.thickness_knots;   // a layered wall's plies scale with it
     fillWallKnots();
   });
   bind("species", (e) => {
@@ -153,6 +195,15 @@ function bindControls() {
   };
   bind("lathe", lathe);
   bind("lathe-bend", lathe);
+  const bore = () => {
+    if (!$("bored").checked) { delete bat().bore; return; }
+    bat().bore = {
+      diameter: Number($("bore-diameter").value) * INCH,
+      depth: Number($("bore-depth").value) * INCH,
+      fill_density: Number($("bore-fill").value),
+    };
+  };
+  for (const id of ["bored", "bore-diameter", "bore-depth", "bore-fill"]) bind(id, bore);
   bind("ball", (e) => {
     const b = balls[Number(e.value)];
     const ball = session.base.ball;
@@ -394,6 +445,7 @@ function drawRules() {
   const other = document.createElement("option");
   other.value = "-1"; other.textContent = "the study's own"; other.hidden = true;
   $("species").appendChild(other);
+  materials = (await api("/api/materials")).json;
   balls = (await api("/api/balls")).json;
   for (const [i, b] of balls.entries()) {
     const o = document.createElement("option");

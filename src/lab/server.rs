@@ -143,6 +143,9 @@ impl Shared {
             (Method::Get, "/api/start") => respond_json(request, 200, &self.settings.starts[0].1),
             (Method::Get, "/api/species") => respond_json(request, 200, &species::species()),
             (Method::Get, "/api/balls") => respond_json(request, 200, &balls::balls()),
+            (Method::Get, "/api/materials") => {
+                respond_json(request, 200, &species::layer_materials())
+            }
             (Method::Get, "/api/bats") => {
                 let bats: Vec<Value> = self
                     .settings

@@ -89,8 +89,8 @@ fn round_cm(x: f64) -> f64 {
 
 /// The session with its bat's profile written out as knots (`[[z, R], ...]`, m) where it
 /// was the preset's, so that the page can drag them; and a hollow preset's wall along the
-/// bat as its thickness knots (`bat.shell.thickness_knots`, m), so that the page can edit
-/// them.
+/// bat as its thickness knots (`bat.shell.thickness_knots`, m) and its plies
+/// (`bat.shell.layers`), so that the page can edit them.
 pub fn with_knots(mut session: Value) -> Result<Value, String> {
     let bat = session["base"]["bat"].clone();
     let spec: crate::model::spec::BatSpec =
@@ -100,18 +100,35 @@ pub fn with_knots(mut session: Value) -> Result<Value, String> {
         .shell
         .as_ref()
         .is_some_and(|s| s.thickness.is_some() || s.thickness_knots.is_some());
-    if let (false, Some(knots)) = (
-        own_wall,
-        expanded
-            .shell
-            .as_ref()
-            .and_then(|s| s.thickness_knots.clone()),
-    ) {
+    let own_layers = spec.shell.as_ref().is_some_and(|s| s.layers.is_some());
+    let preset_shell = expanded.shell.as_ref();
+    let knots = preset_shell
+        .and_then(|s| s.thickness_knots.clone())
+        .filter(|_| !own_wall);
+    let layers = preset_shell
+        .and_then(|s| s.layers.clone())
+        .filter(|_| !own_layers);
+    if knots.is_some() || layers.is_some() {
         let shell = &mut session["base"]["bat"]["shell"];
         if !shell.is_object() {
             *shell = json!({});
         }
-        shell["thickness_knots"] = json!(knots);
+        if let Some(k) = knots {
+            shell["thickness_knots"] = json!(k);
+        }
+        if let Some(mut l) = layers {
+            // written beside the knots, the stack is the wall where it is thickest (every
+            // layer scales with the local thickness: the same wall)
+            let thickest = shell["thickness_knots"]
+                .as_array()
+                .map(|k| k.iter().filter_map(|p| p[1].as_f64()).fold(0.0, f64::max))
+                .unwrap_or(0.0);
+            let total: f64 = l.iter().map(|p| p.thickness).sum();
+            if thickest > 0.0 && total > 0.0 {
+                l.iter_mut().for_each(|p| p.thickness *= thickest / total);
+            }
+            shell["layers"] = serde_json::to_value(l).map_err(|e| e.to_string())?;
+        }
     }
     if spec.profile.is_none() {
         let g = BatGeometry::resolve(&spec).map_err(|e| e.to_string())?;

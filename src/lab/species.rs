@@ -34,6 +34,17 @@ fn row(name: &str) -> Option<(f64, f64)> {
     })
 }
 
+/// The materials a wall's layer may name (`laminate::MATERIALS` and the gap between two
+/// walls).
+pub fn layer_materials() -> Value {
+    let mut names: Vec<&str> = crate::model::bat::laminate::MATERIALS
+        .iter()
+        .map(|(n, _)| *n)
+        .collect();
+    names.push(crate::model::bat::laminate::GAP);
+    json!(names)
+}
+
 /// Every offered species with the `bat.material` it stands for: `[{name, density,
 /// youngs_modulus}]` (kg/m³, Pa).
 pub fn species() -> Value {
