@@ -128,6 +128,18 @@ optimize:
   objective: {maximize: exit_speed}
 "#;
 
+/// A point the search may ask for in `n` dimensions: by turns inside the unit cube, on its
+/// corners and faces, and beyond it.
+fn cube_point(rng: &mut Rng, case: usize, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|_| match case % 3 {
+            0 => rng.unit(),
+            1 => (rng.unit() * 3.0).floor() / 2.0,
+            _ => 2.0 * rng.unit() - 0.5,
+        })
+        .collect()
+}
+
 /// Every point of the unit cube the search may ask for is a profile that rises over the
 /// span, bends no more than the bound between the knots, and keeps each radius within its
 /// bounds and the fixed knots as they are.
@@ -142,14 +154,7 @@ fn every_candidate_is_turnable() {
     let fixed = [0.0252, 0.0252, 0.0177, 0.0130, 0.0152];
     let mut rng = Rng(0x007A_9E12);
     for case in 0..2000 {
-        // corners and faces of the cube as well as its inside
-        let u: Vec<f64> = (0..6)
-            .map(|_| match case % 3 {
-                0 => rng.unit(),
-                1 => (rng.unit() * 3.0).floor() / 2.0,
-                _ => 2.0 * rng.unit() - 0.5,
-            })
-            .collect();
+        let u = cube_point(&mut rng, case, 6);
         let x = design.from_unit(&u);
         let r: Vec<f64> = fixed.iter().copied().chain(x.iter().copied()).collect();
         for (k, w) in r.windows(2).enumerate().skip(4) {
@@ -294,13 +299,7 @@ fn every_candidate_wall_keeps_its_gradient() {
     let z = [0.45, 0.55, 0.65, 0.75, 0.84];
     let mut rng = Rng(0x0057_EE11);
     for case in 0..2000 {
-        let u: Vec<f64> = (0..4)
-            .map(|_| match case % 3 {
-                0 => rng.unit(),
-                1 => (rng.unit() * 3.0).floor() / 2.0,
-                _ => 2.0 * rng.unit() - 0.5,
-            })
-            .collect();
+        let u = cube_point(&mut rng, case, 4);
         let x = design.from_unit(&u);
         let t: Vec<f64> = std::iter::once(0.0025).chain(x.iter().copied()).collect();
         for k in 1..t.len() {
