@@ -15,10 +15,12 @@ pub mod cmaes;
 pub mod design;
 pub mod evaluate;
 pub mod pareto;
+mod profile_design;
 pub mod profile_shape;
 pub mod quantity;
 pub mod rules;
 pub mod search;
+mod variable;
 
 pub use design::{checked, design_of, Design, Variable};
 pub use evaluate::{Evaluation, Evaluator};
