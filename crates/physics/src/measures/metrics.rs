@@ -296,7 +296,10 @@ pub fn protocol_scan(
         .filter(|&z| z <= z1 + 1e-12)
         .collect();
     let spec = protocol_shot(bat_spec, numerics, shot, z0);
-    let stress = match with_stress && !bat_spec.has_wood_wall() {
+    // the stress needs the shell's breathing modes in the shot (the collisions keep the
+    // wall's state only then)
+    let breathing = shot.hoop.as_ref().is_some_and(|h| h.from_geometry);
+    let stress = match with_stress && breathing && !bat_spec.has_wood_wall() {
         true => bat.wall_statics()?.zip(bat.shell_modes()?),
         false => None,
     };

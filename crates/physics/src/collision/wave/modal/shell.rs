@@ -26,10 +26,17 @@ pub(super) struct ShellState {
 impl ShellState {
     /// At rest: the wall is round when the ball arrives.
     pub(super) fn at_rest(modes: usize) -> Self {
+        let instant = WallInstant {
+            q: vec![0.0; modes],
+            phi: vec![0.0; modes],
+            ..WallInstant::default()
+        };
         ShellState {
             q: vec![0.0; modes],
             qd: vec![0.0; modes],
             phi: vec![0.0; modes],
+            at_force: (0.0, instant.clone()),
+            at_deflection: (0.0, instant),
             ..Self::default()
         }
     }
@@ -46,17 +53,19 @@ impl ShellState {
     /// the left-out modes' static share) is the largest yet.
     pub(super) fn watch(&mut self, contact: &ShellContact, force: f64, s: f64) {
         let deflection = self.r + contact.residual * force;
-        let instant = || WallInstant {
-            force,
-            axes: contact.size.axes(s),
-            q: self.q.clone(),
-            phi: self.phi.clone(),
+        // in place: a new largest value comes at most every step of the loading
+        let keep = |(peak, kept): &mut (f64, WallInstant), value: f64, q: &[f64], phi: &[f64]| {
+            *peak = value;
+            kept.force = force;
+            kept.axes = contact.size.axes(s);
+            kept.q.clone_from_slice(q);
+            kept.phi.clone_from_slice(phi);
         };
         if force > self.at_force.0 {
-            self.at_force = (force, instant());
+            keep(&mut self.at_force, force, &self.q, &self.phi);
         }
         if deflection > self.at_deflection.0 {
-            self.at_deflection = (deflection, instant());
+            keep(&mut self.at_deflection, deflection, &self.q, &self.phi);
         }
     }
 
