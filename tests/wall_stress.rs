@@ -50,7 +50,7 @@ fn a_pinched_long_tube_bends_as_the_ring_does() {
 }
 
 use batstudy::model::bat::barrel::{barrel_wall, hollow_part};
-use batstudy::model::bat::laminate::{Laminate, Layer, Ply, Strength};
+use batstudy::model::bat::laminate::{material, Laminate, Ply, Strength};
 use batstudy::model::bat::section::BatGeometry;
 use batstudy::model::bat::shell::footprint_points_fine;
 use batstudy::model::bat::wall_stress::{peak_ratio, strains_at_instant, stress_ratio};
@@ -197,40 +197,23 @@ fn the_strength_criteria_are_the_textbook_ones() {
     let eps = 1e-3;
     let want = e * eps / (1.0 - nu) / y;
     assert!((metal.stress_ratio(0.3, (eps, eps)) / want - 1.0).abs() < 1e-12);
-    let ply = Ply {
-        e1: 147e9,
-        e2: 10.3e9,
-        g12: 7.0e9,
-        nu12: 0.27,
-        density: 1600.0,
-        matrix: true,
-        loss: [0.0; 3],
-        strength: Strength::Ply {
-            xt: 1950e6,
-            xc: 1480e6,
-            yt: 48e6,
-            yc: 200e6,
-            s12: 79e6,
-        },
+    // the carbon/epoxy ply of the material table
+    let ply = material("test", "carbon_epoxy").unwrap().unwrap();
+    let Strength::Ply { xt, yt, .. } = ply.strength else {
+        panic!("carbon_epoxy has ply strengths: {:?}", ply.strength)
     };
-    let r = ply.stress_ratio(0.0, (eps, -0.27 * eps));
-    assert!((r / (147e9 * eps / 1950e6) - 1.0).abs() < 1e-12, "{r}");
+    let r = ply.stress_ratio(0.0, (eps, -ply.nu12 * eps));
+    assert!((r / (ply.e1 * eps / xt) - 1.0).abs() < 1e-12, "{r}");
     // turned by 90°, the bat's axis is across the fibres: pulled along it with the hoop
     // strain free of stress (ε_θ = −ν₂₁ ε_x), σ₂ = E₂ ε_x alone and the index is σ₂/Y_t
-    let nu21 = 0.27 * 10.3e9 / 147e9;
+    let nu21 = ply.nu12 * ply.e2 / ply.e1;
     let across = ply.stress_ratio(std::f64::consts::FRAC_PI_2, (eps, -nu21 * eps));
     assert!(
-        (across / (10.3e9 * eps / 48e6) - 1.0).abs() < 1e-12,
+        (across / (ply.e2 * eps / yt) - 1.0).abs() < 1e-12,
         "{across}"
     );
     // a laminate's faces: pure bending of a metal wall gives the surface's strain
-    let wall = Laminate {
-        layers: vec![Layer {
-            ply: Some(metal),
-            thickness: 0.002,
-            angle: 0.0,
-        }],
-    };
+    let wall = Laminate::single(metal, 0.002);
     let kappa = eps / 0.001;
     let bent = wall.stress_ratio(1.0, [0.0, 0.0, kappa, kappa]);
     assert!((bent / want - 1.0).abs() < 1e-12);

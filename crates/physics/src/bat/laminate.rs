@@ -311,14 +311,7 @@ pub struct Wall {
 impl Wall {
     /// A homogeneous isotropic wall of thickness h.
     pub fn isotropic(e: f64, nu: f64, density: f64, h: f64, radius: f64) -> Wall {
-        let laminate = Laminate {
-            layers: vec![Layer {
-                ply: Some(Ply::isotropic(e, nu, density)),
-                thickness: h,
-                angle: 0.0,
-            }],
-        };
-        laminate.wall(1.0, radius)
+        Laminate::single(Ply::isotropic(e, nu, density), h).wall(1.0, radius)
     }
 
     /// The wall's stiffnesses times `factor` (its mass unchanged): an isotropic wall's loss
@@ -339,6 +332,17 @@ impl Wall {
 }
 
 impl Laminate {
+    /// A wall of one ply of thickness `h`, m, its axes the bat's.
+    pub fn single(ply: Ply, h: f64) -> Laminate {
+        Laminate {
+            layers: vec![Layer {
+                ply: Some(ply),
+                thickness: h,
+                angle: 0.0,
+            }],
+        }
+    }
+
     /// Total thickness, gaps included, m.
     pub fn thickness(&self) -> f64 {
         self.layers.iter().map(|l| l.thickness).sum()

@@ -16,7 +16,7 @@
 //! small part of the local one: `tests/wall_stress.rs` measures the n = 0, 2 terms it sits
 //! between).
 
-use super::laminate::{Laminate, Layer, Ply, Strength};
+use super::laminate::{Laminate, Ply, Strength};
 use super::section::BatGeometry;
 use super::shell::{
     footprint_load, footprint_points_fine, held_dofs, mesh, static_stiffness, strains_at, ShellEnd,
@@ -156,14 +156,7 @@ pub fn stress_ratio(g: &BatGeometry, x: f64, e: [f64; 4]) -> f64 {
                     y if y > 0.0 => Strength::Yield(y),
                     _ => Strength::Unknown,
                 });
-            let wall = Laminate {
-                layers: vec![Layer {
-                    ply: Some(metal),
-                    thickness: h,
-                    angle: 0.0,
-                }],
-            };
-            wall.stress_ratio(1.0, e)
+            Laminate::single(metal, h).stress_ratio(1.0, e)
         }
     }
 }
